@@ -1,0 +1,9 @@
+# Every dependency comes from Debian 12 packages (scripts/setup.sh installs them).
+find_package(Eigen3 3.4 REQUIRED NO_MODULE)
+find_package(nanoflann REQUIRED)
+find_package(TBB REQUIRED)
+find_package(spdlog REQUIRED)
+find_package(CLI11 REQUIRED)
+find_package(nlohmann_json 3.10 REQUIRED)
+find_package(SQLite3 REQUIRED)
+find_package(Threads REQUIRED)

@@ -1,0 +1,28 @@
+#pragma once
+/// \file
+/// Plain-text point lists: XYZ (`x y z [nx ny nz] [r g b]` or `x y z [intensity] [r g b]`)
+/// and Leica PTS (first line the point count, then `x y z intensity [r g b]`).
+/// Separators: spaces, tabs or commas; `#` and `//` start comments; blank lines ignored.
+
+#include <filesystem>
+#include <span>
+#include <string_view>
+
+#include "anascan/processing/expected.hpp"
+#include "anascan/processing/point_cloud.hpp"
+
+namespace anascan::io {
+
+/// Parses XYZ text. The column count of the first data line fixes the layout:
+/// 3 = xyz, 4 = xyz+intensity, 6 = xyz+normals (or xyz+rgb when the last three are
+/// integers 0-255), 7 = xyz+intensity+rgb, 9 = xyz+normals+rgb. Every later line must
+/// have the same count; errors name the line.
+Expected<PointCloud> parse_xyz(std::span<const char> bytes, std::string_view source_name);
+
+/// Parses PTS text: the first non-comment line is the point count, which must match.
+Expected<PointCloud> parse_pts(std::span<const char> bytes, std::string_view source_name);
+
+/// Reads `.xyz`/`.txt`/`.asc` as XYZ and `.pts` as PTS (by extension).
+Expected<PointCloud> read_text_points(const std::filesystem::path& path);
+
+}  // namespace anascan::io

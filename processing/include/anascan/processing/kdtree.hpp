@@ -1,0 +1,55 @@
+#pragma once
+/// \file
+/// Nearest-neighbour search over a cloud's positions (a thin wrapper over nanoflann; the
+/// nanoflann API of Debian 1.4.3 stays inside kdtree.cpp).
+
+#include <Eigen/Core>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+namespace anascan {
+
+/// One neighbour: index into the indexed points and squared distance (metres squared).
+struct Neighbor {
+    std::uint32_t index = 0;
+    float distance_sq_m2 = 0.0f;
+};
+
+/// Static k-d tree over points the caller owns (no copy: the span must outlive the tree).
+///
+/// Thread safety: construction is single-threaded; all const queries may run concurrently
+/// from many threads once constructed.
+class KdTree {
+public:
+    struct Config {
+        int max_leaf_size = 16;  ///< Points per leaf; 10-20 is fastest for 3-D queries.
+    };
+
+    explicit KdTree(std::span<const Eigen::Vector3f> points);
+    KdTree(std::span<const Eigen::Vector3f> points, Config config);
+    ~KdTree();
+    KdTree(KdTree&&) noexcept;
+    KdTree& operator=(KdTree&&) noexcept;
+    KdTree(const KdTree&) = delete;
+    KdTree& operator=(const KdTree&) = delete;
+
+    std::size_t size() const;
+
+    /// The nearest point; `false` when the tree is empty.
+    bool nearest(const Eigen::Vector3f& query, Neighbor& out) const;
+
+    /// Up to k nearest points, closest first (fewer when the tree holds fewer than k).
+    void knn(const Eigen::Vector3f& query, std::size_t k, std::vector<Neighbor>& out) const;
+
+    /// All points within `radius_m` (inclusive), closest first.
+    void radius(const Eigen::Vector3f& query, float radius_m, std::vector<Neighbor>& out) const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace anascan

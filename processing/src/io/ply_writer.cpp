@@ -1,0 +1,3 @@
+#include "anascan/processing/io/ply.hpp"
+
+namespace anascan::io {}  // namespace anascan::io

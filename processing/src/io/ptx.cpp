@@ -1,0 +1,3 @@
+#include "anascan/processing/io/ptx.hpp"
+
+namespace anascan::io {}  // namespace anascan::io

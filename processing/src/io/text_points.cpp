@@ -1,0 +1,3 @@
+#include "anascan/processing/io/text_points.hpp"
+
+namespace anascan::io {}  // namespace anascan::io

@@ -1,0 +1,3 @@
+#include "anascan/processing/kdtree.hpp"
+
+namespace anascan {}  // namespace anascan

@@ -1,0 +1,3 @@
+#include "anascan/processing/voxel_grid.hpp"
+
+namespace anascan {}  // namespace anascan

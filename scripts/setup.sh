@@ -1,0 +1,48 @@
+#!/usr/bin/env bash
+# Installs every build and test dependency of anascan from Debian 12 packages.
+# Idempotent: when everything is present it only checks and returns (about a second).
+# Uses sudo only when not running as root.
+set -euo pipefail
+
+PACKAGES=(
+    build-essential cmake pkg-config ninja-build git
+    clang libclang-rt-14-dev           # libFuzzer targets
+    libeigen3-dev libnanoflann-dev libtbb-dev
+    libopencv-dev libopencv-contrib-dev
+    libusb-1.0-0-dev libv4l-dev
+    libglfw3-dev libimgui-dev libgl-dev libgl1-mesa-dri
+    libsqlite3-dev sqlite3
+    libspdlog-dev libfmt-dev libcli11-dev nlohmann-json3-dev
+    libgtest-dev libgmock-dev googletest libbenchmark-dev
+    umockdev libumockdev-dev
+    xvfb xauth
+    python3-open3d python3-numpy       # peer for the side-by-side benchmarks
+)
+
+missing=()
+for pkg in "${PACKAGES[@]}"; do
+    if ! dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q "ok installed"; then
+        missing+=("$pkg")
+    fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+    echo "setup: all ${#PACKAGES[@]} Debian packages present"
+    exit 0
+fi
+
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then
+    if command -v sudo >/dev/null; then
+        SUDO="sudo"
+    else
+        echo "setup: need root or sudo to install: ${missing[*]}" >&2
+        exit 1
+    fi
+fi
+
+echo "setup: installing ${#missing[@]} packages: ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+echo "setup: done"
