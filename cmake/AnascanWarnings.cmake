@@ -2,7 +2,10 @@
 function(anascan_set_warnings target)
     target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow
                                              -Wnon-virtual-dtor -Wcast-align -Wunused
-                                             -Woverloaded-virtual -Wnull-dereference)
+                                             -Woverloaded-virtual -Wnull-dereference
+                                             # Config structs are filled with designated
+                                             # initialisers relying on in-class defaults.
+                                             -Wno-missing-field-initializers)
     if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU" AND CMAKE_CXX_COMPILER_VERSION VERSION_LESS 13)
         # GCC 12 reports false -Wrestrict on std::string concatenation (GCC bug 105329).
         target_compile_options(${target} PRIVATE -Wno-restrict)

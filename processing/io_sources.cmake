@@ -6,9 +6,13 @@ set(ANASCAN_PROCESSING_CORE_SOURCES
     src/pose.cpp
     src/scan.cpp
     src/io/file_bytes.cpp
+    src/io/ply_header.cpp
+    src/io/ply_source.cpp
+    src/io/ply_vertex.cpp
     src/io/ply_reader.cpp
     src/io/ply_writer.cpp
     src/io/text_points.cpp
     src/io/ptx.cpp
     src/io/stanford_conf.cpp
-    src/io/xf.cpp)
+    src/io/xf.cpp
+    src/io/text_lines.cpp)

@@ -17,6 +17,7 @@ PACKAGES=(
     umockdev libumockdev-dev
     xvfb xauth
     python3-open3d python3-numpy       # peer for the side-by-side benchmarks
+    libopen3d-dev                      # Open3D C++: peer linked into anascan_bench_ply
 )
 
 missing=()

@@ -6,6 +6,10 @@
 /// a 4x4 transform (4 lines of 4, row vector convention: the last row is the
 /// translation), then columns*rows lines `x y z intensity [r g b]` (column-major: all rows
 /// of column 0 first). A line `0 0 0 0.5` (zero position) marks a missing return.
+///
+/// The position line is read as the registered scanner position in the world frame (or
+/// 0 0 0 when unregistered); meta.sensor_origin_scan_m is it expressed in the scan frame,
+/// i.e. 0 0 0 for standard files. See docs/text-formats.md.
 
 #include <filesystem>
 #include <span>

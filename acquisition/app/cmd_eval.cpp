@@ -1,0 +1,73 @@
+// anascan eval POSES.conf --truth TRUTH.conf: per-scan pose errors against ground truth.
+#include <cstdio>
+
+#include "anascan/processing/io/stanford_conf.hpp"
+#include "anascan/processing/pose_evaluation.hpp"
+#include "commands.hpp"
+
+namespace anascan::cli {
+namespace {
+
+struct EvalOptions {
+    std::string estimated;
+    std::string truth;
+    double max_rotation_deg = -1.0;     // < 0: no limit
+    double max_translation_mm = -1.0;   // < 0: no limit
+};
+
+std::vector<NamedPose> read_named_poses(const std::string& path) {
+    auto conf = io::read_conf(path);
+    if (!conf) fail_command(conf.error());
+    std::vector<NamedPose> poses;
+    for (const io::ConfEntry& e : conf->entries) poses.push_back({e.file, e.T_world_scan});
+    return poses;
+}
+
+void print_evaluation(const PoseEvaluation& eval) {
+    std::printf("reference scan: %s\n", eval.reference.c_str());
+    std::printf("%-24s %14s %18s\n", "scan", "rotation deg", "translation mm");
+    for (const ScanPoseError& s : eval.scans) {
+        if (!s.placed) {
+            std::printf("%-24s %14s %18s\n", s.name.c_str(), "not placed", "-");
+            continue;
+        }
+        std::printf("%-24s %14.4f %18.4f\n", s.name.c_str(), s.rotation_deg, 1e3 * s.translation_m);
+    }
+    for (const std::string& u : eval.unknown) std::printf("%-24s not in the truth\n", u.c_str());
+    std::printf("placed %zu of %zu; max rotation error %.4f deg, max translation error %.4f mm\n",
+                eval.placed, eval.scans.size(), eval.max_rotation_deg, 1e3 * eval.max_translation_m);
+}
+
+void run_eval(const EvalOptions& o) {
+    const auto eval = evaluate_poses(read_named_poses(o.estimated), read_named_poses(o.truth));
+    if (!eval) throw CommandFailed(o.estimated + " and " + o.truth + " share no scan name");
+    print_evaluation(*eval);
+    const bool all_placed = eval->placed == eval->scans.size();
+    const bool rotation_ok = o.max_rotation_deg < 0 || eval->max_rotation_deg <= o.max_rotation_deg;
+    const bool translation_ok =
+        o.max_translation_mm < 0 || 1e3 * eval->max_translation_m <= o.max_translation_mm;
+    if ((o.max_rotation_deg >= 0 || o.max_translation_mm >= 0) &&
+        !(all_placed && rotation_ok && translation_ok)) {
+        throw CommandFailed("the poses exceed the given limits or miss scans");
+    }
+}
+
+}  // namespace
+
+void add_eval_command(CLI::App& app) {
+    auto opts = std::make_shared<EvalOptions>();
+    auto* cmd = app.add_subcommand(
+        "eval", "Compare estimated poses with ground truth: per-scan rotation error (deg) and "
+                "translation error (mm), both sets expressed in the first common scan's frame");
+    cmd->add_option("poses", opts->estimated, "Estimated poses (.conf)")
+        ->required()->check(CLI::ExistingFile);
+    cmd->add_option("--truth", opts->truth, "Ground-truth poses (.conf)")
+        ->required()->check(CLI::ExistingFile);
+    cmd->add_option("--max-rotation-deg", opts->max_rotation_deg,
+                    "Exit with status 1 when a rotation error exceeds this (degrees)");
+    cmd->add_option("--max-translation-mm", opts->max_translation_mm,
+                    "Exit with status 1 when a translation error exceeds this (mm)");
+    cmd->callback([opts] { run_eval(*opts); });
+}
+
+}  // namespace anascan::cli

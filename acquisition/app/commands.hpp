@@ -1,0 +1,27 @@
+#pragma once
+// Sub-commands of the `anascan` command line. Each registers itself on the app; its
+// callback prints results on stdout, progress on stderr, and throws CommandFailed with a
+// message for the user on error (main turns it into exit code 1).
+
+#include <CLI/CLI.hpp>
+#include <stdexcept>
+#include <string>
+
+#include "anascan/processing/error.hpp"
+
+namespace anascan::cli {
+
+struct CommandFailed : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+/// Throws CommandFailed carrying the error's message.
+[[noreturn]] inline void fail_command(const Error& error) { throw CommandFailed(error.message); }
+
+void add_info_command(CLI::App& app);
+void add_convert_command(CLI::App& app);
+void add_assemble_command(CLI::App& app);
+void add_demo_command(CLI::App& app);
+void add_eval_command(CLI::App& app);
+
+}  // namespace anascan::cli

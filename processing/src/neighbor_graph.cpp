@@ -1,0 +1,346 @@
+#include "anascan/processing/neighbor_graph.hpp"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+#include "anascan/processing/kdtree.hpp"
+
+namespace anascan {
+namespace {
+
+constexpr int kMortonBits = 21;  // Per axis: 63-bit keys.
+constexpr double kMaxCoord = double((1u << kMortonBits) - 1);
+
+std::uint64_t spread_bits(std::uint64_t v) {  // 21 bits -> every third bit.
+    v &= 0x1fffff;
+    v = (v | v << 32) & 0x1f00000000ffffULL;
+    v = (v | v << 16) & 0x1f0000ff0000ffULL;
+    v = (v | v << 8) & 0x100f00f00f00f00fULL;
+    v = (v | v << 4) & 0x10c30c30c30c30c3ULL;
+    v = (v | v << 2) & 0x1249249249249249ULL;
+    return v;
+}
+
+std::uint64_t compact_bits(std::uint64_t v) {  // Inverse of spread_bits.
+    v &= 0x1249249249249249ULL;
+    v = (v ^ (v >> 2)) & 0x10c30c30c30c30c3ULL;
+    v = (v ^ (v >> 4)) & 0x100f00f00f00f00fULL;
+    v = (v ^ (v >> 8)) & 0x1f0000ff0000ffULL;
+    v = (v ^ (v >> 16)) & 0x1f00000000ffffULL;
+    v = (v ^ (v >> 32)) & 0x1fffff;
+    return v;
+}
+
+std::uint64_t morton(const Eigen::Array3<std::int64_t>& c) {
+    return spread_bits(std::uint64_t(c.x())) | spread_bits(std::uint64_t(c.y())) << 1 |
+           spread_bits(std::uint64_t(c.z())) << 2;
+}
+
+Eigen::Array3<std::int64_t> demorton(std::uint64_t key) {
+    return {std::int64_t(compact_bits(key)), std::int64_t(compact_bits(key >> 1)),
+            std::int64_t(compact_bits(key >> 2))};
+}
+
+bool is_finite(const Eigen::Vector3f& p) { return p.allFinite(); }
+
+// Finite points quantised to a 2^21 lattice over their bounds and sorted along the Morton
+// curve; cells of side 2^level lattice units are runs of equal key >> (3 * level).
+struct MortonGrid {
+    Eigen::Vector3d min_m = Eigen::Vector3d::Zero();
+    double units_per_m = 1.0;
+    int level = 0;
+    std::vector<std::uint64_t> keys;      // Sorted point keys.
+    std::vector<std::uint32_t> order;     // Point index of each sorted key.
+    std::vector<Eigen::Vector3f> sorted;  // Positions in sorted order.
+    std::vector<std::uint64_t> cell_keys;
+    std::vector<std::uint32_t> cell_begin;  // cell_keys.size() + 1 offsets into `sorted`.
+
+    Eigen::Vector3d lattice(const Eigen::Vector3f& p) const {
+        return ((p.cast<double>() - min_m) * units_per_m).cwiseMax(0.0).cwiseMin(kMaxCoord);
+    }
+    // Index of the cell with these cell coordinates, or -1.
+    std::ptrdiff_t find_cell(const Eigen::Array3<std::int64_t>& c) const {
+        const std::int64_t max_c = std::int64_t(kMaxCoord) >> level;
+        if ((c < 0).any() || (c > max_c).any()) return -1;
+        const std::uint64_t key = morton(c);
+        const auto it = std::lower_bound(cell_keys.begin(), cell_keys.end(), key);
+        return it != cell_keys.end() && *it == key ? it - cell_keys.begin() : -1;
+    }
+};
+
+void sort_points(std::span<const Eigen::Vector3f> points, MortonGrid& grid) {
+    Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = -lo;
+    for (const Eigen::Vector3f& p : points) {
+        if (!is_finite(p)) continue;
+        lo = lo.cwiseMin(p.cast<double>());
+        hi = hi.cwiseMax(p.cast<double>());
+    }
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed;
+    keyed.reserve(points.size());
+    if (lo.x() <= hi.x()) {
+        grid.min_m = lo;
+        grid.units_per_m = kMaxCoord / std::max((hi - lo).maxCoeff(), 1e-9);
+        for (std::size_t i = 0; i < points.size(); ++i) {
+            if (!is_finite(points[i])) continue;
+            const Eigen::Vector3d u = grid.lattice(points[i]);
+            keyed.emplace_back(morton(u.array().floor().cast<std::int64_t>()), std::uint32_t(i));
+        }
+    }
+    tbb::parallel_sort(keyed.begin(), keyed.end());  // Unique pairs: deterministic order.
+    grid.keys.resize(keyed.size());
+    grid.order.resize(keyed.size());
+    grid.sorted.resize(keyed.size());
+    for (std::size_t s = 0; s < keyed.size(); ++s) {
+        grid.keys[s] = keyed[s].first;
+        grid.order[s] = keyed[s].second;
+        grid.sorted[s] = points[keyed[s].second];
+    }
+}
+
+std::size_t count_cells(const std::vector<std::uint64_t>& keys, int level) {
+    std::size_t cells = 0;
+    for (std::size_t s = 0; s < keys.size(); ++s) {
+        cells += s == 0 || (keys[s] >> (3 * level)) != (keys[s - 1] >> (3 * level));
+    }
+    return cells;
+}
+
+// The coarsest level whose mean cell occupancy stays near `target` points.
+void choose_cells(double target, MortonGrid& grid) {
+    const double n = double(grid.keys.size());
+    int level = 0;
+    double occupancy = n / double(std::max<std::size_t>(count_cells(grid.keys, 0), 1));
+    while (level < kMortonBits && occupancy < target) {
+        const double next = n / double(std::max<std::size_t>(count_cells(grid.keys, level + 1), 1));
+        if (next > target && next / target > target / occupancy) break;  // Previous is closer.
+        ++level;
+        occupancy = next;
+    }
+    grid.level = level;
+    for (std::size_t s = 0; s < grid.keys.size(); ++s) {
+        const std::uint64_t cell = grid.keys[s] >> (3 * level);
+        if (grid.cell_keys.empty() || grid.cell_keys.back() != cell) {
+            grid.cell_keys.push_back(cell);
+            grid.cell_begin.push_back(std::uint32_t(s));
+        }
+    }
+    grid.cell_begin.push_back(std::uint32_t(grid.keys.size()));
+}
+
+// The k best (squared distance, index) pairs seen so far, closest first, ties by index.
+class TopK {
+public:
+    TopK(std::size_t k, float max_d2) : k_(k), max_d2_(max_d2), d2_(k + 1), index_(k + 1) {}
+    // Starts over, keeping only candidates within `bound_d2` (and the radius limit).
+    void clear(float bound_d2) {
+        size_ = 0;
+        worst_ = std::min(bound_d2, max_d2_);
+    }
+    float max_d2() const { return max_d2_; }
+    std::size_t size() const { return size_; }
+    std::size_t capacity() const { return k_; }
+    float worst() const { return worst_; }
+    // Cheap rejection first: most candidates fail `d2 > worst()`.
+    void offer(float d2, std::uint32_t index) {
+        if (d2 > worst_) return;
+        std::size_t j = size_;
+        while (j > 0 && (d2_[j - 1] > d2 || (d2_[j - 1] == d2 && index_[j - 1] > index))) {
+            d2_[j] = d2_[j - 1];
+            index_[j] = index_[j - 1];
+            --j;
+        }
+        d2_[j] = d2;
+        index_[j] = index;
+        size_ = std::min(size_ + 1, k_);
+        if (size_ == k_) worst_ = d2_[k_ - 1];
+    }
+    float d2(std::size_t j) const { return d2_[j]; }
+    std::uint32_t index(std::size_t j) const { return index_[j]; }
+
+private:
+    std::size_t k_;
+    float max_d2_;
+    std::vector<float> d2_;  // k + 1 slots: an insertion may shift the k-th out.
+    std::vector<std::uint32_t> index_;
+    std::size_t size_ = 0;
+    float worst_ = 0.0f;
+};
+
+void write_row(const TopK& top, std::size_t row, NeighborGraph& graph) {
+    for (std::size_t j = 0; j < top.size(); ++j) {
+        graph.distances_sq_m2[row * graph.k + j] = top.d2(j);
+        graph.indices[row * graph.k + j] = top.index(j);
+    }
+    graph.counts[row] = std::uint32_t(top.size());
+}
+
+// Sorted positions of the 3x3x3 block of cells around `cell`.
+struct Block {
+    std::vector<float> x, y, z;  // Structure of arrays: the distance loop vectorises.
+    std::vector<std::uint32_t> indices;
+    std::vector<float> d2;
+    std::vector<std::uint32_t> picked;
+    std::size_t size() const { return indices.size(); }
+};
+
+void gather_block(const MortonGrid& grid, std::size_t cell, Block& block) {
+    block.x.clear();
+    block.y.clear();
+    block.z.clear();
+    block.indices.clear();
+    const Eigen::Array3<std::int64_t> c = demorton(grid.cell_keys[cell]);
+    for (int dz = -1; dz <= 1; ++dz) {
+        for (int dy = -1; dy <= 1; ++dy) {
+            for (int dx = -1; dx <= 1; ++dx) {
+                const std::ptrdiff_t other =
+                    grid.find_cell(c + Eigen::Array3<std::int64_t>(dx, dy, dz));
+                if (other < 0) continue;
+                for (std::uint32_t s = grid.cell_begin[other]; s < grid.cell_begin[other + 1];
+                     ++s) {
+                    block.x.push_back(grid.sorted[s].x());
+                    block.y.push_back(grid.sorted[s].y());
+                    block.z.push_back(grid.sorted[s].z());
+                    block.indices.push_back(grid.order[s]);
+                }
+            }
+        }
+    }
+}
+
+// Distance (metres) from sorted point s to the outside of its cell's 3x3x3 block: every
+// point closer than that lies in the block.
+double block_reach_m(const MortonGrid& grid, std::size_t cell, std::uint32_t s) {
+    const double side = double(std::int64_t(1) << grid.level);
+    const Eigen::Array3d lo = demorton(grid.cell_keys[cell]).cast<double>() * side;
+    const Eigen::Array3d u = grid.lattice(grid.sorted[s]).array();
+    const double margin = std::max(((u - lo).min(lo + side - u)).minCoeff(), 0.0);
+    return (side + margin) / grid.units_per_m * (1.0 - 1e-6);
+}
+
+float max_distance_sq(const NeighborGraphConfig& config) {
+    return config.max_radius_m > 0.0f ? config.max_radius_m * config.max_radius_m
+                                      : std::numeric_limits<float>::infinity();
+}
+
+// Offers the candidates within `bound_d2`: a branch-free pass picks them, so the
+// unpredictable comparison does not stall the pipeline for the many that fail.
+void offer_block(Block& block, std::uint32_t self, float bound_d2, TopK& top) {
+    top.clear(bound_d2);
+    const float bound = top.worst();
+    std::size_t picked = 0;
+    block.picked.resize(block.size());
+    for (std::size_t c = 0; c < block.size(); ++c) {
+        block.picked[picked] = std::uint32_t(c);
+        picked += block.d2[c] <= bound;
+    }
+    for (std::size_t p = 0; p < picked; ++p) {
+        const std::uint32_t c = block.picked[p];
+        if (block.indices[c] != self) top.offer(block.d2[c], block.indices[c]);
+    }
+}
+
+// Nearest neighbours of sorted point s among the block's points. `hint_d2` (the previous
+// query's k-th distance, grown) filters candidates first; when fewer than k pass, the
+// block is scanned again without it, so the answer is the same either way.
+void scan_block(const MortonGrid& grid, std::uint32_t s, float hint_d2, Block& block, TopK& top) {
+    const Eigen::Vector3f q = grid.sorted[s];
+    const std::size_t m = block.size();
+    block.d2.resize(m);
+    for (std::size_t c = 0; c < m; ++c) {
+        const float dx = block.x[c] - q.x(), dy = block.y[c] - q.y(), dz = block.z[c] - q.z();
+        block.d2[c] = dx * dx + dy * dy + dz * dz;
+    }
+    offer_block(block, grid.order[s], hint_d2, top);
+    if (top.size() < top.capacity() && hint_d2 < top.max_d2()) {
+        offer_block(block, grid.order[s], top.max_d2(), top);
+    }
+}
+
+// Answers the points of `cell` from its block; rows it cannot prove exact get flagged.
+void answer_cell(const MortonGrid& grid, std::size_t cell, const NeighborGraphConfig& config,
+                 Block& block, NeighborGraph& graph, std::vector<std::uint8_t>& fallback) {
+    gather_block(grid, cell, block);
+    const float max_d2 = max_distance_sq(config);
+    const bool too_dense = block.size() > 64 * graph.k + 1024;  // Piles of duplicates.
+    TopK top(graph.k, max_d2);
+    float hint_d2 = std::numeric_limits<float>::infinity();
+    for (std::uint32_t s = grid.cell_begin[cell]; s < grid.cell_begin[cell + 1]; ++s) {
+        const std::uint32_t row = grid.order[s];
+        if (too_dense) {
+            fallback[row] = 1;
+            continue;
+        }
+        scan_block(grid, s, hint_d2, block, top);
+        if (top.size() == graph.k) hint_d2 = 2.0f * top.worst();
+        const double reach = block_reach_m(grid, cell, s);
+        const double needed = top.size() == graph.k ? double(top.worst()) : double(max_d2);
+        if (needed <= reach * reach) {
+            write_row(top, row, graph);
+        } else {
+            fallback[row] = 1;
+        }
+    }
+}
+
+// Exact k-d tree answers for the flagged rows.
+void answer_fallbacks(std::span<const Eigen::Vector3f> points, const MortonGrid& grid,
+                      const NeighborGraphConfig& config, const std::vector<std::uint8_t>& flags,
+                      NeighborGraph& graph) {
+    std::vector<std::uint32_t> rows;
+    for (std::size_t i = 0; i < flags.size(); ++i) {
+        if (flags[i]) rows.push_back(std::uint32_t(i));
+    }
+    graph.num_exact_fallbacks = rows.size();
+    if (rows.empty()) return;
+    const KdTree tree(grid.sorted);  // Finite points only; map back through grid.order.
+    const float max_d2 = max_distance_sq(config);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rows.size(), 64), [&](const auto& r) {
+        std::vector<Neighbor> found;
+        TopK top(graph.k, max_d2);
+        for (std::size_t j = r.begin(); j < r.end(); ++j) {
+            const std::uint32_t row = rows[j];
+            tree.knn(points[row], graph.k + 1, found);
+            top.clear(max_d2);
+            for (const Neighbor& n : found) {
+                const std::uint32_t index = grid.order[n.index];
+                if (index != row) top.offer(n.distance_sq_m2, index);
+            }
+            write_row(top, row, graph);
+        }
+    });
+}
+
+}  // namespace
+
+NeighborGraph build_neighbor_graph(std::span<const Eigen::Vector3f> points,
+                                   const NeighborGraphConfig& config) {
+    assert(points.size() < std::numeric_limits<std::uint32_t>::max());
+    NeighborGraph graph;
+    graph.k = std::size_t(std::max(config.k_neighbors, 1));
+    graph.indices.assign(points.size() * graph.k, 0);
+    graph.distances_sq_m2.assign(points.size() * graph.k, 0.0f);
+    graph.counts.assign(points.size(), 0);
+    MortonGrid grid;
+    sort_points(points, grid);
+    if (grid.keys.empty()) return graph;
+    choose_cells(0.5 * double(graph.k + 1), grid);
+    std::vector<std::uint8_t> fallback(points.size(), 0);
+    const std::size_t num_cells = grid.cell_keys.size();
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, num_cells, 16), [&](const auto& r) {
+        Block block;
+        for (std::size_t cell = r.begin(); cell < r.end(); ++cell) {
+            answer_cell(grid, cell, config, block, graph, fallback);
+        }
+    });
+    answer_fallbacks(points, grid, config, fallback, graph);
+    return graph;
+}
+
+}  // namespace anascan

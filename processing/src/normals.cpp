@@ -1,0 +1,125 @@
+#include "anascan/processing/normals.hpp"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+namespace anascan {
+namespace {
+
+enum class Fit : std::uint8_t { kOk, kTooFew, kDegenerate };
+
+struct LocalFit {
+    Eigen::Vector3f normal = Eigen::Vector3f::Zero();
+    float curvature = 0.0f;
+    Fit fit = Fit::kTooFew;
+};
+
+// Covariance of the point and its neighbours about their centroid, in double; coordinates
+// are taken relative to the point itself first so that large local offsets cost no bits.
+Eigen::Matrix3d neighbourhood_covariance(std::span<const Eigen::Vector3f> positions, std::size_t i,
+                                         std::span<const std::uint32_t> nbrs) {
+    const Eigen::Vector3d p0 = positions[i].cast<double>();
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    Eigen::Matrix3d sum_sq = Eigen::Matrix3d::Zero();
+    for (const std::uint32_t j : nbrs) {
+        const Eigen::Vector3d d = positions[j].cast<double>() - p0;
+        sum += d;
+        sum_sq.noalias() += d * d.transpose();
+    }
+    const double n = double(nbrs.size() + 1);  // The point itself adds d = 0.
+    const Eigen::Vector3d mean = sum / n;
+    return sum_sq / n - mean * mean.transpose();
+}
+
+// Local PCA: the normal is the eigenvector of the smallest eigenvalue.
+LocalFit fit_point(std::span<const Eigen::Vector3f> positions, const NeighborGraph& graph,
+                   std::size_t i, std::size_t min_neighbors) {
+    LocalFit out;
+    const std::span<const std::uint32_t> nbrs = graph.neighbors(i);
+    if (nbrs.size() < min_neighbors) return out;
+    const Eigen::Matrix3d cov = neighbourhood_covariance(positions, i, nbrs);
+    const double trace = cov.trace();
+    if (!(trace > 0.0) || !std::isfinite(trace)) {
+        out.fit = Fit::kDegenerate;
+        return out;
+    }
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver;
+    solver.computeDirect(cov / trace);  // Unit trace: the closed form is scale-free.
+    const Eigen::Vector3d normal = solver.eigenvectors().col(0);
+    if (!normal.allFinite() || normal.squaredNorm() < 0.5) {
+        out.fit = Fit::kDegenerate;
+        return out;
+    }
+    out.normal = normal.normalized().cast<float>();
+    out.curvature = float(std::clamp(solver.eigenvalues()(0), 0.0, 1.0));  // λ0 / Σλ.
+    out.fit = Fit::kOk;
+    return out;
+}
+
+}  // namespace
+
+NormalEstimationResult estimate_normals(PointCloud& cloud, const NormalEstimationConfig& config) {
+    NormalEstimationResult result;
+    if (cloud.empty()) {
+        result.status = NormalStatus::kEmptyCloud;
+        cloud.normals.clear();
+        return result;
+    }
+    result.graph = build_neighbor_graph(
+        cloud.positions, {.k_neighbors = config.k_neighbors, .max_radius_m = config.max_radius_m});
+    const bool had_normals = cloud.normals.size() == cloud.size();
+    cloud.normals.resize(cloud.size(), Eigen::Vector3f::Zero());
+    result.curvature.assign(cloud.size(), 0.0f);
+    std::vector<Fit> fits(cloud.size(), Fit::kTooFew);
+    const std::size_t min_neighbors = std::size_t(std::max(config.min_neighbors, 2));
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cloud.size(), 1024), [&](const auto& r) {
+        for (std::size_t i = r.begin(); i < r.end(); ++i) {
+            const LocalFit local = fit_point(cloud.positions, result.graph, i, min_neighbors);
+            const Eigen::Vector3f old = cloud.normals[i];
+            const bool flip = had_normals && local.normal.dot(old) < 0.0f;
+            cloud.normals[i] = flip ? Eigen::Vector3f(-local.normal) : local.normal;
+            result.curvature[i] = local.curvature;
+            fits[i] = local.fit;
+        }
+    });
+    for (const Fit fit : fits) {
+        result.num_estimated += fit == Fit::kOk;
+        result.num_too_few_neighbors += fit == Fit::kTooFew;
+        result.num_degenerate += fit == Fit::kDegenerate;
+    }
+    return result;
+}
+
+OrientationResult orient_toward(PointCloud& cloud, const Eigen::Vector3f& sensor_origin_m) {
+    OrientationResult result;
+    if (cloud.normals.size() != cloud.size()) return result;
+    std::vector<std::uint8_t> flipped(cloud.size(), 0);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cloud.size(), 4096), [&](const auto& r) {
+        for (std::size_t i = r.begin(); i < r.end(); ++i) {
+            Eigen::Vector3f& n = cloud.normals[i];
+            if (n.dot(sensor_origin_m - cloud.positions[i]) < 0.0f) {
+                n = -n;
+                flipped[i] = 1;
+            }
+        }
+    });
+    for (std::size_t i = 0; i < cloud.size(); ++i) {
+        result.num_flipped += flipped[i];
+        result.num_unoriented += cloud.normals[i].isZero();
+    }
+    return result;
+}
+
+OrientationResult orient_consistently(PointCloud& cloud,
+                                      const ConsistentOrientationConfig& config) {
+    const NeighborGraph graph =
+        build_neighbor_graph(cloud.positions, {.k_neighbors = config.k_neighbors});
+    return orient_consistently(cloud, graph);
+}
+
+}  // namespace anascan
