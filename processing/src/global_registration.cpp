@@ -1,0 +1,258 @@
+// register_global: features → matching → refinement → verification (paper §4.2.1).
+#include "anascan/processing/global_registration.hpp"
+
+#include <tbb/parallel_invoke.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <optional>
+
+#include "anascan/processing/kdtree.hpp"
+
+namespace anascan {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+std::string input_problem(const PointCloud& source, const PointCloud& target) {
+    if (source.empty() || target.empty()) return "empty cloud";
+    if (!source.has_normals() || !target.has_normals()) return "both clouds need normals";
+    if (!source.attributes_consistent() || !target.attributes_consistent()) {
+        return "inconsistent attributes";
+    }
+    return {};
+}
+
+InvariantRadii choose_radii(const PointCloud& source, const PointCloud& target,
+                            const GlobalRegistrationConfig& config) {
+    const bool automatic = std::all_of(config.radii_m.begin(), config.radii_m.end(),
+                                       [](double r) { return r == 0.0; });
+    if (!automatic) return config.radii_m;
+    const double size_m =
+        std::max(local_bounds(source).extent().norm(), local_bounds(target).extent().norm());
+    return radii_for_object_size_m(size_m);
+}
+
+bool all_finite(const PointCloud& cloud) {
+    return std::all_of(cloud.positions.begin(), cloud.positions.end(),
+                       [](const Eigen::Vector3f& p) { return p.allFinite(); });
+}
+
+/// Why a refined hypothesis is not acceptable; empty when it is.
+std::string rejection(const FineRegistrationResult& fine, double spacing_m,
+                      const GlobalRegistrationConfig& config) {
+    if (fine.status != FineRegistrationStatus::kConverged &&
+        fine.status != FineRegistrationStatus::kMaxIterations) {
+        return "fine registration: " + std::string(to_string(fine.status));
+    }
+    if (fine.degeneracy.eigenvalue_ratio < config.fine.degeneracy_threshold) return "degenerate";
+    if (fine.rms_m > config.max_rms_spacing_factor * spacing_m) return "rms too large";
+    if (fine.overlap_fraction < config.min_overlap_fraction) return "overlap too small";
+    if (fine.normal_deviation_deg && *fine.normal_deviation_deg > config.max_normal_deviation_deg) {
+        return "normal deviation too large";
+    }
+    return {};
+}
+
+struct PairFeatures {
+    IntegralInvariantResult source_invariants, target_invariants;
+    FeaturePatchResult source_patches, target_patches;
+};
+
+/// Descriptors of both scans (in parallel), then their patches at shared saliency levels.
+bool describe_pair(const PointCloud& source, const PointCloud& target,
+                   const GlobalRegistrationConfig& config, GlobalRegistrationResult& result,
+                   PairFeatures& features) {
+    const Clock::time_point start = Clock::now();
+    IntegralInvariantConfig invariant_config = config.invariants;
+    invariant_config.radii_m = result.radii_m;
+    tbb::parallel_invoke(
+        [&] { features.source_invariants = compute_integral_invariants(source, invariant_config); },
+        [&] {
+            features.target_invariants = compute_integral_invariants(target, invariant_config);
+        });
+    result.timing.invariants_s = seconds_since(start);
+    if (features.source_invariants.status != IntegralInvariantStatus::kOk ||
+        features.target_invariants.status != IntegralInvariantStatus::kOk) {
+        result.message = "invalid descriptor configuration";
+        return false;
+    }
+    const Clock::time_point patches_start = Clock::now();
+    const IntegralInvariantResult* both[] = {&features.source_invariants,
+                                             &features.target_invariants};
+    const SaliencyLevels levels = saliency_levels(both, config.patches);
+    features.source_patches =
+        extract_feature_patches(features.source_invariants, levels, config.patches);
+    features.target_patches =
+        extract_feature_patches(features.target_invariants, levels, config.patches);
+    result.source_patches = features.source_patches.patches.size();
+    result.target_patches = features.target_patches.patches.size();
+    result.timing.patches_s = seconds_since(patches_start);
+    return true;
+}
+
+/// Fraction of source sites that land near a target site with a similar normal (30°).
+double site_overlap(const IntegralInvariantResult& source, const IntegralInvariantResult& target,
+                    const KdTree& target_sites, const Pose& T_target_source, double distance_m) {
+    if (source.site_positions.empty()) return 0.0;
+    const Eigen::Isometry3f T_local = (Eigen::Translation3d(-target.origin_m) * T_target_source *
+                                       Eigen::Translation3d(source.origin_m))
+                                          .cast<float>();
+    const float distance_sq = static_cast<float>(distance_m * distance_m);
+    std::size_t near = 0;
+    Neighbor nearest;
+    for (std::size_t i = 0; i < source.site_positions.size(); ++i) {
+        if (!target_sites.nearest(T_local * source.site_positions[i], nearest)) continue;
+        const Eigen::Vector3f n = T_local.linear() * source.site_normals[i];
+        near += nearest.distance_sq_m2 <= distance_sq &&
+                n.dot(target.site_normals[nearest.index]) >= 0.866f;
+    }
+    return static_cast<double>(near) / static_cast<double>(source.site_positions.size());
+}
+
+/// Outcomes for every hypothesis, best site overlap × consensus score first (ties: matching
+/// order).
+std::vector<HypothesisOutcome> rank_by_site_overlap(const IntegralInvariantResult& source,
+                                                    const IntegralInvariantResult& target,
+                                                    const GlobalRegistrationConfig& config,
+                                                    const FeatureMatchingResult& matching) {
+    const KdTree target_sites(target.site_positions);
+    const double distance_m = config.site_overlap_spacing_factor * target.site_spacing_m;
+    std::vector<HypothesisOutcome> ranked;
+    for (const PoseHypothesis& hypothesis : matching.hypotheses) {
+        HypothesisOutcome outcome;
+        outcome.hypothesis = hypothesis;
+        outcome.site_overlap =
+            site_overlap(source, target, target_sites, hypothesis.T_target_source, distance_m);
+        ranked.push_back(std::move(outcome));
+    }
+    // Site overlap alone cannot tell poses that slide along flat parts apart; the feature
+    // consensus alone favours repeated features: rank by their product.
+    std::stable_sort(ranked.begin(), ranked.end(), [](const auto& a, const auto& b) {
+        return a.site_overlap * a.hypothesis.score > b.site_overlap * b.hypothesis.score;
+    });
+    return ranked;
+}
+
+bool distinct(const Pose& a, const Pose& b, const FeatureMatchingConfig& config) {
+    const PoseDifference d = pose_difference(a, b);
+    return d.rotation_deg >= config.distinct_rotation_deg ||
+           d.translation_m >= config.distinct_translation_m;
+}
+
+/// True when `T` starts near a pose that already refined and verified.
+bool near_verified(const std::vector<HypothesisOutcome>& done, const Pose& T,
+                   const FeatureMatchingConfig& config) {
+    return std::any_of(done.begin(), done.end(), [&](const HypothesisOutcome& h) {
+        return h.verified && !distinct(h.fine.T_target_source, T, config);
+    });
+}
+
+void refine_hypotheses(const PointCloud& source, const PointCloud& target,
+                       std::vector<HypothesisOutcome> ranked,
+                       const GlobalRegistrationConfig& config, GlobalRegistrationResult& result) {
+    std::unique_ptr<KdTree> tree;
+    if (all_finite(target)) tree = std::make_unique<KdTree>(target.positions);
+    double verified_key = 0.0;  // Ranking key of the first verified hypothesis.
+    for (HypothesisOutcome& outcome : ranked) {
+        if (result.hypotheses.size() >= config.max_refined) break;
+        const double key = outcome.site_overlap * outcome.hypothesis.score;
+        if (key < config.min_rank_ratio_after_verified * verified_key) break;
+        const Pose& T_initial = outcome.hypothesis.T_target_source;
+        if (near_verified(result.hypotheses, T_initial, config.matching)) continue;
+        outcome.fine = tree ? register_fine(source, target, *tree, T_initial, config.fine)
+                            : register_fine(source, target, T_initial, config.fine);
+        outcome.rejection = rejection(outcome.fine, result.target_spacing_m, config);
+        outcome.verified = outcome.rejection.empty();
+        if (outcome.verified && verified_key == 0.0) verified_key = key;
+        result.hypotheses.push_back(std::move(outcome));
+    }
+}
+
+/// Best verified outcome by overlap; success unless a distinct pose comes close.
+void decide(const GlobalRegistrationConfig& config, GlobalRegistrationResult& result) {
+    std::optional<std::size_t> best;
+    for (std::size_t i = 0; i < result.hypotheses.size(); ++i) {
+        const HypothesisOutcome& h = result.hypotheses[i];
+        if (!h.verified) continue;
+        if (!best || h.fine.overlap_fraction > result.hypotheses[*best].fine.overlap_fraction) {
+            best = i;
+        }
+    }
+    if (!best) {
+        result.status = GlobalRegistrationStatus::kFailedVerification;
+        result.message = "no hypothesis survived refinement and verification";
+        return;
+    }
+    const FineRegistrationResult& fine = result.hypotheses[*best].fine;
+    result.best_hypothesis = *best;
+    result.T_target_source = fine.T_target_source;
+    result.rms_m = fine.rms_m;
+    result.overlap_fraction = fine.overlap_fraction;
+    result.normal_deviation_deg = fine.normal_deviation_deg.value_or(0.0);
+    result.status = GlobalRegistrationStatus::kSuccess;
+    for (const HypothesisOutcome& h : result.hypotheses) {
+        if (h.verified && distinct(h.fine.T_target_source, fine.T_target_source, config.matching) &&
+            h.fine.overlap_fraction >= config.ambiguity_overlap_ratio * fine.overlap_fraction) {
+            result.status = GlobalRegistrationStatus::kAmbiguous;
+            result.message = "several distinct verified poses";
+        }
+    }
+}
+
+}  // namespace
+
+std::string_view to_string(GlobalRegistrationStatus status) {
+    switch (status) {
+        case GlobalRegistrationStatus::kSuccess:
+            return "success";
+        case GlobalRegistrationStatus::kAmbiguous:
+            return "ambiguous";
+        case GlobalRegistrationStatus::kNoConsensus:
+            return "no_consensus";
+        case GlobalRegistrationStatus::kFailedVerification:
+            return "failed_verification";
+        case GlobalRegistrationStatus::kInvalidInput:
+            return "invalid_input";
+    }
+    return "unknown";
+}
+
+GlobalRegistrationResult register_global(const PointCloud& source, const PointCloud& target,
+                                         const GlobalRegistrationConfig& config) {
+    const Clock::time_point start = Clock::now();
+    GlobalRegistrationResult result;
+    result.message = input_problem(source, target);
+    if (!result.message.empty()) return result;
+    result.radii_m = choose_radii(source, target, config);
+    result.target_spacing_m = median_sample_spacing_m(target);
+    PairFeatures features;
+    if (!describe_pair(source, target, config, result, features)) return result;
+
+    const Clock::time_point matching_start = Clock::now();
+    result.matching =
+        match_features(features.source_patches, features.target_patches, config.matching);
+    result.timing.matching_s = seconds_since(matching_start);
+    if (result.matching.hypotheses.empty()) {
+        result.status = GlobalRegistrationStatus::kNoConsensus;
+        result.message = "no consistent set of feature correspondences";
+    } else {
+        const Clock::time_point refinement_start = Clock::now();
+        refine_hypotheses(source, target,
+                          rank_by_site_overlap(features.source_invariants,
+                                               features.target_invariants, config, result.matching),
+                          config, result);
+        result.timing.refinement_s = seconds_since(refinement_start);
+        decide(config, result);
+    }
+    result.timing.total_s = seconds_since(start);
+    return result;
+}
+
+}  // namespace anascan

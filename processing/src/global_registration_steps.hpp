@@ -1,0 +1,52 @@
+#pragma once
+/// \file
+/// Internal steps of global registration (not installed): candidate correspondences, the
+/// pairwise consistency graph, weighted Kabsch fits and the forward search.
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "anascan/processing/global_registration.hpp"
+
+namespace anascan::detail {
+
+/// Candidates: same radius, side and level; similar descriptor and extent. At most
+/// config.max_candidates, the most similar descriptors first, then in patch order.
+std::vector<FeatureCorrespondence> candidate_correspondences(const FeaturePatchResult& source,
+                                                             const FeaturePatchResult& target,
+                                                             const FeatureMatchingConfig& config);
+
+/// Row-major N×N matrix: 1 where two candidates are geometrically consistent.
+struct ConsistencyGraph {
+    std::size_t size = 0;
+    std::vector<std::uint8_t> consistent;
+    std::vector<std::size_t> degree;  ///< Consistent partners per candidate.
+    bool at(std::size_t a, std::size_t b) const { return consistent[a * size + b] != 0; }
+};
+
+ConsistencyGraph consistency_graph(const FeaturePatchResult& source,
+                                   const FeaturePatchResult& target,
+                                   std::span<const FeatureCorrespondence> candidates,
+                                   const FeatureMatchingConfig& config);
+
+/// Weighted Kabsch over barycentres and normal-offset points of the given candidates;
+/// empty when the points do not fix a rotation (all on one line).
+std::optional<Pose> fit_rigid(const FeaturePatchResult& source, const FeaturePatchResult& target,
+                              std::span<const FeatureCorrespondence> set);
+
+/// Barycentre residual over tolerance (≤ 1 for an inlier), or a negative value when the
+/// normals disagree by more than the angle tolerance.
+double normalized_residual(const FeaturePatchResult& source, const FeaturePatchResult& target,
+                           const FeatureCorrespondence& c, const Pose& T_target_source,
+                           double cos_max_angle);
+
+/// Forward searches from the best-connected seeds; distinct hypotheses, best first.
+std::vector<PoseHypothesis> forward_search(const FeaturePatchResult& source,
+                                           const FeaturePatchResult& target,
+                                           std::span<const FeatureCorrespondence> candidates,
+                                           const ConsistencyGraph& graph,
+                                           const FeatureMatchingConfig& config);
+
+}  // namespace anascan::detail

@@ -1,0 +1,278 @@
+#include "multiview_refinement_steps.hpp"
+
+#include <Eigen/Cholesky>
+#include <Eigen/Geometry>
+#include <Eigen/SparseCholesky>
+#include <algorithm>
+#include <cmath>
+#include <deque>
+
+#include "anascan/processing/helical_motion.hpp"
+
+namespace anascan::multiview_detail {
+namespace {
+
+// One correspondence mapped into the world frame at the current poses.
+struct WorldCorrespondence {
+    Eigen::Vector3d X;  // T_world_k x_i.
+    Eigen::Vector3d N;  // R_world_j n_i.
+    double d = 0.0;     // (X - Y)·N, metres.
+};
+
+WorldCorrespondence to_world(const FineCorrespondence& c, const Pose& T_world_j,
+                             const Pose& T_world_k) {
+    WorldCorrespondence w;
+    w.X = T_world_k * c.source_point_m;
+    w.N = T_world_j.linear() * c.target_normal.cast<double>();
+    w.d = (w.X - T_world_j * c.target_point_m).dot(w.N);
+    return w;
+}
+
+// Derivative of the residual with respect to u_s = (c_s L, c̄'_s) of the scan that carries
+// the source point: the velocity v_s(X)·N (negated for the target scan, see the docs).
+Vector6d jacobian(const WorldCorrespondence& w, const Eigen::Vector3d& reference_m,
+                  double length_m) {
+    Vector6d J;
+    J.head<3>() = (w.X - reference_m).cross(w.N) / length_m;
+    J.tail<3>() = w.N;
+    return J;
+}
+
+// Accumulates one link's 12×12 normal equations (source block first, then target).
+void accumulate_link(const MultiviewLink& link, std::span<const Pose> T_world_scan,
+                     const Parametrisation& param, Eigen::Matrix<double, 12, 12>& H,
+                     Eigen::Matrix<double, 12, 1>& g) {
+    const std::size_t j = link.target_index;
+    const std::size_t k = link.source_index;
+    for (const FineCorrespondence& c : link.correspondences) {
+        if (!usable(c)) continue;
+        const WorldCorrespondence w = to_world(c, T_world_scan[j], T_world_scan[k]);
+        Eigen::Matrix<double, 12, 1> J;
+        J.head<6>() = jacobian(w, param.reference_m[k], param.length_m);
+        J.tail<6>() = -jacobian(w, param.reference_m[j], param.length_m);
+        H.noalias() += c.weight * J * J.transpose();
+        g.noalias() += c.weight * w.d * J;
+    }
+}
+
+// Adds H_ab (block rows a, columns b) to the system, keeping only a <= b.
+void add_block(BlockSystem& system, int a, int b, const Matrix6d& H_ab) {
+    if (a < 0 || b < 0) return;
+    if (a == b) {
+        system.diagonal[a] += H_ab;
+    } else if (a < b) {
+        auto [it, inserted] = system.off_diagonal.try_emplace({a, b}, Matrix6d::Zero());
+        it->second += H_ab;
+    } else {
+        add_block(system, b, a, H_ab.transpose());
+    }
+}
+
+double tikhonov(const BlockSystem& system, double relative) {
+    double trace = 0.0;
+    for (const Matrix6d& D : system.diagonal) trace += D.trace();
+    const double mean = trace / (6.0 * static_cast<double>(system.diagonal.size()));
+    return relative * (mean > 0.0 ? mean : 1.0);
+}
+
+double pivot_ratio(const Eigen::VectorXd& pivots) {
+    const double largest = pivots.cwiseAbs().maxCoeff();
+    return largest > 0.0 ? pivots.cwiseAbs().minCoeff() / largest : 0.0;
+}
+
+Eigen::VectorXd stacked_rhs(const BlockSystem& system) {
+    Eigen::VectorXd rhs(6 * system.gradient.size());
+    for (std::size_t s = 0; s < system.gradient.size(); ++s) {
+        rhs.segment<6>(6 * s) = -system.gradient[s];
+    }
+    return rhs;
+}
+
+Eigen::VectorXd solve_dense(const BlockSystem& system, double lambda, double& ratio) {
+    const Eigen::Index n = 6 * static_cast<Eigen::Index>(system.diagonal.size());
+    Eigen::MatrixXd H = Eigen::MatrixXd::Zero(n, n);
+    for (std::size_t s = 0; s < system.diagonal.size(); ++s) {
+        H.block<6, 6>(6 * s, 6 * s) = system.diagonal[s];
+    }
+    for (const auto& [ab, block] : system.off_diagonal) {
+        H.block<6, 6>(6 * ab.first, 6 * ab.second) = block;
+        H.block<6, 6>(6 * ab.second, 6 * ab.first) = block.transpose();
+    }
+    H.diagonal().array() += lambda;
+    const Eigen::LDLT<Eigen::MatrixXd> ldlt(H);
+    ratio = pivot_ratio(ldlt.vectorD());
+    return ldlt.solve(stacked_rhs(system));
+}
+
+void push_block(std::vector<Eigen::Triplet<double>>& triplets, int a, int b,
+                const Matrix6d& block) {
+    for (int r = 0; r < 6; ++r) {
+        for (int c = 0; c < 6; ++c) triplets.emplace_back(6 * a + r, 6 * b + c, block(r, c));
+    }
+}
+
+Eigen::VectorXd solve_sparse(const BlockSystem& system, double lambda, double& ratio) {
+    const int n = 6 * static_cast<int>(system.diagonal.size());
+    std::vector<Eigen::Triplet<double>> triplets;
+    for (std::size_t s = 0; s < system.diagonal.size(); ++s) {
+        const int b = static_cast<int>(s);
+        push_block(triplets, b, b, system.diagonal[s] + lambda * Matrix6d::Identity());
+    }
+    for (const auto& [ab, block] : system.off_diagonal) {
+        push_block(triplets, ab.first, ab.second, block);
+        push_block(triplets, ab.second, ab.first, block.transpose());
+    }
+    Eigen::SparseMatrix<double> H(n, n);
+    H.setFromTriplets(triplets.begin(), triplets.end());
+    const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(H);
+    if (ldlt.info() != Eigen::Success) {
+        ratio = 0.0;
+        return Eigen::VectorXd::Zero(n);
+    }
+    ratio = pivot_ratio(ldlt.vectorD());
+    return ldlt.solve(stacked_rhs(system));
+}
+
+}  // namespace
+
+bool usable(const FineCorrespondence& c) {
+    return c.weight > 0.0 && std::isfinite(c.weight) && c.source_point_m.allFinite() &&
+           c.target_point_m.allFinite() && c.target_normal.allFinite() &&
+           c.target_normal.squaredNorm() > 0.5f;
+}
+
+std::size_t usable_count(const MultiviewLink& link) {
+    return static_cast<std::size_t>(
+        std::count_if(link.correspondences.begin(), link.correspondences.end(), usable));
+}
+
+double link_rms_m(const MultiviewLink& link, std::span<const Pose> T_world_scan) {
+    double sum = 0.0;
+    double weight = 0.0;
+    for (const FineCorrespondence& c : link.correspondences) {
+        if (!usable(c)) continue;
+        const WorldCorrespondence w =
+            to_world(c, T_world_scan[link.target_index], T_world_scan[link.source_index]);
+        sum += c.weight * w.d * w.d;
+        weight += c.weight;
+    }
+    return weight > 0.0 ? std::sqrt(sum / weight) : 0.0;
+}
+
+std::vector<bool> connected_scans(std::size_t scan_count, std::size_t fixed,
+                                  std::span<const MultiviewLink> links,
+                                  const std::vector<bool>& active) {
+    std::vector<std::vector<std::size_t>> neighbours(scan_count);
+    for (std::size_t l = 0; l < links.size(); ++l) {
+        if (!active[l]) continue;
+        neighbours[links[l].target_index].push_back(links[l].source_index);
+        neighbours[links[l].source_index].push_back(links[l].target_index);
+    }
+    std::vector<bool> reached(scan_count, false);
+    std::deque<std::size_t> queue{fixed};
+    reached[fixed] = true;
+    while (!queue.empty()) {
+        const std::size_t s = queue.front();
+        queue.pop_front();
+        for (const std::size_t t : neighbours[s]) {
+            if (!reached[t]) queue.push_back(t);
+            reached[t] = true;
+        }
+    }
+    return reached;
+}
+
+Parametrisation make_parametrisation(std::span<const Pose> T_world_scan,
+                                     std::span<const MultiviewLink> links,
+                                     const std::vector<bool>& active) {
+    const std::size_t n = T_world_scan.size();
+    std::vector<std::vector<Eigen::Vector3d>> points(n);
+    for (std::size_t l = 0; l < links.size(); ++l) {
+        if (!active[l]) continue;
+        const MultiviewLink& link = links[l];
+        for (const FineCorrespondence& c : link.correspondences) {
+            if (!usable(c)) continue;
+            points[link.source_index].push_back(T_world_scan[link.source_index] * c.source_point_m);
+            points[link.target_index].push_back(T_world_scan[link.target_index] * c.target_point_m);
+        }
+    }
+    Parametrisation param;
+    param.block.assign(n, -1);
+    double sum_sq = 0.0;
+    std::size_t count = 0;
+    for (std::size_t s = 0; s < n; ++s) {
+        Eigen::Vector3d p = T_world_scan[s].translation();
+        if (!points[s].empty()) {
+            p.setZero();
+            for (const Eigen::Vector3d& x : points[s]) p += x;
+            p /= static_cast<double>(points[s].size());
+        }
+        for (const Eigen::Vector3d& x : points[s]) sum_sq += (x - p).squaredNorm();
+        count += points[s].size();
+        param.reference_m.push_back(p);
+    }
+    const double length = count > 0 ? std::sqrt(sum_sq / static_cast<double>(count)) : 0.0;
+    param.length_m = length > 0.0 ? length : 1.0;
+    return param;
+}
+
+void assign_blocks(Parametrisation& param, const std::vector<bool>& connected, std::size_t fixed) {
+    param.block_count = 0;
+    for (std::size_t s = 0; s < param.block.size(); ++s) {
+        param.block[s] = (connected[s] && s != fixed) ? static_cast<int>(param.block_count++) : -1;
+    }
+}
+
+BlockSystem assemble(std::span<const MultiviewLink> links, const std::vector<bool>& active,
+                     std::span<const Pose> T_world_scan, const Parametrisation& param) {
+    BlockSystem system;
+    system.diagonal.assign(param.block_count, Matrix6d::Zero());
+    system.gradient.assign(param.block_count, Vector6d::Zero());
+    for (std::size_t l = 0; l < links.size(); ++l) {
+        const int bk = param.block[links[l].source_index];
+        const int bj = param.block[links[l].target_index];
+        if (!active[l] || (bk < 0 && bj < 0)) continue;
+        Eigen::Matrix<double, 12, 12> H = Eigen::Matrix<double, 12, 12>::Zero();
+        Eigen::Matrix<double, 12, 1> g = Eigen::Matrix<double, 12, 1>::Zero();
+        accumulate_link(links[l], T_world_scan, param, H, g);
+        add_block(system, bk, bk, H.topLeftCorner<6, 6>());
+        add_block(system, bj, bj, H.bottomRightCorner<6, 6>());
+        add_block(system, bk, bj, H.topRightCorner<6, 6>());
+        if (bk >= 0) system.gradient[bk] += g.head<6>();
+        if (bj >= 0) system.gradient[bj] += g.tail<6>();
+    }
+    return system;
+}
+
+Steps solve(const BlockSystem& system, const MultiviewRefinementConfig& config) {
+    Steps steps;
+    if (system.diagonal.empty()) return steps;
+    const double lambda = tikhonov(system, config.tikhonov_relative);
+    const Eigen::VectorXd u = system.diagonal.size() <= config.max_dense_scans
+                                  ? solve_dense(system, lambda, steps.pivot_ratio)
+                                  : solve_sparse(system, lambda, steps.pivot_ratio);
+    for (std::size_t s = 0; s < system.diagonal.size(); ++s) {
+        steps.u.push_back(u.segment<6>(6 * s));
+    }
+    return steps;
+}
+
+std::pair<double, double> apply_steps(const Steps& steps, const Parametrisation& param,
+                                      std::vector<Pose>& T_world_scan) {
+    double max_rotation_rad = 0.0;
+    double max_translation_m = 0.0;
+    for (std::size_t s = 0; s < T_world_scan.size(); ++s) {
+        if (param.block[s] < 0) continue;
+        const Vector6d& u = steps.u[param.block[s]];
+        const Twist twist{.angular_rad = u.head<3>() / param.length_m, .linear_m = u.tail<3>()};
+        // Helical motion of v(x) = c̄' + c × (x - p): conjugate by the translation to p.
+        const Pose motion = Eigen::Translation3d(param.reference_m[s]) * helical_motion(twist) *
+                            Eigen::Translation3d(-param.reference_m[s]);
+        T_world_scan[s] = orthonormalized(motion * T_world_scan[s]);
+        max_rotation_rad = std::max(max_rotation_rad, twist.angular_rad.norm());
+        max_translation_m = std::max(max_translation_m, twist.linear_m.norm());
+    }
+    return {max_rotation_rad, max_translation_m};
+}
+
+}  // namespace anascan::multiview_detail
