@@ -32,6 +32,9 @@ int main(int argc, char** argv) {
     anascan::cli::add_convert_command(app);
     anascan::cli::add_assemble_command(app);
     anascan::cli::add_eval_command(app);
+    anascan::cli::add_register_command(app);
+    anascan::cli::add_align_command(app);
+    anascan::cli::add_sim_command(app);
     anascan::cli::add_demo_command(app);
     app.parse_complete_callback([&] { configure_logging(verbose, quiet); });
     try {

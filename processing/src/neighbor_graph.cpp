@@ -17,6 +17,9 @@ namespace {
 
 constexpr int kMortonBits = 21;  // Per axis: 63-bit keys.
 constexpr double kMaxCoord = double((1u << kMortonBits) - 1);
+// The previous query's squared k-th distance times this bounds the next one's search
+// first (a neighbour in Morton order has a similar neighbourhood); any value is exact.
+constexpr float kHintGrowth = 1.5f;
 
 std::uint64_t spread_bits(std::uint64_t v) {  // 21 bits -> every third bit.
     v &= 0x1fffff;
@@ -181,24 +184,24 @@ void write_row(const TopK& top, std::size_t row, NeighborGraph& graph) {
     graph.counts[row] = std::uint32_t(top.size());
 }
 
-// Sorted positions of the 3x3x3 block of cells around `cell`.
+// Positions of the (2r+1)^3 block of cells around `cell`.
 struct Block {
     std::vector<float> x, y, z;  // Structure of arrays: the distance loop vectorises.
     std::vector<std::uint32_t> indices;
     std::vector<float> d2;
-    std::vector<std::uint32_t> picked;
+    std::vector<std::uint32_t> picked;  // Slots of the candidates within the bound.
     std::size_t size() const { return indices.size(); }
 };
 
-void gather_block(const MortonGrid& grid, std::size_t cell, Block& block) {
+void gather_block(const MortonGrid& grid, std::size_t cell, int r, Block& block) {
     block.x.clear();
     block.y.clear();
     block.z.clear();
     block.indices.clear();
     const Eigen::Array3<std::int64_t> c = demorton(grid.cell_keys[cell]);
-    for (int dz = -1; dz <= 1; ++dz) {
-        for (int dy = -1; dy <= 1; ++dy) {
-            for (int dx = -1; dx <= 1; ++dx) {
+    for (int dz = -r; dz <= r; ++dz) {
+        for (int dy = -r; dy <= r; ++dy) {
+            for (int dx = -r; dx <= r; ++dx) {
                 const std::ptrdiff_t other =
                     grid.find_cell(c + Eigen::Array3<std::int64_t>(dx, dy, dz));
                 if (other < 0) continue;
@@ -212,16 +215,18 @@ void gather_block(const MortonGrid& grid, std::size_t cell, Block& block) {
             }
         }
     }
+    block.d2.resize(block.size());
+    block.picked.resize(block.size());
 }
 
-// Distance (metres) from sorted point s to the outside of its cell's 3x3x3 block: every
-// point closer than that lies in the block.
-double block_reach_m(const MortonGrid& grid, std::size_t cell, std::uint32_t s) {
+// Distance (metres) from sorted point s to the outside of the (2r+1)^3 block of cells
+// around its cell: every point closer than that lies in the block.
+double block_reach_m(const MortonGrid& grid, std::size_t cell, int r, std::uint32_t s) {
     const double side = double(std::int64_t(1) << grid.level);
     const Eigen::Array3d lo = demorton(grid.cell_keys[cell]).cast<double>() * side;
     const Eigen::Array3d u = grid.lattice(grid.sorted[s]).array();
     const double margin = std::max(((u - lo).min(lo + side - u)).minCoeff(), 0.0);
-    return (side + margin) / grid.units_per_m * (1.0 - 1e-6);
+    return (double(r) * side + margin) / grid.units_per_m * (1.0 - 1e-6);
 }
 
 float max_distance_sq(const NeighborGraphConfig& config) {
@@ -231,15 +236,20 @@ float max_distance_sq(const NeighborGraphConfig& config) {
 
 // Offers the candidates within `bound_d2`: a branch-free pass picks them, so the
 // unpredictable comparison does not stall the pipeline for the many that fail.
-void offer_block(Block& block, std::uint32_t self, float bound_d2, TopK& top) {
-    top.clear(bound_d2);
-    const float bound = top.worst();
+void offer_block(Block& block, const Eigen::Vector3f& q, std::uint32_t self, float bound_d2,
+                 TopK& top) {
+    const float bound = std::min(bound_d2, top.max_d2());
+    const std::size_t m = block.size();
+    for (std::size_t c = 0; c < m; ++c) {  // Vectorises.
+        const float dx = block.x[c] - q.x(), dy = block.y[c] - q.y(), dz = block.z[c] - q.z();
+        block.d2[c] = dx * dx + dy * dy + dz * dz;
+    }
     std::size_t picked = 0;
-    block.picked.resize(block.size());
-    for (std::size_t c = 0; c < block.size(); ++c) {
+    for (std::size_t c = 0; c < m; ++c) {
         block.picked[picked] = std::uint32_t(c);
         picked += block.d2[c] <= bound;
     }
+    top.clear(bound);
     for (std::size_t p = 0; p < picked; ++p) {
         const std::uint32_t c = block.picked[p];
         if (block.indices[c] != self) top.offer(block.d2[c], block.indices[c]);
@@ -251,56 +261,97 @@ void offer_block(Block& block, std::uint32_t self, float bound_d2, TopK& top) {
 // block is scanned again without it, so the answer is the same either way.
 void scan_block(const MortonGrid& grid, std::uint32_t s, float hint_d2, Block& block, TopK& top) {
     const Eigen::Vector3f q = grid.sorted[s];
-    const std::size_t m = block.size();
-    block.d2.resize(m);
-    for (std::size_t c = 0; c < m; ++c) {
-        const float dx = block.x[c] - q.x(), dy = block.y[c] - q.y(), dz = block.z[c] - q.z();
-        block.d2[c] = dx * dx + dy * dy + dz * dz;
-    }
-    offer_block(block, grid.order[s], hint_d2, top);
+    offer_block(block, q, grid.order[s], hint_d2, top);
     if (top.size() < top.capacity() && hint_d2 < top.max_d2()) {
-        offer_block(block, grid.order[s], top.max_d2(), top);
+        offer_block(block, q, grid.order[s], top.max_d2(), top);
     }
 }
 
-// Answers the points of `cell` from its block; rows it cannot prove exact get flagged.
+// Whether `top`, found in the (2r+1)^3 block around `cell`, is provably the exact answer
+// for sorted point s: its k-th neighbour (or the radius limit) lies within the block.
+bool proven(const MortonGrid& grid, std::size_t cell, int r, std::uint32_t s, const TopK& top) {
+    const double reach = block_reach_m(grid, cell, r, s);
+    const bool full = top.size() == top.capacity();
+    const double needed = full ? double(top.worst()) : double(top.max_d2());
+    return needed <= reach * reach;
+}
+
+bool too_dense(const Block& block, std::size_t k) {  // Piles of duplicates: fall back.
+    return block.size() > 64 * k + 1024;
+}
+
+// One worker's scratch: the 3x3x3 block of the current cell and, loaded only for rows it
+// cannot prove (borders, sparse spots), the 5x5x5 block.
+struct Scratch {
+    Block near, wide;
+    std::size_t wide_cell = std::numeric_limits<std::size_t>::max();
+};
+
+// Answers the points of `cell` from its blocks; rows they cannot prove exact get flagged.
 void answer_cell(const MortonGrid& grid, std::size_t cell, const NeighborGraphConfig& config,
-                 Block& block, NeighborGraph& graph, std::vector<std::uint8_t>& fallback) {
-    gather_block(grid, cell, block);
-    const float max_d2 = max_distance_sq(config);
-    const bool too_dense = block.size() > 64 * graph.k + 1024;  // Piles of duplicates.
-    TopK top(graph.k, max_d2);
+                 Scratch& scratch, NeighborGraph& graph, std::vector<std::uint8_t>& fallback) {
+    gather_block(grid, cell, 1, scratch.near);
+    const bool dense = too_dense(scratch.near, graph.k);
+    TopK top(graph.k, max_distance_sq(config));
     float hint_d2 = std::numeric_limits<float>::infinity();
     for (std::uint32_t s = grid.cell_begin[cell]; s < grid.cell_begin[cell + 1]; ++s) {
         const std::uint32_t row = grid.order[s];
-        if (too_dense) {
+        if (dense) {
             fallback[row] = 1;
             continue;
         }
-        scan_block(grid, s, hint_d2, block, top);
-        if (top.size() == graph.k) hint_d2 = 2.0f * top.worst();
-        const double reach = block_reach_m(grid, cell, s);
-        const double needed = top.size() == graph.k ? double(top.worst()) : double(max_d2);
-        if (needed <= reach * reach) {
-            write_row(top, row, graph);
-        } else {
-            fallback[row] = 1;
+        scan_block(grid, s, hint_d2, scratch.near, top);
+        if (top.size() == graph.k) hint_d2 = kHintGrowth * top.worst();
+        if (!proven(grid, cell, 1, s, top)) {
+            if (scratch.wide_cell != cell) gather_block(grid, cell, 2, scratch.wide);
+            scratch.wide_cell = cell;
+            const bool wide_dense = too_dense(scratch.wide, graph.k);
+            if (!wide_dense) scan_block(grid, s, top.max_d2(), scratch.wide, top);
+            if (wide_dense || !proven(grid, cell, 2, s, top)) {
+                fallback[row] = 1;
+                continue;
+            }
         }
+        write_row(top, row, graph);
     }
 }
 
-// Exact k-d tree answers for the flagged rows.
+// Exact answer for one row by a linear scan of all finite points.
+void brute_force_row(const MortonGrid& grid, std::uint32_t row, const Eigen::Vector3f& q, TopK& top,
+                     NeighborGraph& graph) {
+    top.clear(top.max_d2());
+    for (std::size_t s = 0; s < grid.sorted.size(); ++s) {
+        const Eigen::Vector3f& p = grid.sorted[s];
+        const float dx = p.x() - q.x(), dy = p.y() - q.y(), dz = p.z() - q.z();
+        const float d2 = dx * dx + dy * dy + dz * dz;  // As offer_block: same rounding.
+        if (d2 <= top.worst() && grid.order[s] != row) top.offer(d2, grid.order[s]);
+    }
+    write_row(top, row, graph);
+}
+
+// Exact answers for the flagged rows: a linear scan when they are few (building a k-d
+// tree costs about as much as kBruteForceRows scans), else k-d tree queries.
 void answer_fallbacks(std::span<const Eigen::Vector3f> points, const MortonGrid& grid,
                       const NeighborGraphConfig& config, const std::vector<std::uint8_t>& flags,
                       NeighborGraph& graph) {
+    constexpr std::size_t kBruteForceRows = 256;
     std::vector<std::uint32_t> rows;
     for (std::size_t i = 0; i < flags.size(); ++i) {
         if (flags[i]) rows.push_back(std::uint32_t(i));
     }
     graph.num_exact_fallbacks = rows.size();
     if (rows.empty()) return;
-    const KdTree tree(grid.sorted);  // Finite points only; map back through grid.order.
     const float max_d2 = max_distance_sq(config);
+    if (rows.size() <= kBruteForceRows) {
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rows.size(), 8), [&](auto r) {
+            TopK top(graph.k, max_d2);
+            for (std::size_t j = r.begin(); j < r.end(); ++j) {
+                brute_force_row(grid, rows[j], points[rows[j]], top, graph);
+            }
+        });
+        return;
+    }
+    const KdTree tree(grid.sorted);  // Finite points only; map back through grid.order.
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rows.size(), 64), [&](const auto& r) {
         std::vector<Neighbor> found;
         TopK top(graph.k, max_d2);
@@ -334,9 +385,9 @@ NeighborGraph build_neighbor_graph(std::span<const Eigen::Vector3f> points,
     std::vector<std::uint8_t> fallback(points.size(), 0);
     const std::size_t num_cells = grid.cell_keys.size();
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, num_cells, 16), [&](const auto& r) {
-        Block block;
+        Scratch scratch;
         for (std::size_t cell = r.begin(); cell < r.end(); ++cell) {
-            answer_cell(grid, cell, config, block, graph, fallback);
+            answer_cell(grid, cell, config, scratch, graph, fallback);
         }
     });
     answer_fallbacks(points, grid, config, fallback, graph);

@@ -6,9 +6,10 @@
 /// All-points k-NN on scan data is dominated by the search, so it does not go through one
 /// k-d tree query per point: points are sorted along a Morton curve, bucketed into cubic
 /// cells of about k/2 points, and each cell's points are answered together from the 3x3x3
-/// block of cells around it. A query whose k-th neighbour is not provably inside the block
-/// (sparse regions, outliers, scan borders) is answered exactly by a KdTree, so the result
-/// is always the exact k nearest neighbours.
+/// block of cells around it. A query whose k-th neighbour is not provably inside that block
+/// (scan borders, sparse spots) is retried on the 5x5x5 block; the few still unproven
+/// (outliers) are answered by a linear scan, or by a KdTree when there are more than 256,
+/// so the result is always the exact k nearest neighbours.
 
 #include <Eigen/Core>
 #include <cstddef>

@@ -1,0 +1,87 @@
+// anascan sim move-scans IN.conf --seed S --out DIR (hidden): copies of the scans of a
+// .conf, each moved by a random rigid transform (uniform rotation, up to 0.5 m translation),
+// with normals toward (0,0,1) m in the original frames, and DIR/truth.conf with the moved
+// files' true poses, for registration checks. Prints the file names shuffled, one a line.
+#include <spdlog/spdlog.h>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <random>
+
+#include "anascan/processing/io/ply.hpp"
+#include "anascan/processing/io/stanford_conf.hpp"
+#include "anascan/processing/normals.hpp"
+#include "commands.hpp"
+#include "scan_preparation.hpp"
+
+namespace anascan::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct MoveOptions {
+    std::string conf;
+    unsigned seed = 1;
+    std::string out_dir;
+};
+
+Pose random_pose(std::mt19937& rng) {
+    std::normal_distribution<double> normal(0.0, 1.0);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    const Eigen::Quaterniond q(normal(rng), normal(rng), normal(rng), normal(rng));
+    const Eigen::Vector3d direction(normal(rng), normal(rng), normal(rng));
+    return make_pose(q.normalized(), 0.5 * unit(rng) * direction.normalized());
+}
+
+void run_move(const MoveOptions& o) {
+    auto conf = io::read_conf(o.conf);
+    if (!conf) fail_command(conf.error());
+    std::mt19937 rng(o.seed);
+    std::error_code ec;
+    fs::create_directories(o.out_dir, ec);
+    if (ec) throw CommandFailed(o.out_dir + ": cannot create the folder: " + ec.message());
+    std::vector<std::string> names;
+    io::StanfordConf
+        truth;  // Poses of the moved files: T_world_moved = T_world_scan · T_scan_moved.
+    for (const io::ConfEntry& entry : conf->entries) {
+        auto cloud = load_ply_cloud((fs::path(o.conf).parent_path() / entry.file).string());
+        if (!cloud) fail_command(cloud.error());
+        // The sensor position is not known after the move, so the normals are estimated and
+        // oriented toward it (0,0,1 m, the Cyberware convention) before, as a scanner that
+        // writes normals would; `register` then uses the PLY's own normals.
+        if (!cloud->has_normals()) {
+            estimate_normals(*cloud, {});
+            orient_toward(*cloud, Eigen::Vector3f(0.0f, 0.0f, 1.0f));
+        }
+        const fs::path out = fs::path(o.out_dir) / fs::path(entry.file).filename();
+        const Pose T_moved_scan = random_pose(rng);
+        auto ok = io::write_ply(out, transformed(*cloud, T_moved_scan));
+        if (!ok) fail_command(ok.error());
+        names.push_back(fs::path(entry.file).filename().string());
+        truth.entries.push_back({names.back(), entry.T_world_scan * T_moved_scan.inverse()});
+        spdlog::info("moved {}", out.string());
+    }
+    const fs::path truth_path = fs::path(o.out_dir) / "truth.conf";
+    if (auto ok = io::write_conf(truth_path, truth); !ok) fail_command(ok.error());
+    std::shuffle(names.begin(), names.end(), rng);
+    for (const std::string& name : names) std::printf("%s\n", name.c_str());
+}
+
+}  // namespace
+
+void add_sim_command(CLI::App& app) {
+    auto opts = std::make_shared<MoveOptions>();
+    auto* sim = app.add_subcommand("sim", "Simulation helpers for tests")->group("");
+    sim->require_subcommand(1);
+    auto* cmd = sim->add_subcommand("move-scans", "Randomly moved copies of a .conf's scans");
+    cmd->add_option("conf", opts->conf, "Scans and poses (.conf)")
+        ->required()
+        ->check(CLI::ExistingFile);
+    cmd->add_option("--seed", opts->seed, "Random seed")->required();
+    cmd->add_option("--out", opts->out_dir, "Output folder")->required();
+    cmd->callback([opts] { run_move(*opts); });
+}
+
+}  // namespace anascan::cli

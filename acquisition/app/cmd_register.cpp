@@ -1,0 +1,190 @@
+// anascan register SCAN.ply... --out POSES.conf: register unordered scans without poses.
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "anascan/processing/io/file_bytes.hpp"
+#include "anascan/processing/io/ply.hpp"
+#include "anascan/processing/io/stanford_conf.hpp"
+#include "anascan/processing/scan_registration.hpp"
+#include "commands.hpp"
+#include "scan_preparation.hpp"
+
+namespace anascan::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct RegisterOptions {
+    std::vector<std::string> scans;
+    std::string out;
+    std::string merged;
+    std::string stats;
+    SensorOptions sensor;
+};
+
+/// The scan's name in the .conf: relative to the .conf's folder when possible.
+std::string conf_name(const std::string& scan, const std::string& conf) {
+    std::error_code ec;
+    const fs::path scan_abs = fs::absolute(scan, ec);
+    const fs::path folder = fs::absolute(conf, ec).parent_path();
+    if (ec) return scan;
+    const fs::path relative = scan_abs.lexically_normal().lexically_relative(folder);
+    return relative.empty() ? scan : relative.generic_string();
+}
+
+void print_result(const ScanRegistrationResult& r) {
+    std::printf("%-28s %-10s %6s %10s\n", "scan", "status", "group", "points");
+    for (const ScanOutcome& s : r.scans) {
+        std::printf("%-28s %-10s %6d %10zu\n", s.name.c_str(), s.placed ? "placed" : "NOT placed",
+                    s.group, s.point_count);
+    }
+    for (const ScanOutcome& s : r.scans) {
+        if (!s.placed) std::printf("not placed: %s: %s\n", s.name.c_str(), s.reason.c_str());
+    }
+    const ScanRegistrationTimings& t = r.timings;
+    std::printf(
+        "placed %zu of %zu scans (%zu groups); %zu of %zu pairs verified, %zu links, %zu dropped; "
+        "multi-view %s\n",
+        r.placed_count, r.scans.size(), r.group_count, r.verified_pair_count, r.pairs.size(),
+        r.link_count, r.dropped_link_count, std::string(to_string(r.multiview_status)).c_str());
+    std::printf(
+        "time: prepare %.2f s, pairwise %.2f s, pose graph %.3f s, fine %.2f s, multi-view %.2f s, "
+        "total %.2f s\n",
+        t.prepare_s, t.pairwise_s, t.pose_graph_s, t.fine_s, t.multiview_s, t.total_s);
+}
+
+nlohmann::json fine_summary(const ScanRegistrationResult& r) {
+    int iterations = 0, count = 0;
+    double time_s = 0.0, rms_sq = 0.0, overlap = 0.0;
+    for (const PairOutcome& p : r.pairs) {
+        if (!p.verified) continue;
+        iterations += p.fine_iterations;
+        time_s += p.fine_time_s;
+        rms_sq += p.fine_rms_m * p.fine_rms_m;
+        overlap += p.fine_overlap_fraction;
+        ++count;
+    }
+    const double n = std::max(count, 1);
+    return {{"pairs", count},
+            {"iterations", iterations},
+            {"time_s", time_s},
+            {"rms_m", std::sqrt(rms_sq / n)},
+            {"overlap", overlap / n}};
+}
+
+nlohmann::json pair_json(const ScanRegistrationResult& r, const PairOutcome& p) {
+    return {{"source", r.scans[p.source].name},
+            {"target", r.scans[p.target].name},
+            {"global_status", std::string(to_string(p.global_status))},
+            {"verified", p.verified},
+            {"in_tree", p.in_tree},
+            {"weight", p.weight},
+            {"global_rms_m", p.global_rms_m},
+            {"global_overlap", p.global_overlap_fraction},
+            {"global_time_s", p.global_time_s},
+            {"fine_status", std::string(to_string(p.fine_status))},
+            {"fine_iterations", p.fine_iterations},
+            {"fine_rms_m", p.fine_rms_m},
+            {"fine_overlap", p.fine_overlap_fraction},
+            {"fine_time_s", p.fine_time_s},
+            {"linked", p.linked},
+            {"link_dropped", p.link_dropped}};
+}
+
+std::string stats_json(const ScanRegistrationResult& r) {
+    const ScanRegistrationTimings& t = r.timings;
+    nlohmann::json pairs = nlohmann::json::array(), scans = nlohmann::json::array();
+    for (const PairOutcome& p : r.pairs) pairs.push_back(pair_json(r, p));
+    for (const ScanOutcome& s : r.scans) {
+        scans.push_back({{"name", s.name},
+                         {"placed", s.placed},
+                         {"reason", s.reason},
+                         {"group", s.group},
+                         {"points", s.point_count},
+                         {"normals_estimated", s.normals_estimated}});
+    }
+    const nlohmann::json doc = {{"stages",
+                                 {{"prepare", t.prepare_s},
+                                  {"pairwise", t.pairwise_s},
+                                  {"pose_graph", t.pose_graph_s},
+                                  {"fine", t.fine_s},
+                                  {"multiview", t.multiview_s},
+                                  {"total", t.total_s}}},
+                                {"fine", fine_summary(r)},
+                                {"multiview_status", std::string(to_string(r.multiview_status))},
+                                {"pairs", pairs},
+                                {"scans", scans}};
+    return doc.dump(2) + "\n";
+}
+
+/// Appends every placed scan, re-read and moved into the world frame, one at a time.
+void write_merged(const RegisterOptions& o, const ScanRegistrationResult& r) {
+    PointCloud merged;
+    for (std::size_t i = 0; i < r.scans.size(); ++i) {
+        if (!r.scans[i].placed) continue;
+        auto cloud = load_ply_cloud(o.scans[i]);
+        if (!cloud) fail_command(cloud.error());
+        cloud->normals.clear();  // Some scans may lack them; append keeps common ones only.
+        append(merged, transformed(*cloud, r.scans[i].T_world_scan));
+    }
+    if (auto ok = io::write_ply(o.merged, merged); !ok) fail_command(ok.error());
+    std::printf("merged: %s (%zu points)\n", o.merged.c_str(), merged.size());
+}
+
+void write_outputs(const RegisterOptions& o, const ScanRegistrationResult& r) {
+    io::StanfordConf conf;
+    for (std::size_t i = 0; i < r.scans.size(); ++i) {
+        if (r.scans[i].placed)
+            conf.entries.push_back({conf_name(o.scans[i], o.out), r.scans[i].T_world_scan});
+    }
+    if (auto ok = io::write_conf(o.out, conf); !ok) fail_command(ok.error());
+    std::printf("poses: %s (%zu scans)\n", o.out.c_str(), conf.entries.size());
+    if (!o.stats.empty()) {
+        if (auto ok = io::write_file_atomically(o.stats, stats_json(r)); !ok) {
+            fail_command(ok.error());
+        }
+        std::printf("stats: %s\n", o.stats.c_str());
+    }
+    if (!o.merged.empty()) write_merged(o, r);
+}
+
+void run_register(const RegisterOptions& o) {
+    std::vector<ScanInput> inputs;
+    for (const std::string& path : o.scans) {
+        inputs.push_back({.name = path,
+                          .load = [path] { return load_ply_cloud(path); },
+                          .sensor_origin_scan_m = sensor_origin(o.sensor)});
+    }
+    const ScanRegistrationResult result =
+        register_scans(inputs, {}, [](std::string_view m) { spdlog::info("{}", m); });
+    print_result(result);
+    if (result.placed_count == 0) throw CommandFailed("no scan could be placed");
+    write_outputs(o, result);
+}
+
+}  // namespace
+
+void add_register_command(CLI::App& app) {
+    auto opts = std::make_shared<RegisterOptions>();
+    auto* cmd = app.add_subcommand(
+        "register",
+        "Register unordered scans without initial poses (global registration of "
+        "every pair, pose graph, fine and multi-view refinement); writes the poses "
+        "of the placed scans as a Stanford .conf and lists the scans not placed");
+    cmd->add_option("scans", opts->scans, "Scans (.ply), any order")
+        ->required()
+        ->check(CLI::ExistingFile);
+    cmd->add_option("--out", opts->out, "Poses (.conf; bmesh FILE tx ty tz qx qy qz qw)")
+        ->required();
+    cmd->add_option("--merged", opts->merged, "Merged placed scans, world frame (.ply)");
+    cmd->add_option("--stats", opts->stats, "Figures per stage, pair and scan (.json)");
+    add_sensor_options(cmd, opts->sensor);
+    cmd->callback([opts] { run_register(*opts); });
+}
+
+}  // namespace anascan::cli

@@ -1,0 +1,30 @@
+#pragma once
+// Shared by `register` and `align`: the sensor options and loading a scan from a PLY.
+#include <CLI/CLI.hpp>
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "anascan/processing/expected.hpp"
+#include "anascan/processing/point_cloud.hpp"
+
+namespace anascan::cli {
+
+/// Where estimated normals point: toward a sensor position in each scan's own frame.
+struct SensorOptions {
+    std::vector<double> origin_m{0.0, 0.0, 1.0};
+    bool no_sensor = false;  ///< Orient consistently instead.
+    bool sensor_z = false;   ///< Explicitly the default (0,0,1) m.
+};
+
+/// Adds --sensor-origin X Y Z, --sensor-z and --no-sensor to `cmd`.
+void add_sensor_options(CLI::App* cmd, SensorOptions& options);
+
+/// The sensor position (metres, scan frame), or nullopt for consistent orientation.
+std::optional<Eigen::Vector3d> sensor_origin(const SensorOptions& options);
+
+/// Reads a PLY's vertices (with its normals when it has them).
+Expected<PointCloud> load_ply_cloud(const std::string& path);
+
+}  // namespace anascan::cli

@@ -1,0 +1,145 @@
+#pragma once
+/// \file
+/// Registration of N unordered scans without initial poses (paper §4, batch form): every
+/// scan is prepared (non-finite points dropped, normals estimated and oriented), every pair
+/// is registered globally (`register_global`), the verified pairs form a pose graph whose
+/// maximum spanning tree (weighted by overlap and RMS) gives initial poses, each verified
+/// pair is refined by `register_fine` from those poses keeping its correspondences, and
+/// `refine_multiview` solves for all poses of a group at once. Groups are the connected
+/// components of the verified pairs; the largest group's first scan (input order) is the
+/// world frame and only the largest group's scans are placed. A scan that is not placed is
+/// reported with the reason. See docs/scan-registration.md.
+///
+/// Cost: N(N-1)/2 global registrations (about 1-2 s each for 40k-point scans), so the batch
+/// is meant for N up to about 60 scans of one stone.
+///
+/// Memory: each scan's loader is called exactly once, in input order, and the full cloud is
+/// released right after preparation; only the prepared clouds are kept, down-sampled to
+/// `ScanRegistrationConfig::voxel_size_m` when that is positive (default: kept whole, which
+/// is small for scans of ~10^5 points). The multi-view stage needs only the stored
+/// correspondences.
+///
+/// Thread safety: `register_scans` is reentrant; it calls `progress` from the calling
+/// thread only. Results do not depend on the number of threads.
+#include <Eigen/Core>
+#include <cstddef>
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "anascan/processing/expected.hpp"
+#include "anascan/processing/fine_registration.hpp"
+#include "anascan/processing/global_registration.hpp"
+#include "anascan/processing/multiview_refinement.hpp"
+#include "anascan/processing/normals.hpp"
+#include "anascan/processing/point_cloud.hpp"
+#include "anascan/processing/pose.hpp"
+
+namespace anascan {
+
+/// One scan to register: its name (for reports) and how to load it.
+struct ScanInput {
+    std::string name;
+    /// Returns the scan in its own frame (metres). Called once. Normals, when the cloud has
+    /// them, are kept as they are (they must point out of the solid, e.g. toward the sensor).
+    std::function<Expected<PointCloud>()> load;
+    /// Sensor position in the scan's own frame (metres), used to orient estimated normals;
+    /// without it normals are oriented consistently (outward on a closed part).
+    std::optional<Eigen::Vector3d> sensor_origin_scan_m;
+};
+
+/// Settings of `register_scans`. Callers use designated initialisers.
+struct ScanRegistrationConfig {
+    NormalEstimationConfig normals{};  ///< For scans loaded without normals.
+    /// Prepared clouds are voxel down-sampled to this edge length (metres); 0 keeps them
+    /// whole. Global and fine registration sample the clouds themselves.
+    double voxel_size_m = 0.0;
+    GlobalRegistrationConfig global{};  ///< Pairwise stage, every pair.
+    /// Final pairwise refinement from the spanning-tree poses (correspondences are kept
+    /// whatever `keep_correspondences` says).
+    FineRegistrationConfig fine{};
+    /// Pairs whose final fine registration overlaps less than this fraction (of the source
+    /// samples) give no multi-view link.
+    double min_link_overlap_fraction = 0.1;
+    MultiviewRefinementConfig multiview{};  ///< fixed_scan_index is set per group.
+};
+
+/// One scan's outcome.
+struct ScanOutcome {
+    std::string name;
+    bool placed = false;  ///< In the largest group: T_world_scan is a result.
+    std::string reason;   ///< Why it is not placed (empty when placed).
+    int group = -1;       ///< Connected component (0 = largest); -1 when not loaded.
+    /// Maps scan points into the world frame (placed) or into the frame of its group's
+    /// first scan (other groups). Identity and meaningless when group is -1.
+    Pose T_world_scan = Pose::Identity();
+    std::size_t point_count = 0;     ///< After preparation (and down-sampling).
+    bool normals_estimated = false;  ///< False when the loaded cloud had normals.
+};
+
+/// One pair's figures: global registration of `source` onto `target` (source > target),
+/// then, for verified pairs, the final fine registration from the graph poses.
+struct PairOutcome {
+    std::size_t source = 0, target = 0;  ///< Scan indices (input order).
+    GlobalRegistrationStatus global_status = GlobalRegistrationStatus::kInvalidInput;
+    bool verified = false;  ///< Global status success.
+    bool in_tree = false;   ///< An edge of the maximum spanning tree.
+    double weight = 0.0;    ///< Tree weight: overlap / (1 + rms / target spacing).
+    Pose T_target_source = Pose::Identity();  ///< Global result (when verified).
+    double global_rms_m = 0.0;                ///< Point-to-plane RMS of the global result, metres.
+    double global_overlap_fraction = 0.0;
+    double global_time_s = 0.0;
+    /// Final fine registration (verified pairs only; status invalid_input otherwise).
+    FineRegistrationStatus fine_status = FineRegistrationStatus::kInvalidInput;
+    int fine_iterations = 0;
+    double fine_rms_m = 0.0;
+    double fine_overlap_fraction = 0.0;
+    std::optional<double> fine_normal_deviation_deg;
+    double fine_time_s = 0.0;
+    bool linked = false;        ///< Gave a multi-view link.
+    bool link_dropped = false;  ///< Dropped by the multi-view regression step.
+};
+
+/// Wall-clock seconds per stage.
+struct ScanRegistrationTimings {
+    double prepare_s = 0.0;
+    double pairwise_s = 0.0;    ///< All global registrations.
+    double pose_graph_s = 0.0;  ///< Spanning tree and initial poses.
+    double fine_s = 0.0;        ///< Final fine registrations (links).
+    double multiview_s = 0.0;
+    double total_s = 0.0;
+};
+
+struct ScanRegistrationResult {
+    std::vector<ScanOutcome> scans;  ///< Input order.
+    std::vector<PairOutcome> pairs;  ///< Every pair tried, (1,0), (2,0), (2,1), ...
+    std::size_t reference_scan = 0;  ///< The world frame's scan (when any is placed).
+    std::size_t placed_count = 0;
+    std::size_t group_count = 0;  ///< Connected components among the loaded scans.
+    std::size_t verified_pair_count = 0;
+    std::size_t link_count = 0;
+    std::size_t dropped_link_count = 0;
+    /// Multi-view status of the largest group (converged when it has one scan).
+    MultiviewStatus multiview_status = MultiviewStatus::kConverged;
+    ScanRegistrationTimings timings;
+};
+
+/// Progress messages ("global registration 3 of 45: ..."), for a log; may be empty.
+using RegistrationProgress = std::function<void(std::string_view)>;
+
+/// Registers `scans` (any order) and places as many as possible in a common frame. Never
+/// throws on bad data: a scan that cannot be loaded or is empty is reported not placed.
+ScanRegistrationResult register_scans(const std::vector<ScanInput>& scans,
+                                      const ScanRegistrationConfig& config,
+                                      const RegistrationProgress& progress);
+
+/// Preparation of one loaded cloud: drops non-finite points; when the cloud has no normals
+/// estimates them and orients them toward `sensor_origin_scan_m` (scan frame, metres) or,
+/// without it, consistently; drops points left without a finite unit normal; down-samples
+/// when `config.voxel_size_m` > 0. Returns the number of points kept.
+std::size_t prepare_scan(PointCloud& cloud, const std::optional<Eigen::Vector3d>& sensor_origin_m,
+                         const ScanRegistrationConfig& config);
+
+}  // namespace anascan

@@ -1,0 +1,197 @@
+// Pose graph, pairwise links and multi-view refinement of register_scans.
+#include <algorithm>
+#include <numeric>
+#include <string>
+#include <utility>
+
+#include "scan_registration_steps.hpp"
+
+namespace anascan::detail {
+namespace {
+
+/// Union-find with path halving.
+struct DisjointSets {
+    std::vector<std::size_t> parent;
+    explicit DisjointSets(std::size_t n) : parent(n) {
+        std::iota(parent.begin(), parent.end(), std::size_t{0});
+    }
+    std::size_t find(std::size_t i) {
+        while (parent[i] != i) i = parent[i] = parent[parent[i]];
+        return i;
+    }
+    bool unite(std::size_t a, std::size_t b) {
+        a = find(a);
+        b = find(b);
+        if (a == b) return false;
+        parent[std::max(a, b)] = std::min(a, b);  // The root is the lowest index.
+        return true;
+    }
+};
+
+/// Kruskal: verified pairs by decreasing weight (ties by pair order); marks tree edges.
+DisjointSets spanning_forest(std::size_t n, std::vector<PairOutcome>& pairs) {
+    std::vector<std::size_t> order;
+    for (std::size_t p = 0; p < pairs.size(); ++p) {
+        if (pairs[p].verified) order.push_back(p);
+    }
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        return pairs[a].weight > pairs[b].weight;
+    });
+    DisjointSets sets(n);
+    for (std::size_t p : order) pairs[p].in_tree = sets.unite(pairs[p].source, pairs[p].target);
+    return sets;
+}
+
+/// Numbers the components of the usable scans: largest first, ties by lowest scan index.
+std::vector<int> number_groups(const std::vector<bool>& usable, DisjointSets& sets,
+                               std::size_t& group_count) {
+    const std::size_t n = usable.size();
+    std::vector<std::size_t> size(n, 0);
+    for (std::size_t i = 0; i < n; ++i) size[sets.find(i)] += usable[i];
+    std::vector<std::size_t> roots;
+    for (std::size_t i = 0; i < n; ++i) {
+        if (usable[i] && sets.find(i) == i) roots.push_back(i);
+    }
+    std::stable_sort(roots.begin(), roots.end(),
+                     [&](std::size_t a, std::size_t b) { return size[a] > size[b]; });
+    std::vector<int> group_of_root(n, -1);
+    for (std::size_t g = 0; g < roots.size(); ++g) group_of_root[roots[g]] = static_cast<int>(g);
+    std::vector<int> group(n, -1);
+    for (std::size_t i = 0; i < n; ++i) {
+        if (usable[i]) group[i] = group_of_root[sets.find(i)];
+    }
+    group_count = roots.size();
+    return group;
+}
+
+/// Poses along the tree edges from each root (the lowest index of its component).
+std::vector<Pose> walk_trees(const std::vector<PairOutcome>& pairs, DisjointSets& sets) {
+    const std::size_t n = sets.parent.size();
+    std::vector<Pose> T_root_scan(n, Pose::Identity());
+    std::vector<bool> known(n, false);
+    for (std::size_t i = 0; i < n; ++i) known[i] = sets.find(i) == i;
+    // A tree has fewer than n edges, so n sweeps over the edges reach every scan.
+    for (bool changed = true; changed;) {
+        changed = false;
+        for (const PairOutcome& p : pairs) {
+            if (!p.in_tree || known[p.source] == known[p.target]) continue;
+            if (known[p.target]) {
+                T_root_scan[p.source] = T_root_scan[p.target] * p.T_target_source;
+                known[p.source] = true;
+            } else {
+                T_root_scan[p.target] = T_root_scan[p.source] * p.T_target_source.inverse();
+                known[p.target] = true;
+            }
+            changed = true;
+        }
+    }
+    return T_root_scan;
+}
+
+void copy_fine_figures(const FineRegistrationResult& fine, PairOutcome& pair) {
+    pair.fine_status = fine.status;
+    pair.fine_iterations = fine.iterations;
+    pair.fine_rms_m = fine.rms_m;
+    pair.fine_overlap_fraction = fine.overlap_fraction;
+    pair.fine_normal_deviation_deg = fine.normal_deviation_deg;
+    pair.fine_time_s = fine.time_s;
+}
+
+bool usable_link(const FineRegistrationResult& fine, double min_overlap_fraction) {
+    return (fine.status == FineRegistrationStatus::kConverged ||
+            fine.status == FineRegistrationStatus::kMaxIterations) &&
+           fine.overlap_fraction >= min_overlap_fraction;
+}
+
+/// One group's scans (ascending) and its links re-indexed to positions in `members`.
+struct GroupLinks {
+    std::vector<std::size_t> members;
+    std::vector<MultiviewLink> links;
+    std::vector<std::size_t> pairs;  ///< Pair index of each link.
+};
+
+GroupLinks collect_group(const PairLinks& links, const PoseGraph& graph, int g) {
+    GroupLinks group;
+    std::vector<std::size_t> local(graph.group.size(), 0);
+    for (std::size_t i = 0; i < graph.group.size(); ++i) {
+        if (graph.group[i] != g) continue;
+        local[i] = group.members.size();
+        group.members.push_back(i);
+    }
+    for (std::size_t l = 0; l < links.links.size(); ++l) {
+        const MultiviewLink& link = links.links[l];
+        if (graph.group[link.target_index] != g) continue;
+        group.links.push_back({.target_index = local[link.target_index],
+                               .source_index = local[link.source_index],
+                               .correspondences = link.correspondences});
+        group.pairs.push_back(links.pair_of_link[l]);
+    }
+    return group;
+}
+
+}  // namespace
+
+PoseGraph build_pose_graph(const std::vector<bool>& usable, std::vector<PairOutcome>& pairs) {
+    PoseGraph graph;
+    DisjointSets sets = spanning_forest(usable.size(), pairs);
+    graph.group = number_groups(usable, sets, graph.group_count);
+    graph.T_root_scan = walk_trees(pairs, sets);
+    return graph;
+}
+
+PairLinks make_links(const std::vector<PointCloud>& clouds, const PoseGraph& graph,
+                     std::vector<PairOutcome>& pairs, const ScanRegistrationConfig& config,
+                     const RegistrationProgress& progress) {
+    FineRegistrationConfig fine_config = config.fine;
+    fine_config.keep_correspondences = true;
+    PairLinks links;
+    for (std::size_t p = 0; p < pairs.size(); ++p) {
+        PairOutcome& pair = pairs[p];
+        if (!pair.verified) continue;
+        const Pose initial =
+            graph.T_root_scan[pair.target].inverse() * graph.T_root_scan[pair.source];
+        FineRegistrationResult fine =
+            register_fine(clouds[pair.source], clouds[pair.target], initial, fine_config);
+        copy_fine_figures(fine, pair);
+        if (progress) {
+            progress("fine registration: scan " + std::to_string(pair.source) + " onto " +
+                     std::to_string(pair.target) + ": " + std::string(to_string(fine.status)));
+        }
+        if (!usable_link(fine, config.min_link_overlap_fraction)) continue;
+        pair.linked = true;
+        links.links.push_back({.target_index = pair.target,
+                               .source_index = pair.source,
+                               .correspondences = std::move(fine.correspondences)});
+        links.pair_of_link.push_back(p);
+    }
+    return links;
+}
+
+MultiviewStatus refine_groups(const PairLinks& links, const MultiviewRefinementConfig& config,
+                              PoseGraph& graph, std::vector<PairOutcome>& pairs) {
+    MultiviewStatus largest_status = MultiviewStatus::kConverged;
+    for (int g = 0; g < static_cast<int>(graph.group_count); ++g) {
+        const GroupLinks group = collect_group(links, graph, g);
+        if (group.members.size() < 2 || group.links.empty()) continue;
+        std::vector<Pose> poses;
+        for (std::size_t i : group.members) poses.push_back(graph.T_root_scan[i]);
+        MultiviewRefinementConfig group_config = config;
+        group_config.fixed_scan_index = 0;  // The group's lowest-index scan.
+        const MultiviewRefinementResult refined =
+            refine_multiview(poses, group.links, group_config);
+        if (g == 0) largest_status = refined.status;
+        for (std::size_t l = 0; l < group.pairs.size(); ++l) {
+            pairs[group.pairs[l]].link_dropped = refined.links[l].dropped;
+        }
+        const bool usable = refined.status == MultiviewStatus::kConverged ||
+                            refined.status == MultiviewStatus::kMaxRounds ||
+                            refined.status == MultiviewStatus::kDisconnected;
+        if (!usable) continue;  // Keep the spanning-tree poses.
+        for (std::size_t m = 0; m < group.members.size(); ++m) {
+            graph.T_root_scan[group.members[m]] = refined.T_world_scan[m];
+        }
+    }
+    return largest_status;
+}
+
+}  // namespace anascan::detail

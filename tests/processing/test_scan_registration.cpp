@@ -1,0 +1,171 @@
+// register_scans on three overlapping windows of a bumpy surface (known poses, normals
+// given, each window in a random frame): all placed within 0.5° and 1 mm of the truth relative to
+// the first view (translation at the view's centroid: the frames sit up to 0.5 m from the data); an
+// unrelated shape (a hemisphere), an empty scan and a scan that fails to load are reported not
+// placed with a reason.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "anascan/processing/scan_registration.hpp"
+
+namespace anascan {
+namespace {
+
+struct Bump {
+    Eigen::Vector2d centre_m;
+    double height_m;
+    double width_m;
+};
+
+std::vector<Bump> random_bumps(unsigned seed, int count) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> where(-0.1, 0.1), height(0.003, 0.012),
+        width(0.006, 0.016), sign(-1.0, 1.0);
+    std::vector<Bump> bumps;
+    for (int i = 0; i < count; ++i) {
+        const double h = height(rng) * (sign(rng) < -0.3 ? -1.0 : 1.0);
+        bumps.push_back({{where(rng), where(rng)}, h, width(rng)});
+    }
+    return bumps;
+}
+
+/// Height field z = Σ h exp(−|xy − c|² / 2w²) (object frame) over x in [x_min, x_max],
+/// |y| <= 0.1, on a 1 mm grid shifted by `offset_m`; analytic normals up (solid below), as
+/// in test_global_registration.cpp.
+PointCloud bumpy_window(const std::vector<Bump>& bumps, double x_min, double x_max,
+                        double offset_m) {
+    PointCloud cloud;
+    const double spacing_m = 0.001;
+    for (double x = x_min + offset_m; x <= x_max; x += spacing_m) {
+        for (double y = -0.1 + offset_m; y <= 0.1; y += spacing_m) {
+            double z = 0.0;
+            Eigen::Vector2d gradient = Eigen::Vector2d::Zero();
+            for (const Bump& b : bumps) {
+                const Eigen::Vector2d d = Eigen::Vector2d(x, y) - b.centre_m;
+                const double g =
+                    b.height_m * std::exp(-d.squaredNorm() / (2 * b.width_m * b.width_m));
+                z += g;
+                gradient -= g * d / (b.width_m * b.width_m);
+            }
+            cloud.positions.emplace_back(float(x), float(y), float(z));
+            cloud.normals.push_back(
+                Eigen::Vector3d(-gradient.x(), -gradient.y(), 1.0).normalized().cast<float>());
+        }
+    }
+    return cloud;
+}
+
+/// Upper half of a sphere of radius 0.05 m, ~1 mm apart, outward normals: no shape in
+/// common with the bumpy windows.
+PointCloud hemisphere() {
+    PointCloud cloud;
+    const int n = 31400;  // Points on the whole sphere.
+    const double golden = 3.14159265358979 * (3.0 - std::sqrt(5.0));
+    for (int i = 0; i < n / 2; ++i) {
+        const double z = 1.0 - 2.0 * (i + 0.5) / n;
+        const double r = std::sqrt(1.0 - z * z);
+        const Eigen::Vector3f u(float(r * std::cos(golden * i)), float(r * std::sin(golden * i)),
+                                float(z));
+        cloud.positions.push_back(0.05f * u);
+        cloud.normals.push_back(u);
+    }
+    return cloud;
+}
+
+Pose random_pose(std::mt19937& rng) {
+    std::normal_distribution<double> normal(0.0, 1.0);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    const Eigen::Quaterniond q(normal(rng), normal(rng), normal(rng), normal(rng));
+    const Eigen::Vector3d direction(normal(rng), normal(rng), normal(rng));
+    return make_pose(q.normalized(), 0.5 * unit(rng) * direction.normalized());
+}
+
+struct SyntheticScan {
+    ScanInput input;
+    Pose T_object_scan;  // Truth.
+    Eigen::Vector3d centroid_scan_m;
+};
+
+/// `object` (object frame) expressed in a random scan frame; the sensor 1 m above (+z).
+SyntheticScan make_view(const PointCloud& object, std::mt19937& rng, const std::string& name) {
+    const Pose T_scan_object = random_pose(rng);
+    PointCloud cloud = transformed(object, T_scan_object);
+    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+    for (std::size_t i = 0; i < cloud.size(); ++i) centroid += cloud.world_position(i);
+    centroid /= static_cast<double>(cloud.size());
+    const Eigen::Vector3d sensor = T_scan_object * Eigen::Vector3d(0.0, 0.0, 1.0);
+    return {.input = {.name = name,
+                      .load = [cloud] { return Expected<PointCloud>(cloud); },
+                      .sensor_origin_scan_m = sensor},
+            .T_object_scan = T_scan_object.inverse(),
+            .centroid_scan_m = centroid};
+}
+
+TEST(ScanRegistration, PlacesViewsAndReportsTheOthers) {
+    std::mt19937 rng(20261122);
+    std::vector<SyntheticScan> views;
+    const std::vector<Bump> bumps = random_bumps(7, 14);
+    for (int k = 0; k < 3; ++k) {
+        const PointCloud window = bumpy_window(bumps, -0.1 + 0.04 * k, 0.02 + 0.04 * k, 0.0003 * k);
+        views.push_back(make_view(window, rng, "view" + std::to_string(k)));
+    }
+    std::vector<ScanInput> inputs;
+    for (const SyntheticScan& v : views) inputs.push_back(v.input);
+    inputs.push_back(make_view(hemisphere(), rng, "unrelated").input);
+    inputs.push_back({.name = "empty", .load = [] { return Expected<PointCloud>(PointCloud{}); }});
+    inputs.push_back({.name = "unreadable",
+                      .load = [] { return Expected<PointCloud>(fail(ErrorCode::kIo, "gone")); }});
+
+    const ScanRegistrationResult result = register_scans(inputs, {}, {});
+
+    ASSERT_EQ(result.scans.size(), inputs.size());
+    EXPECT_EQ(result.placed_count, views.size());
+    EXPECT_EQ(result.reference_scan, 0u);
+    for (std::size_t i = 0; i < views.size(); ++i) {
+        const ScanOutcome& scan = result.scans[i];
+        ASSERT_TRUE(scan.placed) << scan.name << ": " << scan.reason;
+        const Pose truth = views[0].T_object_scan.inverse() * views[i].T_object_scan;
+        const Pose estimate = result.scans[0].T_world_scan.inverse() * scan.T_world_scan;
+        const PoseDifference error = pose_difference(estimate, truth);
+        const Eigen::Vector3d c = views[i].centroid_scan_m;
+        EXPECT_LT(error.rotation_deg, 0.5) << scan.name;
+        EXPECT_LT((estimate * c - truth * c).norm(), 0.001) << scan.name;
+    }
+    for (std::size_t i = views.size(); i < inputs.size(); ++i) {
+        EXPECT_FALSE(result.scans[i].placed) << result.scans[i].name;
+        EXPECT_FALSE(result.scans[i].reason.empty()) << result.scans[i].name;
+    }
+    EXPECT_EQ(result.scans[4].group, -1);
+    EXPECT_NE(result.scans[5].reason.find("gone"), std::string::npos);
+    EXPECT_GE(result.link_count, 2u);
+    EXPECT_GT(result.timings.total_s, 0.0);
+}
+
+TEST(ScanRegistration, NoScansIsAnEmptyResult) {
+    const ScanRegistrationResult result = register_scans({}, {}, {});
+    EXPECT_TRUE(result.scans.empty());
+    EXPECT_EQ(result.placed_count, 0u);
+}
+
+TEST(ScanRegistration, PrepareOrientsNormalsTowardTheSensor) {
+    std::mt19937 rng(7);
+    SyntheticScan view = make_view(bumpy_window(random_bumps(7, 14), -0.1, 0.0, 0.0), rng, "v");
+    PointCloud cloud = *view.input.load();
+    cloud.normals.clear();
+    ASSERT_GT(prepare_scan(cloud, view.input.sensor_origin_scan_m, {}), 1000u);
+    std::size_t facing = 0;
+    for (std::size_t i = 0; i < cloud.size(); ++i) {
+        const Eigen::Vector3d to_sensor =
+            *view.input.sensor_origin_scan_m - cloud.world_position(i);
+        facing += cloud.normals[i].cast<double>().dot(to_sensor) >= 0.0;
+    }
+    EXPECT_EQ(facing, cloud.size());
+}
+
+}  // namespace
+}  // namespace anascan
