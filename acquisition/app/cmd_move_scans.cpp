@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <random>
 
+#include "anascan/processing/pose_sampling.hpp"
 #include "anascan/processing/io/ply.hpp"
 #include "anascan/processing/io/stanford_conf.hpp"
 #include "anascan/processing/normals.hpp"
@@ -26,14 +27,6 @@ struct MoveOptions {
     unsigned seed = 1;
     std::string out_dir;
 };
-
-Pose random_pose(std::mt19937& rng) {
-    std::normal_distribution<double> normal(0.0, 1.0);
-    std::uniform_real_distribution<double> unit(0.0, 1.0);
-    const Eigen::Quaterniond q(normal(rng), normal(rng), normal(rng), normal(rng));
-    const Eigen::Vector3d direction(normal(rng), normal(rng), normal(rng));
-    return make_pose(q.normalized(), 0.5 * unit(rng) * direction.normalized());
-}
 
 void run_move(const MoveOptions& o) {
     auto conf = io::read_conf(o.conf);
@@ -56,7 +49,7 @@ void run_move(const MoveOptions& o) {
             orient_toward(*cloud, Eigen::Vector3f(0.0f, 0.0f, 1.0f));
         }
         const fs::path out = fs::path(o.out_dir) / fs::path(entry.file).filename();
-        const Pose T_moved_scan = random_pose(rng);
+        const Pose T_moved_scan = sample_random_pose(rng, 0.5);
         auto ok = io::write_ply(out, transformed(*cloud, T_moved_scan));
         if (!ok) fail_command(ok.error());
         names.push_back(fs::path(entry.file).filename().string());

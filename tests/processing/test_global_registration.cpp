@@ -9,6 +9,7 @@
 #include <random>
 #include <vector>
 
+#include "test_bumpy_surface.hpp"
 #include "anascan/processing/feature_patches.hpp"
 #include "anascan/processing/global_registration.hpp"
 #include "anascan/processing/integral_invariants.hpp"
@@ -16,23 +17,8 @@
 namespace anascan {
 namespace {
 
-struct Bump {
-    Eigen::Vector2d centre_m;
-    double height_m;
-    double width_m;
-};
-
-std::vector<Bump> random_bumps(unsigned seed, int count) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<double> where(-0.1, 0.1), height(0.003, 0.012),
-        width(0.006, 0.016), sign(-1.0, 1.0);
-    std::vector<Bump> bumps;
-    for (int i = 0; i < count; ++i) {
-        const double h = height(rng) * (sign(rng) < -0.3 ? -1.0 : 1.0);
-        bumps.push_back({{where(rng), where(rng)}, h, width(rng)});
-    }
-    return bumps;
-}
+using testing_util::Bump;
+using testing_util::random_bumps;
 
 // Height field z = Σ h exp(−|xy − c|² / 2w²) over x in [x_min, x_max], |y| <= 0.1, on a
 // grid of `spacing_m` shifted by `offset_m`; normals up (solid below), analytic.

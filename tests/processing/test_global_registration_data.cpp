@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "anascan/processing/pose_sampling.hpp"
 #include "anascan/processing/global_registration.hpp"
 #include "anascan/processing/io/ply.hpp"
 #include "anascan/processing/io/stanford_conf.hpp"
@@ -75,14 +76,6 @@ protected:
 
 std::vector<Scan>* GlobalRegistrationBunny::scans_ = nullptr;
 
-Pose random_pose(std::mt19937& rng) {
-    std::normal_distribution<double> normal(0.0, 1.0);
-    std::uniform_real_distribution<double> unit(0.0, 1.0);
-    const Eigen::Quaterniond q(normal(rng), normal(rng), normal(rng), normal(rng));
-    const Eigen::Vector3d direction(normal(rng), normal(rng), normal(rng));
-    return make_pose(q.normalized(), 0.5 * unit(rng) * direction.normalized());
-}
-
 Eigen::Vector3d centroid_m(const PointCloud& cloud) {
     Eigen::Vector3d sum = Eigen::Vector3d::Zero();
     for (const Eigen::Vector3f& p : cloud.positions) sum += p.cast<double>();
@@ -98,7 +91,7 @@ double truth_overlap(const Scan& source, const Scan& target, const Pose& T_targe
 
 void register_pair(const Scan& source, const Scan& target, const Pose& T_target_source,
                    double overlap, std::mt19937& rng, Tally& tally) {
-    const Pose T_moved_source = random_pose(rng);
+    const Pose T_moved_source = sample_random_pose(rng, 0.5);
     const Pose truth = T_target_source * T_moved_source.inverse();
     const PointCloud moved = transformed(source.cloud, T_moved_source);
     const GlobalRegistrationResult result = register_global(moved, target.cloud, {});

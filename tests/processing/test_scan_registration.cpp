@@ -11,28 +11,15 @@
 #include <string>
 #include <vector>
 
+#include "test_bumpy_surface.hpp"
+#include "anascan/processing/pose_sampling.hpp"
 #include "anascan/processing/scan_registration.hpp"
 
 namespace anascan {
 namespace {
 
-struct Bump {
-    Eigen::Vector2d centre_m;
-    double height_m;
-    double width_m;
-};
-
-std::vector<Bump> random_bumps(unsigned seed, int count) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<double> where(-0.1, 0.1), height(0.003, 0.012),
-        width(0.006, 0.016), sign(-1.0, 1.0);
-    std::vector<Bump> bumps;
-    for (int i = 0; i < count; ++i) {
-        const double h = height(rng) * (sign(rng) < -0.3 ? -1.0 : 1.0);
-        bumps.push_back({{where(rng), where(rng)}, h, width(rng)});
-    }
-    return bumps;
-}
+using testing_util::Bump;
+using testing_util::random_bumps;
 
 /// Height field z = Σ h exp(−|xy − c|² / 2w²) (object frame) over x in [x_min, x_max],
 /// |y| <= 0.1, on a 1 mm grid shifted by `offset_m`; analytic normals up (solid below), as
@@ -77,14 +64,6 @@ PointCloud hemisphere() {
     return cloud;
 }
 
-Pose random_pose(std::mt19937& rng) {
-    std::normal_distribution<double> normal(0.0, 1.0);
-    std::uniform_real_distribution<double> unit(0.0, 1.0);
-    const Eigen::Quaterniond q(normal(rng), normal(rng), normal(rng), normal(rng));
-    const Eigen::Vector3d direction(normal(rng), normal(rng), normal(rng));
-    return make_pose(q.normalized(), 0.5 * unit(rng) * direction.normalized());
-}
-
 struct SyntheticScan {
     ScanInput input;
     Pose T_object_scan;  // Truth.
@@ -93,7 +72,7 @@ struct SyntheticScan {
 
 /// `object` (object frame) expressed in a random scan frame; the sensor 1 m above (+z).
 SyntheticScan make_view(const PointCloud& object, std::mt19937& rng, const std::string& name) {
-    const Pose T_scan_object = random_pose(rng);
+    const Pose T_scan_object = sample_random_pose(rng, 0.5);
     PointCloud cloud = transformed(object, T_scan_object);
     Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
     for (std::size_t i = 0; i < cloud.size(); ++i) centroid += cloud.world_position(i);

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "anascan/processing/pose_sampling.hpp"
 #include "anascan/processing/io/ply.hpp"
 #include "anascan/processing/io/stanford_conf.hpp"
 #include "anascan/processing/pose_evaluation.hpp"
@@ -27,14 +28,6 @@ namespace {
 namespace fs = std::filesystem;
 
 const fs::path kBunnyDir = fs::path(ANASCAN_SHARED_DATA_DIR) / "stanford-bunny-range-scans/data";
-
-Pose random_pose(std::mt19937& rng) {
-    std::normal_distribution<double> normal(0.0, 1.0);
-    std::uniform_real_distribution<double> unit(0.0, 1.0);
-    const Eigen::Quaterniond q(normal(rng), normal(rng), normal(rng), normal(rng));
-    const Eigen::Vector3d direction(normal(rng), normal(rng), normal(rng));
-    return make_pose(q.normalized(), 0.5 * unit(rng) * direction.normalized());
-}
 
 /// A bunny scan moved by T_moved_scan: loaded lazily, sensor at the moved (0,0,1) m.
 ScanInput moved_scan(const std::string& file, const Pose& T_moved_scan) {
@@ -61,7 +54,7 @@ TEST(ScanRegistrationBunny, TenMovedShuffledScansArePlaced) {
     std::vector<ScanInput> inputs;
     std::vector<Pose> T_moved_scan;
     for (const io::ConfEntry& entry : entries) {
-        T_moved_scan.push_back(random_pose(rng));
+        T_moved_scan.push_back(sample_random_pose(rng, 0.5));
         inputs.push_back(moved_scan(entry.file, T_moved_scan.back()));
     }
 
