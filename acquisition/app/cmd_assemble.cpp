@@ -12,7 +12,8 @@ namespace anascan::cli {
 void print_assembly(const acquisition::AssemblyReport& report) {
     std::printf("distances from each point to the nearest surface of the other scan%s\n",
                 report.pairs.empty() || report.pairs[0].agreement.point_to_plane
-                    ? " (along its normal)" : "");
+                    ? " (along its normal)"
+                    : "");
     std::printf("%-14s %-14s %9s %11s %11s\n", "scan A", "scan B", "overlap", "median mm",
                 "rms mm");
     for (const acquisition::PairReport& p : report.pairs) {
@@ -47,11 +48,13 @@ acquisition::AssemblyReport run_assemble(const AssembleOptions& o) {
 
 void add_assemble_command(CLI::App& app) {
     auto opts = std::make_shared<AssembleOptions>();
-    auto* cmd = app.add_subcommand(
-        "assemble", "Place scans with the poses of a Stanford .conf, measure how well "
-                    "overlapping scans agree, and write the merged model");
+    auto* cmd =
+        app.add_subcommand("assemble",
+                           "Place scans with the poses of a Stanford .conf, measure how well "
+                           "overlapping scans agree, and write the merged model");
     cmd->add_option("conf", opts->conf, "Pose file (bmesh FILE tx ty tz qx qy qz qw)")
-        ->required()->check(CLI::ExistingFile);
+        ->required()
+        ->check(CLI::ExistingFile);
     cmd->add_option("--out", opts->model_out, "Merged model (.ply)");
     cmd->add_option("--report", opts->report_out, "Agreement report (.json)");
     cmd->add_option("--voxel-mm", opts->voxel_mm, "Down-sample the model to this voxel size, mm")

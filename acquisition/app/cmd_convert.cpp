@@ -33,7 +33,8 @@ std::vector<PointCloud> read_clouds(const ConvertOptions& o) {
         if (!ptx) fail_command(ptx.error());
         for (io::PtxScan& s : *ptx) {
             const Pose T = s.scan.meta.T_world_scan.value_or(Pose::Identity());
-            clouds.push_back(o.world_frame ? transformed(s.scan.cloud, T) : std::move(s.scan.cloud));
+            clouds.push_back(o.world_frame ? transformed(s.scan.cloud, T)
+                                           : std::move(s.scan.cloud));
         }
     } else {
         auto cloud = io::read_text_points(in);
@@ -56,10 +57,12 @@ void run_convert(const ConvertOptions& o) {
     for (std::size_t i = 0; i < clouds.size(); ++i) {
         PointCloud& cloud = clouds[i];
         if (!o.keep_non_finite) {
-            if (std::size_t n = remove_non_finite(cloud)) spdlog::warn("dropped {} non-finite points", n);
+            if (std::size_t n = remove_non_finite(cloud))
+                spdlog::warn("dropped {} non-finite points", n);
         }
         const std::filesystem::path out = output_path(o, i, clouds.size());
-        if (auto ok = io::write_ply(out, cloud, {.format = o.format}); !ok) fail_command(ok.error());
+        if (auto ok = io::write_ply(out, cloud, {.format = o.format}); !ok)
+            fail_command(ok.error());
         std::printf("wrote %s (%zu points)\n", out.c_str(), cloud.size());
     }
 }
@@ -69,7 +72,8 @@ void run_convert(const ConvertOptions& o) {
 void add_convert_command(CLI::App& app) {
     auto opts = std::make_shared<ConvertOptions>();
     auto* cmd = app.add_subcommand(
-        "convert", "Convert .ply/.xyz/.pts/.ptx points to PLY (one file per PTX station: OUT-NN.ply)");
+        "convert",
+        "Convert .ply/.xyz/.pts/.ptx points to PLY (one file per PTX station: OUT-NN.ply)");
     cmd->add_option("input", opts->input, "Input file")->required()->check(CLI::ExistingFile);
     cmd->add_option("output", opts->output, "Output .ply file")->required();
     const std::map<std::string, io::PlyFormat> formats{
@@ -78,7 +82,8 @@ void add_convert_command(CLI::App& app) {
         {"ascii", io::PlyFormat::kAscii}};
     cmd->add_option("--format", opts->format, "PLY encoding (default binary little endian)")
         ->transform(CLI::CheckedTransformer(formats, CLI::ignore_case));
-    cmd->add_flag("--keep-non-finite", opts->keep_non_finite, "Keep NaN/inf points (default: drop)");
+    cmd->add_flag("--keep-non-finite", opts->keep_non_finite,
+                  "Keep NaN/inf points (default: drop)");
     cmd->add_flag("--world", opts->world_frame, "PTX: write points in the registered frame");
     cmd->callback([opts] { run_convert(*opts); });
 }

@@ -43,7 +43,8 @@ fs::path choose_input(const DemoOptions& o, const fs::path& out) {
                     bunny_conf.c_str());
         return bunny_conf;
     }
-    if (!o.bunny_dir.empty()) spdlog::warn("{} not found; using the synthetic example", bunny_conf.string());
+    if (!o.bunny_dir.empty())
+        spdlog::warn("{} not found; using the synthetic example", bunny_conf.string());
     std::printf("input: simulated scans of a 0.8 x 0.5 x 0.4 m block with their true poses\n");
     return write_synthetic_scans(out / "synthetic-scans");
 }
@@ -52,7 +53,8 @@ void run_demo(const DemoOptions& o) {
     const fs::path out = fs::absolute(o.out_dir);
     std::error_code ec;
     fs::create_directories(out, ec);
-    if (ec) throw CommandFailed(out.string() + ": cannot create the output folder: " + ec.message());
+    if (ec)
+        throw CommandFailed(out.string() + ": cannot create the output folder: " + ec.message());
     AssembleOptions assemble{.conf = choose_input(o, out).string(),
                              .model_out = (out / "model.ply").string(),
                              .report_out = (out / "report.json").string(),
@@ -67,8 +69,9 @@ void run_demo(const DemoOptions& o) {
 void add_demo_command(CLI::App& app) {
     auto opts = std::make_shared<DemoOptions>();
     auto* cmd = app.add_subcommand(
-        "demo", "End-to-end example: assemble the Stanford bunny scans when --bunny is given "
-                "and present, otherwise simulated scans of a block");
+        "demo",
+        "End-to-end example: assemble the Stanford bunny scans when --bunny is given "
+        "and present, otherwise simulated scans of a block");
     cmd->add_option("--bunny", opts->bunny_dir, "Folder with bun.conf and bun*.ply");
     cmd->add_option("--out", opts->out_dir, "Output folder (default ./anascan-demo)");
     cmd->callback([opts] { run_demo(*opts); });

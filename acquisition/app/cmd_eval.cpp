@@ -11,8 +11,8 @@ namespace {
 struct EvalOptions {
     std::string estimated;
     std::string truth;
-    double max_rotation_deg = -1.0;     // < 0: no limit
-    double max_translation_mm = -1.0;   // < 0: no limit
+    double max_rotation_deg = -1.0;    // < 0: no limit
+    double max_translation_mm = -1.0;  // < 0: no limit
 };
 
 std::vector<NamedPose> read_named_poses(const std::string& path) {
@@ -35,7 +35,8 @@ void print_evaluation(const PoseEvaluation& eval) {
     }
     for (const std::string& u : eval.unknown) std::printf("%-24s not in the truth\n", u.c_str());
     std::printf("placed %zu of %zu; max rotation error %.4f deg, max translation error %.4f mm\n",
-                eval.placed, eval.scans.size(), eval.max_rotation_deg, 1e3 * eval.max_translation_m);
+                eval.placed, eval.scans.size(), eval.max_rotation_deg,
+                1e3 * eval.max_translation_m);
 }
 
 void run_eval(const EvalOptions& o) {
@@ -57,12 +58,15 @@ void run_eval(const EvalOptions& o) {
 void add_eval_command(CLI::App& app) {
     auto opts = std::make_shared<EvalOptions>();
     auto* cmd = app.add_subcommand(
-        "eval", "Compare estimated poses with ground truth: per-scan rotation error (deg) and "
-                "translation error (mm), both sets expressed in the first common scan's frame");
+        "eval",
+        "Compare estimated poses with ground truth: per-scan rotation error (deg) and "
+        "translation error (mm), both sets expressed in the first common scan's frame");
     cmd->add_option("poses", opts->estimated, "Estimated poses (.conf)")
-        ->required()->check(CLI::ExistingFile);
+        ->required()
+        ->check(CLI::ExistingFile);
     cmd->add_option("--truth", opts->truth, "Ground-truth poses (.conf)")
-        ->required()->check(CLI::ExistingFile);
+        ->required()
+        ->check(CLI::ExistingFile);
     cmd->add_option("--max-rotation-deg", opts->max_rotation_deg,
                     "Exit with status 1 when a rotation error exceeds this (degrees)");
     cmd->add_option("--max-translation-mm", opts->max_translation_mm,

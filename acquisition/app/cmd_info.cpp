@@ -38,9 +38,12 @@ void print_pose(const char* label, const Pose& T) {
 
 const char* format_name(io::PlyFormat f) {
     switch (f) {
-        case io::PlyFormat::kAscii: return "ascii";
-        case io::PlyFormat::kBinaryLittleEndian: return "binary little endian";
-        case io::PlyFormat::kBinaryBigEndian: return "binary big endian";
+        case io::PlyFormat::kAscii:
+            return "ascii";
+        case io::PlyFormat::kBinaryLittleEndian:
+            return "binary little endian";
+        case io::PlyFormat::kBinaryBigEndian:
+            return "binary big endian";
     }
     return "?";
 }
@@ -51,8 +54,10 @@ void info_ply(const std::filesystem::path& path) {
     std::printf("%s: PLY, %s\n", path.c_str(), format_name(ply->format));
     print_cloud(ply->cloud);
     if (!ply->triangles.empty()) std::printf("  triangles: %zu\n", ply->triangles.size());
-    if (ply->grid) std::printf("  range grid: %d rows x %d columns\n", ply->grid->rows, ply->grid->cols);
-    for (const std::string& e : ply->skipped_elements) std::printf("  skipped element: %s\n", e.c_str());
+    if (ply->grid)
+        std::printf("  range grid: %d rows x %d columns\n", ply->grid->rows, ply->grid->cols);
+    for (const std::string& e : ply->skipped_elements)
+        std::printf("  skipped element: %s\n", e.c_str());
 }
 
 void info_ptx(const std::filesystem::path& path) {

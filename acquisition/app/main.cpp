@@ -19,9 +19,10 @@ void configure_logging(bool verbose, bool quiet) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    CLI::App app{"anascan: 3D documentation of stone blocks for anastylosis.\n"
-                 "Units are metres unless a file or option says otherwise.",
-                 "anascan"};
+    CLI::App app{
+        "anascan: 3D documentation of stone blocks for anastylosis.\n"
+        "Units are metres unless a file or option says otherwise.",
+        "anascan"};
     app.require_subcommand(1);
     bool verbose = false;
     bool quiet = false;

@@ -72,7 +72,8 @@ Expected<AssemblyReport> assemble_from_conf(const std::filesystem::path& conf_pa
     auto conf = io::read_conf(conf_path);
     if (!conf) return fail(conf.error());
     if (conf->entries.empty()) {
-        return fail(ErrorCode::kEmpty, conf_path.string() + ": no 'bmesh' lines, nothing to assemble");
+        return fail(ErrorCode::kEmpty,
+                    conf_path.string() + ": no 'bmesh' lines, nothing to assemble");
     }
     AssemblyReport report;
     std::vector<PlacedScan> scans;
@@ -80,7 +81,8 @@ Expected<AssemblyReport> assemble_from_conf(const std::filesystem::path& conf_pa
         AssembledScan info;
         auto placed = load_placed(conf_path.parent_path(), entry, info);
         if (!placed) return fail(placed.error());
-        if (progress) progress("loaded " + entry.file + " (" + std::to_string(info.points) + " points)");
+        if (progress)
+            progress("loaded " + entry.file + " (" + std::to_string(info.points) + " points)");
         report.scans.push_back(info);
         scans.push_back(std::move(*placed));
     }

@@ -7,9 +7,8 @@ namespace anascan::acquisition {
 std::string report_to_json(const AssemblyReport& report) {
     nlohmann::json scans = nlohmann::json::array();
     for (const AssembledScan& s : report.scans) {
-        scans.push_back({{"file", s.file},
-                         {"points", s.points},
-                         {"non_finite_removed", s.non_finite_removed}});
+        scans.push_back(
+            {{"file", s.file}, {"points", s.points}, {"non_finite_removed", s.non_finite_removed}});
     }
     nlohmann::json pairs = nlohmann::json::array();
     for (const PairReport& p : report.pairs) {

@@ -7,7 +7,8 @@ namespace anascan::drivers {
 namespace {
 
 bool is_scheme_char(char c) {
-    return std::islower(static_cast<unsigned char>(c)) || std::isdigit(static_cast<unsigned char>(c));
+    return std::islower(static_cast<unsigned char>(c)) ||
+           std::isdigit(static_cast<unsigned char>(c));
 }
 
 bool is_hex4(std::string_view s) {
@@ -40,9 +41,9 @@ Expected<DeviceUri> parse_device_uri(std::string_view text) {
     }
     DeviceUri uri{std::string(text.substr(0, colon)), std::string(text.substr(colon + 1))};
     if (!std::all_of(uri.scheme.begin(), uri.scheme.end(), is_scheme_char)) {
-        return fail(ErrorCode::kInvalidArgument,
-                    "device '" + std::string(text) + "': the scheme '" + uri.scheme +
-                        "' must be lower-case letters and digits");
+        return fail(ErrorCode::kInvalidArgument, "device '" + std::string(text) +
+                                                     "': the scheme '" + uri.scheme +
+                                                     "' must be lower-case letters and digits");
     }
     if (uri.scheme == "usb") {
         if (auto ok = check_usb_target(text, uri.target); !ok) return fail(ok.error());

@@ -9,7 +9,8 @@ namespace {
 
 // Distance of `query` to the plane through B's point `index`; point-to-point where that
 // point has no usable (zero) normal.
-double distance_along_normal(const Eigen::Vector3f& query, const PointCloud& b, std::uint32_t index) {
+double distance_along_normal(const Eigen::Vector3f& query, const PointCloud& b,
+                             std::uint32_t index) {
     const Eigen::Vector3f offset = query - b.positions[index];
     const Eigen::Vector3f& normal = b.normals[index];
     if (normal.squaredNorm() < 0.5f) return offset.norm();

@@ -73,8 +73,8 @@ TEST_F(Cli, ACorruptFileGivesAClearErrorNotACrash) {
 TEST_F(Cli, ConvertWritesAsciiThatReadsBack) {
     const fs::path xyz = dir_ / "points.xyz";
     std::ofstream(xyz) << "0 0 0\n1 0 0\n0 1 0.5\n";
-    const CliRun run = run_cli("convert " + xyz.string() + " " + (dir_ / "p.ply").string() +
-                            " --format ascii");
+    const CliRun run =
+        run_cli("convert " + xyz.string() + " " + (dir_ / "p.ply").string() + " --format ascii");
     ASSERT_EQ(run.exit_code, 0) << run.output;
     const CliRun info = run_cli("info " + (dir_ / "p.ply").string());
     EXPECT_NE(info.output.find("points: 3"), std::string::npos) << info.output;

@@ -77,9 +77,8 @@ TEST_F(BunnyData, OverlappingScansAgreeBelowOneMillimetre) {
                 measure_agreement(scans_->clouds[i], scans_->clouds[j], trees[j], kAgreement);
             if (a.overlap_fraction < kMinOverlap) continue;
             ++overlapping_pairs;
-            EXPECT_LT(a.median_distance_m, 0.001)
-                << scans_->names[i] << " vs " << scans_->names[j] << ": overlap "
-                << a.overlap_fraction;
+            EXPECT_LT(a.median_distance_m, 0.001) << scans_->names[i] << " vs " << scans_->names[j]
+                                                  << ": overlap " << a.overlap_fraction;
         }
     }
     EXPECT_GE(overlapping_pairs, 20);  // Ten scans around the bunny overlap widely.
@@ -87,9 +86,9 @@ TEST_F(BunnyData, OverlappingScansAgreeBelowOneMillimetre) {
 
 TEST_F(BunnyData, AScanOffItsPoseDisagrees) {
     // Negative control: the same measure must notice a 2 mm / 1 degree error.
-    const Pose T_error = make_pose(
-        Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 180.0, Eigen::Vector3d::UnitY())),
-        Eigen::Vector3d(0.002, 0.0, 0.0));
+    const Pose T_error =
+        make_pose(Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 180.0, Eigen::Vector3d::UnitY())),
+                  Eigen::Vector3d(0.002, 0.0, 0.0));
     const PointCloud moved = transformed(scans_->clouds[1], T_error);  // bun045
     const KdTree tree0(scans_->clouds[0].positions);                   // bun000
     const PairAgreement a = measure_agreement(moved, scans_->clouds[0], tree0, kAgreement);

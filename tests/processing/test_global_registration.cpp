@@ -9,10 +9,10 @@
 #include <random>
 #include <vector>
 
-#include "test_bumpy_surface.hpp"
 #include "anascan/processing/feature_patches.hpp"
 #include "anascan/processing/global_registration.hpp"
 #include "anascan/processing/integral_invariants.hpp"
+#include "test_bumpy_surface.hpp"
 
 namespace anascan {
 namespace {

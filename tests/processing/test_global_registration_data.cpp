@@ -19,11 +19,11 @@
 #include <string>
 #include <vector>
 
-#include "anascan/processing/pose_sampling.hpp"
 #include "anascan/processing/global_registration.hpp"
 #include "anascan/processing/io/ply.hpp"
 #include "anascan/processing/io/stanford_conf.hpp"
 #include "anascan/processing/normals.hpp"
+#include "anascan/processing/pose_sampling.hpp"
 #include "anascan/processing/scan_agreement.hpp"
 
 namespace anascan {

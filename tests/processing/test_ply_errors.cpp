@@ -1,10 +1,9 @@
 // Broken and hostile PLY files: each fails with the right code and a message that starts
 // with the source name, then says where ("line N" / "byte N") and what was wrong.
 #include <gtest/gtest.h>
-
-#include <cstdlib>
 #include <sys/resource.h>
 
+#include <cstdlib>
 #include <cstring>
 #include <string>
 

@@ -6,7 +6,8 @@ namespace anascan {
 namespace {
 
 Pose pose(double angle_deg, const Eigen::Vector3d& axis, const Eigen::Vector3d& t) {
-    return make_pose(Eigen::Quaterniond(Eigen::AngleAxisd(angle_deg * M_PI / 180, axis.normalized())), t);
+    return make_pose(
+        Eigen::Quaterniond(Eigen::AngleAxisd(angle_deg * M_PI / 180, axis.normalized())), t);
 }
 
 TEST(PoseEvaluation, ACommonRigidMotionIsNotAnError) {

@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "test_bumpy_surface.hpp"
 #include "anascan/processing/pose_sampling.hpp"
 #include "anascan/processing/scan_registration.hpp"
+#include "test_bumpy_surface.hpp"
 
 namespace anascan {
 namespace {

@@ -16,10 +16,10 @@
 #include <string>
 #include <vector>
 
-#include "anascan/processing/pose_sampling.hpp"
 #include "anascan/processing/io/ply.hpp"
 #include "anascan/processing/io/stanford_conf.hpp"
 #include "anascan/processing/pose_evaluation.hpp"
+#include "anascan/processing/pose_sampling.hpp"
 #include "anascan/processing/scan_registration.hpp"
 
 namespace anascan {

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <filesystem>
 #include <numbers>
-#include <random>
 #include <ostream>
+#include <random>
 #include <string>
 
 #include "anascan/processing/io/stanford_conf.hpp"

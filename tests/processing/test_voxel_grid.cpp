@@ -165,7 +165,8 @@ TEST(VoxelDownsample, MillionPointsMatchABruteForceVoxelCount) {
     std::set<std::tuple<long, long, long>> voxels;
     for (const Eigen::Vector3f& p : cloud.positions) {
         const Eigen::Vector3d v = (p.cast<double>() * (1.0 / 0.002)).array().floor();
-        voxels.emplace(static_cast<long>(v.x()), static_cast<long>(v.y()), static_cast<long>(v.z()));
+        voxels.emplace(static_cast<long>(v.x()), static_cast<long>(v.y()),
+                       static_cast<long>(v.z()));
     }
     const PointCloud out = voxel_downsample(cloud, {.voxel_size_m = 0.002});
     EXPECT_EQ(out.size(), voxels.size());

@@ -3,8 +3,8 @@
 
 #include <cmath>
 #include <filesystem>
-#include <random>
 #include <ostream>
+#include <random>
 #include <string>
 
 #include "anascan/processing/io/xf.hpp"

@@ -38,8 +38,9 @@ Expected<void> write_all(int fd, std::span<const char> bytes, const std::string&
         const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
         if (n < 0 && errno == EINTR) continue;
         if (n < 0) {
-            return fail(ErrorCode::kIo, name + ": cannot write: " + os_reason(errno) +
-                                            (errno == ENOSPC ? " (free disk space and retry)" : ""));
+            return fail(ErrorCode::kIo,
+                        name + ": cannot write: " + os_reason(errno) +
+                            (errno == ENOSPC ? " (free disk space and retry)" : ""));
         }
         done += static_cast<std::size_t>(n);
     }
@@ -72,8 +73,8 @@ Expected<std::vector<char>> read_file_bytes(const std::filesystem::path& path) {
     std::vector<char> bytes(static_cast<std::size_t>(size));
     in.seekg(0);
     if (size > 0 && !in.read(bytes.data(), size)) {
-        return fail(ErrorCode::kIo, name + ": read failed after " +
-                                        std::to_string(in.gcount()) + " bytes");
+        return fail(ErrorCode::kIo,
+                    name + ": read failed after " + std::to_string(in.gcount()) + " bytes");
     }
     return bytes;
 }

@@ -25,8 +25,8 @@ struct AssemblyConfig {
 };
 
 struct AssembledScan {
-    std::string file;                ///< As named in the .conf.
-    std::size_t points = 0;          ///< Finite points used.
+    std::string file;        ///< As named in the .conf.
+    std::size_t points = 0;  ///< Finite points used.
     std::size_t non_finite_removed = 0;
 };
 
@@ -37,8 +37,8 @@ struct PairReport {
 
 struct AssemblyReport {
     std::vector<AssembledScan> scans;
-    std::vector<PairReport> pairs;   ///< Overlapping pairs, both directions merged (a < b).
-    PointCloud model;                ///< All scans in the common frame.
+    std::vector<PairReport> pairs;        ///< Overlapping pairs, both directions merged (a < b).
+    PointCloud model;                     ///< All scans in the common frame.
     double median_pair_distance_m = 0.0;  ///< Median over pairs of their median distance.
     double worst_pair_distance_m = 0.0;   ///< Largest per-pair median distance.
 };

@@ -21,17 +21,17 @@ struct NamedPose {
 /// Error of one scan relative to the reference scan.
 struct ScanPoseError {
     std::string name;
-    bool placed = false;          ///< False when the estimate lacks this scan.
-    double rotation_deg = 0.0;    ///< Angle of the residual rotation, degrees.
-    double translation_m = 0.0;   ///< Distance between the positions, metres.
+    bool placed = false;         ///< False when the estimate lacks this scan.
+    double rotation_deg = 0.0;   ///< Angle of the residual rotation, degrees.
+    double translation_m = 0.0;  ///< Distance between the positions, metres.
 };
 
 struct PoseEvaluation {
-    std::string reference;              ///< Name of the scan both sets are expressed in.
-    std::vector<ScanPoseError> scans;   ///< One per truth scan, in truth order.
-    std::vector<std::string> unknown;   ///< Estimated scans absent from the truth.
-    double max_rotation_deg = 0.0;      ///< Over placed scans.
-    double max_translation_m = 0.0;     ///< Over placed scans.
+    std::string reference;             ///< Name of the scan both sets are expressed in.
+    std::vector<ScanPoseError> scans;  ///< One per truth scan, in truth order.
+    std::vector<std::string> unknown;  ///< Estimated scans absent from the truth.
+    double max_rotation_deg = 0.0;     ///< Over placed scans.
+    double max_translation_m = 0.0;    ///< Over placed scans.
     std::size_t placed = 0;
 };
 

@@ -23,16 +23,16 @@ enum class DeviceKind {
 /// Metadata of a scan. Frames: the cloud is given in the scan frame; `T_world_scan` places
 /// it in the session (world) frame once known.
 struct ScanMetadata {
-    std::string id;                 ///< Unique within a session (file stem for imports).
-    std::int64_t sequence = -1;     ///< Order of capture in the session; -1 when unknown.
-    std::string device_id;          ///< E.g. "sim:structured-light#0"; empty when unknown.
+    std::string id;              ///< Unique within a session (file stem for imports).
+    std::int64_t sequence = -1;  ///< Order of capture in the session; -1 when unknown.
+    std::string device_id;       ///< E.g. "sim:structured-light#0"; empty when unknown.
     DeviceKind device_kind = DeviceKind::kUnknown;
     /// Position of the sensor in the scan frame (metres); orients normals and visibility.
     std::optional<Eigen::Vector3d> sensor_origin_scan_m;
     /// Pose of the scan in the world frame when known (prior or registered).
     std::optional<Pose> T_world_scan;
     std::chrono::system_clock::time_point time{};  ///< Capture time (UTC).
-    std::string settings_json;      ///< Device settings at capture time, JSON text.
+    std::string settings_json;                     ///< Device settings at capture time, JSON text.
 };
 
 /// A scan's metadata and points.

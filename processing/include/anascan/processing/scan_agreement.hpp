@@ -24,12 +24,12 @@ struct AgreementConfig {
 
 /// Figures of one directed pair (A against B).
 struct PairAgreement {
-    std::size_t samples = 0;              ///< Points of A examined.
-    std::size_t overlapping = 0;          ///< Of those, how many overlap B.
-    double overlap_fraction = 0.0;        ///< overlapping / samples.
-    double median_distance_m = 0.0;      ///< Median nearest-neighbour distance (overlap).
-    double rms_distance_m = 0.0;         ///< RMS nearest-neighbour distance (overlap).
-    bool point_to_plane = false;         ///< Distances along B's normals (B had normals).
+    std::size_t samples = 0;         ///< Points of A examined.
+    std::size_t overlapping = 0;     ///< Of those, how many overlap B.
+    double overlap_fraction = 0.0;   ///< overlapping / samples.
+    double median_distance_m = 0.0;  ///< Median nearest-neighbour distance (overlap).
+    double rms_distance_m = 0.0;     ///< RMS nearest-neighbour distance (overlap).
+    bool point_to_plane = false;     ///< Distances along B's normals (B had normals).
 };
 
 /// Measures A against B; both clouds must be in the same frame (their origins may

@@ -31,16 +31,31 @@ public:
 
     bool has_value() const { return state_.index() == 0; }
     explicit operator bool() const { return has_value(); }
-    T& value() & { assert(has_value()); return std::get<0>(state_); }
-    const T& value() const& { assert(has_value()); return std::get<0>(state_); }
-    T&& value() && { assert(has_value()); return std::get<0>(std::move(state_)); }
+    T& value() & {
+        assert(has_value());
+        return std::get<0>(state_);
+    }
+    const T& value() const& {
+        assert(has_value());
+        return std::get<0>(state_);
+    }
+    T&& value() && {
+        assert(has_value());
+        return std::get<0>(std::move(state_));
+    }
     T& operator*() & { return value(); }
     const T& operator*() const& { return value(); }
     T&& operator*() && { return std::move(*this).value(); }
     T* operator->() { return &value(); }
     const T* operator->() const { return &value(); }
-    const E& error() const& { assert(!has_value()); return std::get<1>(state_); }
-    E&& error() && { assert(!has_value()); return std::get<1>(std::move(state_)); }
+    const E& error() const& {
+        assert(!has_value());
+        return std::get<1>(state_);
+    }
+    E&& error() && {
+        assert(!has_value());
+        return std::get<1>(std::move(state_));
+    }
 
 private:
     std::variant<T, E> state_;
@@ -59,7 +74,10 @@ public:
     explicit operator bool() const { return ok_; }
     void value() const { assert(ok_); }
     void operator*() const { assert(ok_); }
-    const E& error() const& { assert(!ok_); return error_; }
+    const E& error() const& {
+        assert(!ok_);
+        return error_;
+    }
 
 private:
     E error_{};

@@ -31,7 +31,7 @@ struct PlyData {
     std::vector<Eigen::Vector3i> triangles;  ///< Empty for point clouds.
     std::optional<RangeGrid> grid;           ///< Stanford range_grid, when present.
     PlyFormat format = PlyFormat::kBinaryLittleEndian;
-    std::vector<std::string> comments;       ///< `comment` and `obj_info` lines, in order.
+    std::vector<std::string> comments;          ///< `comment` and `obj_info` lines, in order.
     std::vector<std::string> skipped_elements;  ///< Names of elements we did not read.
 };
 
@@ -51,8 +51,7 @@ struct PlyWriteOptions {
 /// Serialises a cloud (and optional triangles) to PLY bytes: float x y z, then float nx ny
 /// nz, uchar red green blue, float intensity, float confidence for each attribute the
 /// cloud has; a non-zero origin is written as a comment so that it round-trips exactly.
-std::vector<char> serialize_ply(const PointCloud& cloud,
-                                std::span<const Eigen::Vector3i> triangles,
+std::vector<char> serialize_ply(const PointCloud& cloud, std::span<const Eigen::Vector3i> triangles,
                                 const PlyWriteOptions& options);
 
 /// Writes a point cloud crash-safely (see write_file_atomically).

@@ -24,13 +24,12 @@ namespace anascan::io {
 
 /// One station of a PTX file.
 struct PtxScan {
-    Scan scan;        ///< Points in the scanner frame; meta.T_world_scan from the header.
-    RangeGrid grid;   ///< rows x cols; kNoSample where the scanner got no return.
+    Scan scan;       ///< Points in the scanner frame; meta.T_world_scan from the header.
+    RangeGrid grid;  ///< rows x cols; kNoSample where the scanner got no return.
 };
 
 /// Parses every scan in PTX text; errors name the line.
-Expected<std::vector<PtxScan>> parse_ptx(std::span<const char> bytes,
-                                         std::string_view source_name);
+Expected<std::vector<PtxScan>> parse_ptx(std::span<const char> bytes, std::string_view source_name);
 
 /// Reads a PTX file.
 Expected<std::vector<PtxScan>> read_ptx(const std::filesystem::path& path);
