@@ -12,6 +12,7 @@
 #include "anascan/processing/feature_patches.hpp"
 #include "anascan/processing/global_registration.hpp"
 #include "anascan/processing/integral_invariants.hpp"
+#include "anascan/processing/pose_sampling.hpp"
 #include "test_bumpy_surface.hpp"
 
 namespace anascan {
@@ -20,37 +21,12 @@ namespace {
 using testing_util::Bump;
 using testing_util::random_bumps;
 
-// Height field z = Σ h exp(−|xy − c|² / 2w²) over x in [x_min, x_max], |y| <= 0.1, on a
-// grid of `spacing_m` shifted by `offset_m`; normals up (solid below), analytic.
-PointCloud bumpy_surface(const std::vector<Bump>& bumps, double x_min, double x_max,
-                         double spacing_m, double offset_m) {
-    PointCloud cloud;
-    for (double x = x_min + offset_m; x <= x_max; x += spacing_m) {
-        for (double y = -0.1 + offset_m; y <= 0.1; y += spacing_m) {
-            double z = 0.0;
-            Eigen::Vector2d gradient = Eigen::Vector2d::Zero();
-            for (const Bump& b : bumps) {
-                const Eigen::Vector2d d = Eigen::Vector2d(x, y) - b.centre_m;
-                const double g =
-                    b.height_m * std::exp(-d.squaredNorm() / (2 * b.width_m * b.width_m));
-                z += g;
-                gradient -= g * d / (b.width_m * b.width_m);
-            }
-            cloud.positions.emplace_back(float(x), float(y), float(z));
-            cloud.normals.push_back(
-                Eigen::Vector3d(-gradient.x(), -gradient.y(), 1.0).normalized().cast<float>());
-        }
-    }
-    return cloud;
-}
+using testing_util::bumpy_surface;
 
+// The same draw as sample_random_pose from a generator seeded with `seed`.
 Pose random_pose(unsigned seed, double max_translation_m) {
     std::mt19937 rng(seed);
-    std::normal_distribution<double> normal(0.0, 1.0);
-    std::uniform_real_distribution<double> unit(0.0, 1.0);
-    const Eigen::Quaterniond q(normal(rng), normal(rng), normal(rng), normal(rng));
-    const Eigen::Vector3d direction(normal(rng), normal(rng), normal(rng));
-    return make_pose(q.normalized(), max_translation_m * unit(rng) * direction.normalized());
+    return sample_random_pose(rng, max_translation_m);
 }
 
 TEST(FeaturePatch, BumpySurfaceGivesTensOfPatchesWithConsistentFigures) {

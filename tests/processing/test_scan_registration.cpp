@@ -21,30 +21,10 @@ namespace {
 using testing_util::Bump;
 using testing_util::random_bumps;
 
-/// Height field z = Σ h exp(−|xy − c|² / 2w²) (object frame) over x in [x_min, x_max],
-/// |y| <= 0.1, on a 1 mm grid shifted by `offset_m`; analytic normals up (solid below), as
-/// in test_global_registration.cpp.
+/// The bumpy height field on a 1 mm grid over x in [x_min, x_max] (object frame).
 PointCloud bumpy_window(const std::vector<Bump>& bumps, double x_min, double x_max,
                         double offset_m) {
-    PointCloud cloud;
-    const double spacing_m = 0.001;
-    for (double x = x_min + offset_m; x <= x_max; x += spacing_m) {
-        for (double y = -0.1 + offset_m; y <= 0.1; y += spacing_m) {
-            double z = 0.0;
-            Eigen::Vector2d gradient = Eigen::Vector2d::Zero();
-            for (const Bump& b : bumps) {
-                const Eigen::Vector2d d = Eigen::Vector2d(x, y) - b.centre_m;
-                const double g =
-                    b.height_m * std::exp(-d.squaredNorm() / (2 * b.width_m * b.width_m));
-                z += g;
-                gradient -= g * d / (b.width_m * b.width_m);
-            }
-            cloud.positions.emplace_back(float(x), float(y), float(z));
-            cloud.normals.push_back(
-                Eigen::Vector3d(-gradient.x(), -gradient.y(), 1.0).normalized().cast<float>());
-        }
-    }
-    return cloud;
+    return testing_util::bumpy_surface(bumps, x_min, x_max, 0.001, offset_m);
 }
 
 /// Upper half of a sphere of radius 0.05 m, ~1 mm apart, outward normals: no shape in
