@@ -9,22 +9,14 @@
 
 #include "anascan/processing/io/ply.hpp"
 #include "anascan/processing/io/stanford_conf.hpp"
+#include "test_quaternion_util.hpp"
 
 namespace anascan::io {
 namespace {
 
 namespace fs = std::filesystem;
 
-// R(q) of a Hamilton quaternion, written out independently of Eigen's conversion.
-Eigen::Matrix3d hamilton_rotation(double qx, double qy, double qz, double qw) {
-    const double n = std::sqrt(qx * qx + qy * qy + qz * qz + qw * qw);
-    const double x = qx / n, y = qy / n, z = qz / n, w = qw / n;
-    Eigen::Matrix3d R;
-    R << 1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w),  //
-        2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w),   //
-        2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y);
-    return R;
-}
+using testing_util::hamilton_rotation;
 
 TEST(ConfData, BunnyConfMatchesTheDocumentedConvention) {
     const fs::path path =

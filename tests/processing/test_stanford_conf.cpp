@@ -9,6 +9,7 @@
 #include <string>
 
 #include "anascan/processing/io/stanford_conf.hpp"
+#include "test_quaternion_util.hpp"
 
 namespace anascan::io {
 namespace {
@@ -18,16 +19,7 @@ namespace fs = std::filesystem;
 
 std::span<const char> text_bytes(std::string_view text) { return {text.data(), text.size()}; }
 
-// R(q) of a unit quaternion written out (Hamilton convention), independent of Eigen.
-Eigen::Matrix3d rotation_of(double qx, double qy, double qz, double qw) {
-    const double n = std::sqrt(qx * qx + qy * qy + qz * qz + qw * qw);
-    const double x = qx / n, y = qy / n, z = qz / n, w = qw / n;
-    Eigen::Matrix3d R;
-    R << 1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w),  //
-        2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w),   //
-        2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y);
-    return R;
-}
+using testing_util::hamilton_rotation;
 
 double max_difference(const Pose& a, const Pose& b) {
     return (a.matrix() - b.matrix()).cwiseAbs().maxCoeff();
@@ -56,7 +48,7 @@ TEST(ConfParse, CameraLineUsesTheSameConventionAndQuaternionsAreNormalised) {
         parse_conf(text_bytes("camera 0 0 -1  0 0 2 2\r\nbmesh x 0 0 0 0 0 0 5\r\n"), "cam.conf");
     ASSERT_TRUE(conf.has_value()) << conf.error().message;
     ASSERT_TRUE(conf->camera.has_value());
-    const Pose expected_rotation(Eigen::Matrix3d(rotation_of(0, 0, 2, 2).transpose()));
+    const Pose expected_rotation(Eigen::Matrix3d(hamilton_rotation(0, 0, 2, 2).transpose()));
     EXPECT_LT((conf->camera->linear() - expected_rotation.linear()).cwiseAbs().maxCoeff(), 1e-15);
     EXPECT_TRUE(conf->camera->translation().isApprox(Eigen::Vector3d(0, 0, -1)));
     EXPECT_TRUE(conf->entries[0].T_world_scan.matrix().isIdentity(1e-15));
