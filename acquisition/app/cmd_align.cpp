@@ -2,6 +2,7 @@
 // --init), T maps source points into the target frame.
 #include <spdlog/spdlog.h>
 
+#include <chrono>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
@@ -24,12 +25,45 @@ struct AlignOptions {
     SensorOptions sensor;
 };
 
-PointCloud load_prepared(const std::string& path, const SensorOptions& sensor) {
+/// Wall-clock seconds of the stages of one `align` run.
+struct AlignStages {
+    double load_s = 0.0;
+    double normals_s = 0.0;  ///< Preparation: non-finite points dropped, normals estimated.
+    GlobalRegistrationTiming global;  ///< Zero with --init.
+    nlohmann::json global_figures;    ///< Patches, candidates, hypotheses (null with --init).
+};
+
+nlohmann::json global_figures(const GlobalRegistrationResult& g) {
+    std::size_t verified = 0;
+    for (const HypothesisOutcome& h : g.hypotheses) verified += h.verified;
+    return {{"status", std::string(to_string(g.status))},
+            {"radii_m", g.radii_m},
+            {"source_patches", g.source_patches},
+            {"target_patches", g.target_patches},
+            {"candidates", g.matching.candidate_count},
+            {"consistent_candidates", g.matching.consistent_count},
+            {"hypotheses", g.matching.hypotheses.size()},
+            {"hypotheses_refined", g.hypotheses.size()},
+            {"hypotheses_verified", verified},
+            {"rms_m", g.rms_m},
+            {"overlap", g.overlap_fraction}};
+}
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+PointCloud load_prepared(const std::string& path, const SensorOptions& sensor,
+                         AlignStages& stages) {
+    auto start = std::chrono::steady_clock::now();
     auto cloud = load_ply_cloud(path);
     if (!cloud) fail_command(cloud.error());
+    stages.load_s += seconds_since(start);
+    start = std::chrono::steady_clock::now();
     if (prepare_scan(*cloud, sensor_origin(sensor), {}) == 0) {
         throw CommandFailed(path + ": no finite points with a normal");
     }
+    stages.normals_s += seconds_since(start);
     return std::move(*cloud);
 }
 
@@ -59,21 +93,37 @@ void print_fine(const FineRegistrationResult& fine, const std::string& status, d
     std::printf("time: %.2f s\n", time_s);
 }
 
+nlohmann::json stages_json(const AlignStages& stages, const FineRegistrationResult& fine) {
+    return {{"load", stages.load_s},
+            {"normals", stages.normals_s},
+            {"global_invariants", stages.global.invariants_s},
+            {"global_patches", stages.global.patches_s},
+            {"global_matching", stages.global.matching_s},
+            {"global_refinement", stages.global.refinement_s},
+            {"fine", fine.time_s}};
+}
+
 void write_outputs(const AlignOptions& o, const FineRegistrationResult& fine,
-                   const std::string& status, double time_s) {
+                   const std::string& status, const AlignStages& stages) {
     if (!o.out.empty()) {
         if (auto ok = io::write_xf(o.out, fine.T_target_source); !ok) fail_command(ok.error());
         std::printf("transform: %s\n", o.out.c_str());
     }
     if (o.stats.empty()) return;
-    const nlohmann::json doc = {{"status", status},
-                                {"fine_status", std::string(to_string(fine.status))},
-                                {"rms_m", fine.rms_m},
-                                {"overlap", fine.overlap_fraction},
-                                {"normal_deviation_deg", fine.normal_deviation_deg.value_or(-1.0)},
-                                {"degeneracy", fine.degeneracy.eigenvalue_ratio},
-                                {"iterations", fine.iterations},
-                                {"time_s", time_s}};
+    const nlohmann::json doc = {
+        {"status", status},
+        {"stages", stages_json(stages, fine)},
+        {"fine",
+         {{"status", std::string(to_string(fine.status))},
+          {"iterations", fine.iterations},
+          {"time_s", fine.time_s},
+          {"rms_m", fine.rms_m},
+          {"overlap", fine.overlap_fraction},
+          {"normal_deviation_deg", fine.normal_deviation_deg.value_or(-1.0)},
+          {"degeneracy", fine.degeneracy.eigenvalue_ratio}}},
+        {"global", stages.global_figures},
+        {"global_time_s", stages.global.total_s},
+        {"time_s", stages.global.total_s + fine.time_s}};
     if (auto ok = io::write_file_atomically(o.stats, doc.dump(2) + "\n"); !ok) {
         fail_command(ok.error());
     }
@@ -81,18 +131,19 @@ void write_outputs(const AlignOptions& o, const FineRegistrationResult& fine,
 }
 
 void run_align(const AlignOptions& o) {
-    const PointCloud source = load_prepared(o.source, o.sensor);
-    const PointCloud target = load_prepared(o.target, o.sensor);
+    AlignStages stages;
+    const PointCloud source = load_prepared(o.source, o.sensor, stages);
+    const PointCloud target = load_prepared(o.target, o.sensor, stages);
     Pose initial = Pose::Identity();
-    double global_time_s = 0.0;
     std::string status = "fine only";
     if (o.init.empty()) {
         spdlog::info("global registration of {} onto {}", o.source, o.target);
         const GlobalRegistrationResult global = register_global(source, target, {});
-        global_time_s = global.timing.total_s;
+        stages.global = global.timing;
+        stages.global_figures = global_figures(global);
         status = "global " + std::string(to_string(global.status));
         if (global.status != GlobalRegistrationStatus::kSuccess) {
-            std::printf("status: %s\ntime: %.2f s\n", status.c_str(), global_time_s);
+            std::printf("status: %s\ntime: %.2f s\n", status.c_str(), global.timing.total_s);
             throw CommandFailed("not verified: global registration " +
                                 std::string(to_string(global.status)) + ": " + global.message);
         }
@@ -105,9 +156,9 @@ void run_align(const AlignOptions& o) {
     const FineRegistrationResult fine = register_fine(source, target, initial, {});
     const std::string why = rejection(fine);
     status += why.empty() ? ", verified" : ", NOT verified (" + why + ")";
-    print_fine(fine, status, global_time_s + fine.time_s);
+    print_fine(fine, status, stages.global.total_s + fine.time_s);
     if (!why.empty()) throw CommandFailed("not verified: " + why);
-    write_outputs(o, fine, status, global_time_s + fine.time_s);
+    write_outputs(o, fine, status, stages);
 }
 
 }  // namespace

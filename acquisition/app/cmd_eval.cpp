@@ -1,9 +1,11 @@
 // anascan eval POSES.conf --truth TRUTH.conf: per-scan pose errors against ground truth.
 #include <cstdio>
+#include <filesystem>
 
 #include "anascan/processing/io/stanford_conf.hpp"
 #include "anascan/processing/pose_evaluation.hpp"
 #include "commands.hpp"
+#include "scan_preparation.hpp"
 
 namespace anascan::cli {
 namespace {
@@ -13,6 +15,7 @@ struct EvalOptions {
     std::string truth;
     double max_rotation_deg = -1.0;    // < 0: no limit
     double max_translation_mm = -1.0;  // < 0: no limit
+    bool at_centroid = false;
 };
 
 std::vector<NamedPose> read_named_poses(const std::string& path) {
@@ -21,6 +24,18 @@ std::vector<NamedPose> read_named_poses(const std::string& path) {
     std::vector<NamedPose> poses;
     for (const io::ConfEntry& e : conf->entries) poses.push_back({e.file, e.T_world_scan});
     return poses;
+}
+
+/// Centroid (scan frame, metres) of the finite points of the scan named in a .conf.
+Eigen::Vector3d scan_centroid(const std::string& conf_path, const std::string& name) {
+    const std::string path = (std::filesystem::path(conf_path).parent_path() / name).string();
+    auto cloud = load_ply_cloud(path);
+    if (!cloud) fail_command(cloud.error());
+    remove_non_finite(*cloud);
+    if (cloud->empty()) throw CommandFailed(path + ": no finite points to take a centroid of");
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    for (const Eigen::Vector3f& p : cloud->positions) sum += p.cast<double>();
+    return cloud->origin_m + sum / static_cast<double>(cloud->size());
 }
 
 void print_evaluation(const PoseEvaluation& eval) {
@@ -40,7 +55,11 @@ void print_evaluation(const PoseEvaluation& eval) {
 }
 
 void run_eval(const EvalOptions& o) {
-    const auto eval = evaluate_poses(read_named_poses(o.estimated), read_named_poses(o.truth));
+    std::vector<NamedPose> truth = read_named_poses(o.truth);
+    if (o.at_centroid) {
+        for (NamedPose& t : truth) t.measure_at_scan_m = scan_centroid(o.truth, t.name);
+    }
+    const auto eval = evaluate_poses(read_named_poses(o.estimated), truth);
     if (!eval) throw CommandFailed(o.estimated + " and " + o.truth + " share no scan name");
     print_evaluation(*eval);
     const bool all_placed = eval->placed == eval->scans.size();
@@ -71,6 +90,10 @@ void add_eval_command(CLI::App& app) {
                     "Exit with status 1 when a rotation error exceeds this (degrees)");
     cmd->add_option("--max-translation-mm", opts->max_translation_mm,
                     "Exit with status 1 when a translation error exceeds this (mm)");
+    cmd->add_flag("--at-centroid", opts->at_centroid,
+                  "Measure each translation error at the centroid of the scan's points (the "
+                  "scans named in the truth .conf, relative to its folder) instead of at the "
+                  "scan frame's origin, which may lie far from the data");
     cmd->callback([opts] { run_eval(*opts); });
 }
 

@@ -37,6 +37,12 @@ std::string conf_name(const std::string& scan, const std::string& conf) {
     return relative.empty() ? scan : relative.generic_string();
 }
 
+std::size_t refined_pair_count(const ScanRegistrationResult& r) {
+    return static_cast<std::size_t>(
+        std::count_if(r.pairs.begin(), r.pairs.end(),
+                      [](const auto& p) { return p.hypotheses > 0 && !p.global_skipped; }));
+}
+
 void print_result(const ScanRegistrationResult& r) {
     std::printf("%-28s %-10s %6s %10s\n", "scan", "status", "group", "points");
     for (const ScanOutcome& s : r.scans) {
@@ -48,21 +54,23 @@ void print_result(const ScanRegistrationResult& r) {
     }
     const ScanRegistrationTimings& t = r.timings;
     std::printf(
-        "placed %zu of %zu scans (%zu groups); %zu of %zu pairs verified, %zu links, %zu dropped; "
-        "multi-view %s\n",
+        "placed %zu of %zu scans (%zu groups); %zu of %zu pairs verified (%zu refined), %zu links, "
+        "%zu dropped; multi-view %s\n",
         r.placed_count, r.scans.size(), r.group_count, r.verified_pair_count, r.pairs.size(),
-        r.link_count, r.dropped_link_count, std::string(to_string(r.multiview_status)).c_str());
+        refined_pair_count(r), r.link_count, r.dropped_link_count,
+        std::string(to_string(r.multiview_status)).c_str());
     std::printf(
-        "time: prepare %.2f s, pairwise %.2f s, pose graph %.3f s, fine %.2f s, multi-view %.2f s, "
-        "total %.2f s\n",
-        t.prepare_s, t.pairwise_s, t.pose_graph_s, t.fine_s, t.multiview_s, t.total_s);
+        "time: prepare %.2f s, features %.2f s, matching %.2f s, pairwise %.2f s, pose graph "
+        "%.3f s, fine %.2f s, multi-view %.2f s, total %.2f s\n",
+        t.prepare_s, t.features_s, t.matching_s, t.pairwise_s, t.pose_graph_s, t.fine_s,
+        t.multiview_s, t.total_s);
 }
 
 nlohmann::json fine_summary(const ScanRegistrationResult& r) {
     int iterations = 0, count = 0;
     double time_s = 0.0, rms_sq = 0.0, overlap = 0.0;
     for (const PairOutcome& p : r.pairs) {
-        if (!p.verified) continue;
+        if (p.fine_status == FineRegistrationStatus::kInvalidInput) continue;  // Not tried.
         iterations += p.fine_iterations;
         time_s += p.fine_time_s;
         rms_sq += p.fine_rms_m * p.fine_rms_m;
@@ -80,7 +88,11 @@ nlohmann::json fine_summary(const ScanRegistrationResult& r) {
 nlohmann::json pair_json(const ScanRegistrationResult& r, const PairOutcome& p) {
     return {{"source", r.scans[p.source].name},
             {"target", r.scans[p.target].name},
-            {"global_status", std::string(to_string(p.global_status))},
+            {"match_score", p.match_score},
+            {"hypotheses", p.hypotheses},
+            {"global_skipped", p.global_skipped},
+            {"global_status", p.global_skipped ? std::string("skipped (already connected)")
+                                               : std::string(to_string(p.global_status))},
             {"verified", p.verified},
             {"in_tree", p.in_tree},
             {"weight", p.weight},
@@ -106,10 +118,13 @@ std::string stats_json(const ScanRegistrationResult& r) {
                          {"reason", s.reason},
                          {"group", s.group},
                          {"points", s.point_count},
+                         {"spacing_m", s.spacing_m},
                          {"normals_estimated", s.normals_estimated}});
     }
     const nlohmann::json doc = {{"stages",
                                  {{"prepare", t.prepare_s},
+                                  {"features", t.features_s},
+                                  {"matching", t.matching_s},
                                   {"pairwise", t.pairwise_s},
                                   {"pose_graph", t.pose_graph_s},
                                   {"fine", t.fine_s},

@@ -10,6 +10,7 @@
 #include <optional>
 
 #include "anascan/processing/kdtree.hpp"
+#include "global_registration_steps.hpp"
 
 namespace anascan {
 namespace {
@@ -60,60 +61,9 @@ std::string rejection(const FineRegistrationResult& fine, double spacing_m,
     return {};
 }
 
-struct PairFeatures {
-    IntegralInvariantResult source_invariants, target_invariants;
-    FeaturePatchResult source_patches, target_patches;
-};
-
-/// Descriptors of both scans (in parallel), then their patches at shared saliency levels.
-bool describe_pair(const PointCloud& source, const PointCloud& target,
-                   const GlobalRegistrationConfig& config, GlobalRegistrationResult& result,
-                   PairFeatures& features) {
-    const Clock::time_point start = Clock::now();
-    IntegralInvariantConfig invariant_config = config.invariants;
-    invariant_config.radii_m = result.radii_m;
-    tbb::parallel_invoke(
-        [&] { features.source_invariants = compute_integral_invariants(source, invariant_config); },
-        [&] {
-            features.target_invariants = compute_integral_invariants(target, invariant_config);
-        });
-    result.timing.invariants_s = seconds_since(start);
-    if (features.source_invariants.status != IntegralInvariantStatus::kOk ||
-        features.target_invariants.status != IntegralInvariantStatus::kOk) {
-        result.message = "invalid descriptor configuration";
-        return false;
-    }
-    const Clock::time_point patches_start = Clock::now();
-    const IntegralInvariantResult* both[] = {&features.source_invariants,
-                                             &features.target_invariants};
-    const SaliencyLevels levels = saliency_levels(both, config.patches);
-    features.source_patches =
-        extract_feature_patches(features.source_invariants, levels, config.patches);
-    features.target_patches =
-        extract_feature_patches(features.target_invariants, levels, config.patches);
-    result.source_patches = features.source_patches.patches.size();
-    result.target_patches = features.target_patches.patches.size();
-    result.timing.patches_s = seconds_since(patches_start);
-    return true;
-}
-
-/// Fraction of source sites that land near a target site with a similar normal (30°).
-double site_overlap(const IntegralInvariantResult& source, const IntegralInvariantResult& target,
-                    const KdTree& target_sites, const Pose& T_target_source, double distance_m) {
-    if (source.site_positions.empty()) return 0.0;
-    const Eigen::Isometry3f T_local = (Eigen::Translation3d(-target.origin_m) * T_target_source *
-                                       Eigen::Translation3d(source.origin_m))
-                                          .cast<float>();
-    const float distance_sq = static_cast<float>(distance_m * distance_m);
-    std::size_t near = 0;
-    Neighbor nearest;
-    for (std::size_t i = 0; i < source.site_positions.size(); ++i) {
-        if (!target_sites.nearest(T_local * source.site_positions[i], nearest)) continue;
-        const Eigen::Vector3f n = T_local.linear() * source.site_normals[i];
-        near += nearest.distance_sq_m2 <= distance_sq &&
-                n.dot(target.site_normals[nearest.index]) >= 0.866f;
-    }
-    return static_cast<double>(near) / static_cast<double>(source.site_positions.size());
+bool features_valid(const ScanFeatures& features) {
+    return features.invariants.status == IntegralInvariantStatus::kOk &&
+           features.patches.status == FeaturePatchStatus::kOk;
 }
 
 /// Outcomes for every hypothesis, best site overlap × consensus score first (ties: matching
@@ -128,8 +78,8 @@ std::vector<HypothesisOutcome> rank_by_site_overlap(const IntegralInvariantResul
     for (const PoseHypothesis& hypothesis : matching.hypotheses) {
         HypothesisOutcome outcome;
         outcome.hypothesis = hypothesis;
-        outcome.site_overlap =
-            site_overlap(source, target, target_sites, hypothesis.T_target_source, distance_m);
+        outcome.site_overlap = detail::site_overlap_fraction(
+            source, target, target_sites, hypothesis.T_target_source, distance_m);
         ranked.push_back(std::move(outcome));
     }
     // Site overlap alone cannot tell poses that slide along flat parts apart; the feature
@@ -208,6 +158,61 @@ void decide(const GlobalRegistrationConfig& config, GlobalRegistrationResult& re
 
 }  // namespace
 
+namespace detail {
+
+/// Fraction of source sites that land near a target site with a similar normal (30°).
+double site_overlap_fraction(const IntegralInvariantResult& source,
+                             const IntegralInvariantResult& target, const KdTree& target_sites,
+                             const Pose& T_target_source, double distance_m) {
+    if (source.site_positions.empty()) return 0.0;
+    const Eigen::Isometry3f T_local = (Eigen::Translation3d(-target.origin_m) * T_target_source *
+                                       Eigen::Translation3d(source.origin_m))
+                                          .cast<float>();
+    const float distance_sq = static_cast<float>(distance_m * distance_m);
+    std::size_t near = 0;
+    Neighbor nearest;
+    for (std::size_t i = 0; i < source.site_positions.size(); ++i) {
+        if (!target_sites.nearest(T_local * source.site_positions[i], nearest)) continue;
+        const Eigen::Vector3f n = T_local.linear() * source.site_normals[i];
+        near += nearest.distance_sq_m2 <= distance_sq &&
+                n.dot(target.site_normals[nearest.index]) >= 0.866f;
+    }
+    return static_cast<double>(near) / static_cast<double>(source.site_positions.size());
+}
+
+GlobalRegistrationResult refine_and_verify(const DescribedScan& source, const DescribedScan& target,
+                                           FeatureMatchingResult matching,
+                                           const GlobalRegistrationConfig& config) {
+    const Clock::time_point start = Clock::now();
+    GlobalRegistrationResult result;
+    result.message = input_problem(source.cloud, target.cloud);
+    if (result.message.empty() &&
+        (!features_valid(source.features) || !features_valid(target.features))) {
+        result.message = "invalid descriptors";
+    }
+    if (!result.message.empty()) return result;
+    result.radii_m = target.features.invariants.radii_m;
+    result.target_spacing_m = target.features.spacing_m;
+    result.source_patches = source.features.patches.patches.size();
+    result.target_patches = target.features.patches.patches.size();
+    result.matching = std::move(matching);
+    if (result.matching.hypotheses.empty()) {
+        result.status = GlobalRegistrationStatus::kNoConsensus;
+        result.message = "no consistent set of feature correspondences";
+    } else {
+        refine_hypotheses(source.cloud, target.cloud,
+                          rank_by_site_overlap(source.features.invariants,
+                                               target.features.invariants, config, result.matching),
+                          config, result);
+        decide(config, result);
+    }
+    result.timing.refinement_s = seconds_since(start);
+    result.timing.total_s = result.timing.refinement_s;
+    return result;
+}
+
+}  // namespace detail
+
 std::string_view to_string(GlobalRegistrationStatus status) {
     switch (status) {
         case GlobalRegistrationStatus::kSuccess:
@@ -224,33 +229,71 @@ std::string_view to_string(GlobalRegistrationStatus status) {
     return "unknown";
 }
 
+IntegralInvariantResult describe_scan(const PointCloud& cloud, const InvariantRadii& radii_m,
+                                      const GlobalRegistrationConfig& config) {
+    IntegralInvariantConfig invariant_config = config.invariants;
+    invariant_config.radii_m = radii_m;
+    return compute_integral_invariants(cloud, invariant_config);
+}
+
+std::vector<ScanFeatures> scan_features(std::vector<IntegralInvariantResult> invariants,
+                                        std::span<const double> spacings_m,
+                                        const GlobalRegistrationConfig& config) {
+    std::vector<const IntegralInvariantResult*> valid;
+    for (const IntegralInvariantResult& scan : invariants) {
+        if (scan.status == IntegralInvariantStatus::kOk) valid.push_back(&scan);
+    }
+    const SaliencyLevels levels = saliency_levels(valid, config.patches);
+    std::vector<ScanFeatures> features(invariants.size());
+    for (std::size_t i = 0; i < invariants.size(); ++i) {
+        if (invariants[i].status == IntegralInvariantStatus::kOk) {
+            features[i].patches = extract_feature_patches(invariants[i], levels, config.patches);
+        }
+        features[i].invariants = std::move(invariants[i]);
+        features[i].spacing_m = i < spacings_m.size() ? spacings_m[i] : 0.0;
+    }
+    return features;
+}
+
+GlobalRegistrationResult register_global(const PointCloud& source, const ScanFeatures& source_f,
+                                         const PointCloud& target, const ScanFeatures& target_f,
+                                         const GlobalRegistrationConfig& config) {
+    const Clock::time_point start = Clock::now();
+    FeatureMatchingResult matching;
+    if (features_valid(source_f) && features_valid(target_f)) {
+        matching = match_features(source_f.patches, target_f.patches, config.matching);
+    }
+    const double matching_s = seconds_since(start);
+    GlobalRegistrationResult result = detail::refine_and_verify(
+        {source, source_f}, {target, target_f}, std::move(matching), config);
+    result.timing.matching_s = matching_s;
+    result.timing.total_s = seconds_since(start);
+    return result;
+}
+
 GlobalRegistrationResult register_global(const PointCloud& source, const PointCloud& target,
                                          const GlobalRegistrationConfig& config) {
     const Clock::time_point start = Clock::now();
-    GlobalRegistrationResult result;
-    result.message = input_problem(source, target);
-    if (!result.message.empty()) return result;
-    result.radii_m = choose_radii(source, target, config);
-    result.target_spacing_m = median_sample_spacing_m(target);
-    PairFeatures features;
-    if (!describe_pair(source, target, config, result, features)) return result;
-
-    const Clock::time_point matching_start = Clock::now();
-    result.matching =
-        match_features(features.source_patches, features.target_patches, config.matching);
-    result.timing.matching_s = seconds_since(matching_start);
-    if (result.matching.hypotheses.empty()) {
-        result.status = GlobalRegistrationStatus::kNoConsensus;
-        result.message = "no consistent set of feature correspondences";
-    } else {
-        const Clock::time_point refinement_start = Clock::now();
-        refine_hypotheses(source, target,
-                          rank_by_site_overlap(features.source_invariants,
-                                               features.target_invariants, config, result.matching),
-                          config, result);
-        result.timing.refinement_s = seconds_since(refinement_start);
-        decide(config, result);
+    if (const std::string problem = input_problem(source, target); !problem.empty()) {
+        GlobalRegistrationResult result;
+        result.message = problem;
+        return result;
     }
+    const InvariantRadii radii_m = choose_radii(source, target, config);
+    std::vector<IntegralInvariantResult> invariants(2);
+    tbb::parallel_invoke([&] { invariants[0] = describe_scan(source, radii_m, config); },
+                         [&] { invariants[1] = describe_scan(target, radii_m, config); });
+    const double invariants_s = seconds_since(start);
+    const Clock::time_point patches_start = Clock::now();
+    const double spacings_m[] = {median_sample_spacing_m(source), median_sample_spacing_m(target)};
+    const std::vector<ScanFeatures> features =
+        scan_features(std::move(invariants), spacings_m, config);
+    const double patches_s = seconds_since(patches_start);
+    GlobalRegistrationResult result =
+        register_global(source, features[0], target, features[1], config);
+    result.radii_m = radii_m;
+    result.timing.invariants_s = invariants_s;
+    result.timing.patches_s = patches_s;
     result.timing.total_s = seconds_since(start);
     return result;
 }

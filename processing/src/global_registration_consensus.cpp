@@ -12,6 +12,35 @@
 namespace anascan::detail {
 namespace {
 
+/// The candidates' barycentres, normals and tolerances as flat float arrays: the inlier
+/// counts of the search test every candidate against thousands of poses. Barycentres are
+/// stored relative to a reference point per scan (cloud-frame coordinates may be site
+/// coordinates, too large for float).
+struct CandidateGeometry {
+    Eigen::Vector3d source_reference_m = Eigen::Vector3d::Zero();
+    Eigen::Vector3d target_reference_m = Eigen::Vector3d::Zero();
+    std::vector<Eigen::Vector3f> source_barycentre, source_normal;
+    std::vector<Eigen::Vector3f> target_barycentre, target_normal;
+    std::vector<float> tolerance_sq_m2;
+
+    CandidateGeometry(const FeaturePatchResult& source, const FeaturePatchResult& target,
+                      std::span<const FeatureCorrespondence> candidates) {
+        if (!candidates.empty()) {
+            source_reference_m = source.patches[candidates[0].source_patch].barycentre_m;
+            target_reference_m = target.patches[candidates[0].target_patch].barycentre_m;
+        }
+        for (const FeatureCorrespondence& c : candidates) {
+            const FeaturePatch& s = source.patches[c.source_patch];
+            const FeaturePatch& t = target.patches[c.target_patch];
+            source_barycentre.push_back((s.barycentre_m - source_reference_m).cast<float>());
+            source_normal.push_back(s.normal.cast<float>());
+            target_barycentre.push_back((t.barycentre_m - target_reference_m).cast<float>());
+            target_normal.push_back(t.normal.cast<float>());
+            tolerance_sq_m2.push_back(static_cast<float>(c.tolerance_m * c.tolerance_m));
+        }
+    }
+};
+
 struct SearchContext {
     const FeaturePatchResult& source;
     const FeaturePatchResult& target;
@@ -19,6 +48,7 @@ struct SearchContext {
     const ConsistencyGraph& graph;
     const FeatureMatchingConfig& config;
     double cos_max_angle = 0.0;
+    CandidateGeometry geometry;
 };
 
 /// Candidates ordered by degree in the consistency graph (ties: index), descending.
@@ -31,12 +61,34 @@ std::vector<std::size_t> by_degree(const ConsistencyGraph& graph) {
     return order;
 }
 
+/// A pose in the form the flat arrays need: R s' + t with t = R s0 + t_T − t0.
+struct FloatPose {
+    Eigen::Matrix3f R;
+    Eigen::Vector3f t;
+    FloatPose(const CandidateGeometry& g, const Pose& T)
+        : R(T.linear().cast<float>()),
+          t((T * g.source_reference_m - g.target_reference_m).cast<float>()) {}
+};
+
+/// Squared barycentre residual over squared tolerance (≤ 1 for an inlier), or −1 when the
+/// normals disagree by more than the angle tolerance.
+float normalized_residual_sq(const SearchContext& ctx, const FloatPose& T, std::size_t k) {
+    const CandidateGeometry& g = ctx.geometry;
+    if ((T.R * g.source_normal[k]).dot(g.target_normal[k]) <
+        static_cast<float>(ctx.cos_max_angle)) {
+        return -1.0f;
+    }
+    const Eigen::Vector3f d = T.R * g.source_barycentre[k] + T.t - g.target_barycentre[k];
+    return d.squaredNorm() / g.tolerance_sq_m2[k];
+}
+
 /// Inliers of a pose: candidates within their distance and angle tolerances.
 std::size_t inlier_count(const SearchContext& ctx, const Pose& T) {
+    const FloatPose T_float(ctx.geometry, T);
     std::size_t count = 0;
-    for (const FeatureCorrespondence& c : ctx.candidates) {
-        const double r = normalized_residual(ctx.source, ctx.target, c, T, ctx.cos_max_angle);
-        if (r >= 0.0 && r <= 1.0) ++count;
+    for (std::size_t k = 0; k < ctx.candidates.size(); ++k) {
+        const float r_sq = normalized_residual_sq(ctx, T_float, k);
+        count += r_sq >= 0.0f && r_sq <= 1.0f;
     }
     return count;
 }
@@ -77,13 +129,13 @@ std::vector<std::size_t> grow(const SearchContext& ctx, std::vector<std::size_t>
         for (std::size_t m : set) members.push_back(ctx.candidates[m]);
         const std::optional<Pose> T = fit_rigid(ctx.source, ctx.target, members);
         if (!T) return set;
+        const FloatPose T_float(ctx.geometry, *T);
         std::optional<std::size_t> next;
-        double next_residual = 1.0;
+        float next_residual_sq = 1.0f;
         for (std::size_t k = 0; k < ctx.candidates.size(); ++k) {
-            const double r = normalized_residual(ctx.source, ctx.target, ctx.candidates[k], *T,
-                                                 ctx.cos_max_angle);
-            if (r < 0.0 || r > next_residual || conflicts(ctx, set, k)) continue;
-            next_residual = r;
+            const float r_sq = normalized_residual_sq(ctx, T_float, k);
+            if (r_sq < 0.0f || r_sq > next_residual_sq || conflicts(ctx, set, k)) continue;
+            next_residual_sq = r_sq;
             next = k;
         }
         if (!next) return set;
@@ -157,9 +209,13 @@ std::vector<PoseHypothesis> forward_search(const FeaturePatchResult& source,
                                            std::span<const FeatureCorrespondence> candidates,
                                            const ConsistencyGraph& graph,
                                            const FeatureMatchingConfig& config) {
-    const SearchContext ctx{
-        source, target, candidates,
-        graph,  config, std::cos(config.max_normal_angle_deg * std::numbers::pi / 180.0)};
+    const SearchContext ctx{source,
+                            target,
+                            candidates,
+                            graph,
+                            config,
+                            std::cos(config.max_normal_angle_deg * std::numbers::pi / 180.0),
+                            CandidateGeometry(source, target, candidates)};
     const std::vector<std::size_t> order = by_degree(graph);
     std::size_t seeds = std::min(config.seed_count, order.size());
     while (seeds > 0 && graph.degree[order[seeds - 1]] == 0) --seeds;

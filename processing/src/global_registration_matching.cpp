@@ -32,19 +32,40 @@ double angle_between(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
     return std::acos(std::clamp(a.dot(b), -1.0, 1.0));
 }
 
-bool pair_consistent(const FeaturePatchResult& source, const FeaturePatchResult& target,
+/// Barycentre distances (metres) and normal angles (radians) between all patches of one
+/// scan, so that the N² candidate pairs need table look-ups only.
+struct PatchGeometry {
+    std::size_t count = 0;
+    std::vector<float> distance_m;
+    std::vector<float> angle_rad;
+
+    explicit PatchGeometry(const FeaturePatchResult& scan)
+        : count(scan.patches.size()), distance_m(count * count), angle_rad(count * count) {
+        for (std::size_t i = 0; i < count; ++i) {
+            for (std::size_t j = 0; j < count; ++j) {
+                const FeaturePatch& a = scan.patches[i];
+                const FeaturePatch& b = scan.patches[j];
+                distance_m[i * count + j] =
+                    static_cast<float>((a.barycentre_m - b.barycentre_m).norm());
+                angle_rad[i * count + j] = static_cast<float>(angle_between(a.normal, b.normal));
+            }
+        }
+    }
+    float distance(std::size_t i, std::size_t j) const { return distance_m[i * count + j]; }
+    float angle(std::size_t i, std::size_t j) const { return angle_rad[i * count + j]; }
+};
+
+/// Distances between the two barycentres and angles between the two normals agree in both
+/// scans (within the candidates' tolerances); no patch is used twice.
+bool pair_consistent(const PatchGeometry& source, const PatchGeometry& target,
                      const FeatureCorrespondence& a, const FeatureCorrespondence& b,
-                     double max_angle_rad) {
+                     float max_angle_rad) {
     if (a.source_patch == b.source_patch || a.target_patch == b.target_patch) return false;
-    const FeaturePatch& sa = source.patches[a.source_patch];
-    const FeaturePatch& sb = source.patches[b.source_patch];
-    const FeaturePatch& ta = target.patches[a.target_patch];
-    const FeaturePatch& tb = target.patches[b.target_patch];
-    const double ds = (sa.barycentre_m - sb.barycentre_m).norm();
-    const double dt = (ta.barycentre_m - tb.barycentre_m).norm();
-    if (std::abs(ds - dt) > a.tolerance_m + b.tolerance_m) return false;
-    const double angle_s = angle_between(sa.normal, sb.normal);
-    const double angle_t = angle_between(ta.normal, tb.normal);
+    const float ds = source.distance(a.source_patch, b.source_patch);
+    const float dt = target.distance(a.target_patch, b.target_patch);
+    if (std::abs(ds - dt) > static_cast<float>(a.tolerance_m + b.tolerance_m)) return false;
+    const float angle_s = source.angle(a.source_patch, b.source_patch);
+    const float angle_t = target.angle(a.target_patch, b.target_patch);
     return std::abs(angle_s - angle_t) <= max_angle_rad;
 }
 
@@ -80,11 +101,14 @@ ConsistencyGraph consistency_graph(const FeaturePatchResult& source,
     graph.size = candidates.size();
     graph.consistent.assign(graph.size * graph.size, 0);
     graph.degree.assign(graph.size, 0);
-    const double max_angle_rad = config.max_normal_angle_deg * std::numbers::pi / 180.0;
+    const auto max_angle_rad =
+        static_cast<float>(config.max_normal_angle_deg * std::numbers::pi / 180.0);
+    const PatchGeometry source_geometry(source), target_geometry(target);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, graph.size, 32), [&](auto range) {
         for (std::size_t a = range.begin(); a < range.end(); ++a) {
             for (std::size_t b = 0; b < graph.size; ++b) {
-                if (!pair_consistent(source, target, candidates[a], candidates[b], max_angle_rad)) {
+                if (!pair_consistent(source_geometry, target_geometry, candidates[a], candidates[b],
+                                     max_angle_rad)) {
                     continue;
                 }
                 graph.consistent[a * graph.size + b] = 1;
@@ -133,15 +157,6 @@ std::optional<Pose> fit_rigid(const FeaturePatchResult& source, const FeaturePat
     T.linear() = svd.matrixV() * d * svd.matrixU().transpose();
     T.translation() = t_mean - T.linear() * s_mean;
     return T;
-}
-
-double normalized_residual(const FeaturePatchResult& source, const FeaturePatchResult& target,
-                           const FeatureCorrespondence& c, const Pose& T_target_source,
-                           double cos_max_angle) {
-    const FeaturePatch& s = source.patches[c.source_patch];
-    const FeaturePatch& t = target.patches[c.target_patch];
-    if ((T_target_source.linear() * s.normal).dot(t.normal) < cos_max_angle) return -1.0;
-    return (T_target_source * s.barycentre_m - t.barycentre_m).norm() / c.tolerance_m;
 }
 
 }  // namespace anascan::detail

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "anascan/processing/global_registration.hpp"
+#include "anascan/processing/kdtree.hpp"
 
 namespace anascan::detail {
 
@@ -36,17 +37,29 @@ ConsistencyGraph consistency_graph(const FeaturePatchResult& source,
 std::optional<Pose> fit_rigid(const FeaturePatchResult& source, const FeaturePatchResult& target,
                               std::span<const FeatureCorrespondence> set);
 
-/// Barycentre residual over tolerance (≤ 1 for an inlier), or a negative value when the
-/// normals disagree by more than the angle tolerance.
-double normalized_residual(const FeaturePatchResult& source, const FeaturePatchResult& target,
-                           const FeatureCorrespondence& c, const Pose& T_target_source,
-                           double cos_max_angle);
-
 /// Forward searches from the best-connected seeds; distinct hypotheses, best first.
 std::vector<PoseHypothesis> forward_search(const FeaturePatchResult& source,
                                            const FeaturePatchResult& target,
                                            std::span<const FeatureCorrespondence> candidates,
                                            const ConsistencyGraph& graph,
                                            const FeatureMatchingConfig& config);
+
+/// Fraction of source sites that land within `distance_m` of a target site with a normal
+/// within 30° under `T_target_source` (`target_sites` indexes target.site_positions).
+double site_overlap_fraction(const IntegralInvariantResult& source,
+                             const IntegralInvariantResult& target, const KdTree& target_sites,
+                             const Pose& T_target_source, double distance_m);
+
+/// A scan with its precomputed features.
+struct DescribedScan {
+    const PointCloud& cloud;
+    const ScanFeatures& features;
+};
+
+/// The second half of `register_global`: ranks the matching's hypotheses, refines and
+/// verifies them, decides. Timing of matching and the features is left to the caller.
+GlobalRegistrationResult refine_and_verify(const DescribedScan& source, const DescribedScan& target,
+                                           FeatureMatchingResult matching,
+                                           const GlobalRegistrationConfig& config);
 
 }  // namespace anascan::detail

@@ -59,7 +59,7 @@ enum class SiteOutcome : std::uint8_t { kValid, kBoundary, kSparse };
 SiteOutcome site_volume(const PointCloud& samples, const KdTree& tree, const Eigen::Vector3f& p,
                         float radius_m, const IntegralInvariantConfig& config,
                         std::vector<Neighbor>& neighbors, float& volume) {
-    tree.radius(p, radius_m, neighbors);
+    tree.radius_any_order(p, radius_m, neighbors);
     if (neighbors.size() < config.min_neighbors) return SiteOutcome::kSparse;
     Eigen::Vector3d offset_sum = Eigen::Vector3d::Zero();
     Eigen::Vector3d normal_sum = Eigen::Vector3d::Zero();

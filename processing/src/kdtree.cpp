@@ -91,8 +91,8 @@ void KdTree::knn(const Eigen::Vector3f& query, std::size_t k, std::vector<Neighb
     sort_closest_first(out);
 }
 
-void KdTree::radius(const Eigen::Vector3f& query, float radius_m,
-                    std::vector<Neighbor>& out) const {
+void KdTree::radius_any_order(const Eigen::Vector3f& query, float radius_m,
+                              std::vector<Neighbor>& out) const {
     out.clear();
     if (size() == 0 || !(radius_m >= 0.0f)) return;
     const float radius_sq = radius_m * radius_m;
@@ -104,6 +104,11 @@ void KdTree::radius(const Eigen::Vector3f& query, float radius_m,
     for (const auto& [index, distance_sq] : found) {
         if (distance_sq <= radius_sq) out.push_back(Neighbor{index, distance_sq});
     }
+}
+
+void KdTree::radius(const Eigen::Vector3f& query, float radius_m,
+                    std::vector<Neighbor>& out) const {
+    radius_any_order(query, radius_m, out);
     sort_closest_first(out);
 }
 

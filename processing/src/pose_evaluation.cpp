@@ -37,11 +37,16 @@ std::optional<PoseEvaluation> evaluate_poses(const std::vector<NamedPose>& estim
     for (const NamedPose& t : truth) {
         ScanPoseError error{.name = t.name};
         if (auto it = estimated_index.find(t.name); it != estimated_index.end()) {
-            const PoseDifference d = pose_difference(T_ref_world_truth * t.T_world_scan,
-                                                     T_ref_world_est * it->second->T_world_scan);
-            error = {t.name, true, d.rotation_deg, d.translation_m};
-            eval.max_rotation_deg = std::max(eval.max_rotation_deg, d.rotation_deg);
-            eval.max_translation_m = std::max(eval.max_translation_m, d.translation_m);
+            const Pose T_ref_scan_truth = T_ref_world_truth * t.T_world_scan;
+            const Pose T_ref_scan_est = T_ref_world_est * it->second->T_world_scan;
+            const double rotation_deg =
+                pose_difference(T_ref_scan_truth, T_ref_scan_est).rotation_deg;
+            const double translation_m =
+                (T_ref_scan_truth * t.measure_at_scan_m - T_ref_scan_est * t.measure_at_scan_m)
+                    .norm();
+            error = {t.name, true, rotation_deg, translation_m};
+            eval.max_rotation_deg = std::max(eval.max_rotation_deg, rotation_deg);
+            eval.max_translation_m = std::max(eval.max_translation_m, translation_m);
             ++eval.placed;
         }
         eval.scans.push_back(error);

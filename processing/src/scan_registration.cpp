@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "anascan/processing/voxel_grid.hpp"
+#include "global_registration_steps.hpp"
 #include "scan_registration_steps.hpp"
 
 namespace anascan {
@@ -39,11 +40,13 @@ void drop_points_without_normal(PointCloud& cloud) {
 }
 
 /// Loads and prepares every scan (one full cloud in memory at a time); fills the outcomes.
-std::vector<PointCloud> load_and_prepare(const std::vector<ScanInput>& inputs,
-                                         const ScanRegistrationConfig& config,
-                                         const RegistrationProgress& progress,
-                                         ScanRegistrationResult& result) {
-    std::vector<PointCloud> clouds(inputs.size());
+detail::PreparedScans load_and_prepare(const std::vector<ScanInput>& inputs,
+                                       const ScanRegistrationConfig& config,
+                                       const RegistrationProgress& progress,
+                                       ScanRegistrationResult& result) {
+    detail::PreparedScans prepared;
+    prepared.clouds.resize(inputs.size());
+    prepared.spacing_m.assign(inputs.size(), 0.0);
     for (std::size_t i = 0; i < inputs.size(); ++i) {
         ScanOutcome& scan = result.scans[i];
         report(progress, "preparing " + inputs[i].name);
@@ -59,9 +62,10 @@ std::vector<PointCloud> load_and_prepare(const std::vector<ScanInput>& inputs,
             scan.reason = "empty scan (no finite points with a normal)";
             continue;
         }
-        clouds[i] = std::move(*loaded);
+        prepared.spacing_m[i] = scan.spacing_m = median_sample_spacing_m(*loaded);
+        prepared.clouds[i] = std::move(*loaded);
     }
-    return clouds;
+    return prepared;
 }
 
 /// Weight of a verified pair in the maximum spanning tree (higher is better).
@@ -70,36 +74,109 @@ double pair_weight(const GlobalRegistrationResult& global) {
     return global.overlap_fraction / (1.0 + global.rms_m / spacing);
 }
 
-/// Global registration of every pair of usable scans: source = the later scan.
-std::vector<PairOutcome> register_all_pairs(const std::vector<PointCloud>& clouds,
-                                            const std::vector<bool>& usable,
-                                            const ScanRegistrationConfig& config,
-                                            const RegistrationProgress& progress) {
-    std::vector<PairOutcome> pairs;
-    const std::size_t n = clouds.size();
-    const std::size_t total = n * (n - 1) / 2;
+/// Radii shared by all scans: from the largest usable scan's diagonal, unless configured.
+InvariantRadii shared_radii(const std::vector<PointCloud>& clouds,
+                            const GlobalRegistrationConfig& config) {
+    const bool automatic = std::all_of(config.radii_m.begin(), config.radii_m.end(),
+                                       [](double r) { return r == 0.0; });
+    if (!automatic) return config.radii_m;
+    double size_m = 0.0;
+    for (const PointCloud& cloud : clouds) {
+        size_m = std::max(size_m, static_cast<double>(local_bounds(cloud).extent().norm()));
+    }
+    return radii_for_object_size_m(size_m);
+}
+
+/// Descriptors and patches of every usable scan (unusable ones get invalid features).
+void describe_all(detail::PreparedScans& scans, const GlobalRegistrationConfig& config,
+                  const RegistrationProgress& progress) {
+    const InvariantRadii radii_m = shared_radii(scans.clouds, config);
+    std::vector<IntegralInvariantResult> invariants(scans.clouds.size());
+    for (std::size_t i = 0; i < scans.clouds.size(); ++i) {
+        if (scans.clouds[i].empty()) continue;
+        report(progress, "features of scan " + std::to_string(i));
+        invariants[i] = describe_scan(scans.clouds[i], radii_m, config);
+    }
+    scans.features = scan_features(std::move(invariants), scans.spacing_m, config);
+}
+
+bool features_usable(const ScanFeatures& f) {
+    return f.invariants.status == IntegralInvariantStatus::kOk &&
+           f.patches.status == FeaturePatchStatus::kOk;
+}
+
+/// Feature matching of every pair of usable scans (source = the later scan); one result per
+/// pair, in pair order.
+std::vector<FeatureMatchingResult> match_all_pairs(const std::vector<ScanFeatures>& features,
+                                                   const GlobalRegistrationConfig& config,
+                                                   std::vector<PairOutcome>& pairs,
+                                                   const RegistrationProgress& progress) {
+    const std::size_t n = features.size();
+    std::vector<FeatureMatchingResult> matchings;
     for (std::size_t source = 1; source < n; ++source) {
+        report(progress, "matching scan " + std::to_string(source) + " with " +
+                             std::to_string(source) + " earlier scans");
         for (std::size_t target = 0; target < source; ++target) {
             PairOutcome pair{.source = source, .target = target};
-            if (usable[source] && usable[target]) {
-                const GlobalRegistrationResult g =
-                    register_global(clouds[source], clouds[target], config.global);
-                pair.global_status = g.status;
-                pair.verified = g.status == GlobalRegistrationStatus::kSuccess;
-                pair.weight = pair.verified ? pair_weight(g) : 0.0;
-                pair.T_target_source = g.T_target_source;
-                pair.global_rms_m = g.rms_m;
-                pair.global_overlap_fraction = g.overlap_fraction;
-                pair.global_time_s = g.timing.total_s;
+            FeatureMatchingResult matching;
+            if (features_usable(features[source]) && features_usable(features[target])) {
+                matching = match_features(features[source].patches, features[target].patches,
+                                          config.matching);
+                pair.hypotheses = matching.hypotheses.size();
+                if (!matching.hypotheses.empty()) {
+                    pair.match_score = matching.hypotheses.front().score;
+                }
+                pair.global_status = GlobalRegistrationStatus::kNoConsensus;
             }
             pairs.push_back(pair);
-            report(progress, "global registration " + std::to_string(pairs.size()) + " of " +
-                                 std::to_string(total) + ": scan " + std::to_string(source) +
-                                 " onto " + std::to_string(target) + ": " +
-                                 std::string(to_string(pair.global_status)));
+            matchings.push_back(std::move(matching));
         }
     }
-    return pairs;
+    return matchings;
+}
+
+void copy_global_figures(const GlobalRegistrationResult& g, PairOutcome& pair) {
+    pair.global_status = g.status;
+    pair.verified = g.status == GlobalRegistrationStatus::kSuccess;
+    pair.weight = pair.verified ? pair_weight(g) : 0.0;
+    pair.T_target_source = g.T_target_source;
+    pair.global_rms_m = g.rms_m;
+    pair.global_overlap_fraction = g.overlap_fraction;
+    pair.global_time_s = g.timing.total_s;
+}
+
+/// Refines and verifies the matched pairs, best consensus score first, until their scans
+/// are connected through verified pairs; pairs of connected scans are skipped.
+void verify_pairs(const detail::PreparedScans& scans, std::vector<FeatureMatchingResult> matchings,
+                  const ScanRegistrationConfig& config, std::vector<PairOutcome>& pairs,
+                  const RegistrationProgress& progress) {
+    const std::vector<ScanFeatures>& features = scans.features;
+    std::vector<std::size_t> order;
+    for (std::size_t p = 0; p < pairs.size(); ++p) {
+        if (pairs[p].hypotheses > 0) order.push_back(p);
+    }
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        return pairs[a].match_score > pairs[b].match_score;
+    });
+    detail::DisjointSets connected(scans.clouds.size());
+    std::size_t tried = 0;
+    for (std::size_t p : order) {
+        PairOutcome& pair = pairs[p];
+        if (connected.find(pair.source) == connected.find(pair.target)) {
+            pair.global_skipped = true;
+            continue;
+        }
+        const GlobalRegistrationResult g =
+            detail::refine_and_verify({scans.clouds[pair.source], features[pair.source]},
+                                      {scans.clouds[pair.target], features[pair.target]},
+                                      std::move(matchings[p]), config.global);
+        copy_global_figures(g, pair);
+        if (pair.verified) connected.unite(pair.source, pair.target);
+        report(progress, "global registration " + std::to_string(++tried) + ": scan " +
+                             std::to_string(pair.source) + " onto " + std::to_string(pair.target) +
+                             " (score " + std::to_string(static_cast<int>(pair.match_score)) +
+                             "): " + std::string(to_string(pair.global_status)));
+    }
 }
 
 /// Copies the graph's groups and poses into the outcomes and counts.
@@ -152,13 +229,22 @@ ScanRegistrationResult register_scans(const std::vector<ScanInput>& scans,
     ScanRegistrationResult result;
     for (const ScanInput& input : scans) result.scans.push_back({.name = input.name});
     auto stage = std::chrono::steady_clock::now();
-    const std::vector<PointCloud> clouds = load_and_prepare(scans, config, progress, result);
+    detail::PreparedScans prepared = load_and_prepare(scans, config, progress, result);
     std::vector<bool> usable(scans.size());
-    for (std::size_t i = 0; i < scans.size(); ++i) usable[i] = !clouds[i].empty();
+    for (std::size_t i = 0; i < scans.size(); ++i) usable[i] = !prepared.clouds[i].empty();
     result.timings.prepare_s = seconds_since(stage);
 
     stage = std::chrono::steady_clock::now();
-    result.pairs = register_all_pairs(clouds, usable, config, progress);
+    describe_all(prepared, config.global, progress);
+    result.timings.features_s = seconds_since(stage);
+
+    stage = std::chrono::steady_clock::now();
+    std::vector<FeatureMatchingResult> matchings =
+        match_all_pairs(prepared.features, config.global, result.pairs, progress);
+    result.timings.matching_s = seconds_since(stage);
+
+    stage = std::chrono::steady_clock::now();
+    verify_pairs(prepared, std::move(matchings), config, result.pairs, progress);
     for (const PairOutcome& p : result.pairs) result.verified_pair_count += p.verified;
     result.timings.pairwise_s = seconds_since(stage);
 
@@ -168,7 +254,7 @@ ScanRegistrationResult register_scans(const std::vector<ScanInput>& scans,
 
     stage = std::chrono::steady_clock::now();
     const detail::PairLinks links =
-        detail::make_links(clouds, graph, result.pairs, config, progress);
+        detail::make_links(prepared, graph, result.pairs, config, progress);
     result.link_count = links.links.size();
     result.timings.fine_s = seconds_since(stage);
 

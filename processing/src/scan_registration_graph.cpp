@@ -4,29 +4,11 @@
 #include <string>
 #include <utility>
 
+#include "global_registration_steps.hpp"
 #include "scan_registration_steps.hpp"
 
 namespace anascan::detail {
 namespace {
-
-/// Union-find with path halving.
-struct DisjointSets {
-    std::vector<std::size_t> parent;
-    explicit DisjointSets(std::size_t n) : parent(n) {
-        std::iota(parent.begin(), parent.end(), std::size_t{0});
-    }
-    std::size_t find(std::size_t i) {
-        while (parent[i] != i) i = parent[i] = parent[parent[i]];
-        return i;
-    }
-    bool unite(std::size_t a, std::size_t b) {
-        a = find(a);
-        b = find(b);
-        if (a == b) return false;
-        parent[std::max(a, b)] = std::min(a, b);  // The root is the lowest index.
-        return true;
-    }
-};
 
 /// Kruskal: verified pairs by decreasing weight (ties by pair order); marks tree edges.
 DisjointSets spanning_forest(std::size_t n, std::vector<PairOutcome>& pairs) {
@@ -97,10 +79,44 @@ void copy_fine_figures(const FineRegistrationResult& fine, PairOutcome& pair) {
     pair.fine_time_s = fine.time_s;
 }
 
-bool usable_link(const FineRegistrationResult& fine, double min_overlap_fraction) {
+/// Bounding sphere of a cloud in its own frame (centre with origin, metres).
+struct Sphere {
+    Eigen::Vector3d centre_m = Eigen::Vector3d::Zero();
+    double radius_m = 0.0;
+};
+
+Sphere bounding_sphere(const PointCloud& cloud) {
+    const Bounds bounds = local_bounds(cloud);
+    return {.centre_m = cloud.origin_m + (0.5 * (bounds.min + bounds.max)).cast<double>(),
+            .radius_m = 0.5 * static_cast<double>(bounds.extent().norm())};
+}
+
+/// Scans of one group whose spheres meet (with a margin of the fine search distance).
+bool may_overlap(const Sphere& a, const Pose& T_root_a, const Sphere& b, const Pose& T_root_b,
+                 double margin_m) {
+    const double gap = (T_root_a * a.centre_m - T_root_b * b.centre_m).norm();
+    return gap <= a.radius_m + b.radius_m + margin_m;
+}
+
+/// Overlap of two scans' feature sites under the graph poses (a cheap forecast of the fine
+/// registration's overlap).
+double predicted_overlap(const PreparedScans& scans, const std::vector<KdTree>& site_trees,
+                         const Pose& T_target_source, std::size_t s, std::size_t t,
+                         const GlobalRegistrationConfig& config) {
+    const IntegralInvariantResult& target = scans.features[t].invariants;
+    return site_overlap_fraction(scans.features[s].invariants, target, site_trees[t],
+                                 T_target_source,
+                                 config.site_overlap_spacing_factor * target.site_spacing_m);
+}
+
+bool usable_link(const FineRegistrationResult& fine, double target_spacing_m,
+                 const ScanRegistrationConfig& config) {
     return (fine.status == FineRegistrationStatus::kConverged ||
             fine.status == FineRegistrationStatus::kMaxIterations) &&
-           fine.overlap_fraction >= min_overlap_fraction;
+           fine.overlap_fraction >= config.min_link_overlap_fraction &&
+           fine.degeneracy.eigenvalue_ratio >= config.fine.degeneracy_threshold &&
+           fine.normal_deviation_deg.value_or(0.0) <= config.global.max_normal_deviation_deg &&
+           fine.rms_m <= config.max_link_rms_spacing_factor * target_spacing_m;
 }
 
 /// One group's scans (ascending) and its links re-indexed to positions in `members`.
@@ -139,28 +155,42 @@ PoseGraph build_pose_graph(const std::vector<bool>& usable, std::vector<PairOutc
     return graph;
 }
 
-PairLinks make_links(const std::vector<PointCloud>& clouds, const PoseGraph& graph,
+PairLinks make_links(const PreparedScans& scans, const PoseGraph& graph,
                      std::vector<PairOutcome>& pairs, const ScanRegistrationConfig& config,
                      const RegistrationProgress& progress) {
     FineRegistrationConfig fine_config = config.fine;
     fine_config.keep_correspondences = true;
+    std::vector<Sphere> spheres;
+    std::vector<KdTree> site_trees;
+    for (std::size_t i = 0; i < scans.clouds.size(); ++i) {
+        spheres.push_back(bounding_sphere(scans.clouds[i]));
+        site_trees.emplace_back(scans.features[i].invariants.site_positions);
+    }
     PairLinks links;
     for (std::size_t p = 0; p < pairs.size(); ++p) {
         PairOutcome& pair = pairs[p];
-        if (!pair.verified) continue;
-        const Pose initial =
-            graph.T_root_scan[pair.target].inverse() * graph.T_root_scan[pair.source];
+        const std::size_t s = pair.source, t = pair.target;
+        if (graph.group[s] < 0 || graph.group[s] != graph.group[t]) continue;
+        if (!may_overlap(spheres[s], graph.T_root_scan[s], spheres[t], graph.T_root_scan[t],
+                         config.fine.max_correspondence_distance_m)) {
+            continue;
+        }
+        const Pose initial = graph.T_root_scan[t].inverse() * graph.T_root_scan[s];
+        if (predicted_overlap(scans, site_trees, initial, s, t, config.global) <
+            config.min_link_overlap_fraction) {
+            continue;
+        }
         FineRegistrationResult fine =
-            register_fine(clouds[pair.source], clouds[pair.target], initial, fine_config);
+            register_fine(scans.clouds[s], scans.clouds[t], initial, fine_config);
         copy_fine_figures(fine, pair);
         if (progress) {
-            progress("fine registration: scan " + std::to_string(pair.source) + " onto " +
-                     std::to_string(pair.target) + ": " + std::string(to_string(fine.status)));
+            progress("fine registration: scan " + std::to_string(s) + " onto " + std::to_string(t) +
+                     ": " + std::string(to_string(fine.status)));
         }
-        if (!usable_link(fine, config.min_link_overlap_fraction)) continue;
+        if (!usable_link(fine, scans.spacing_m[t], config)) continue;
         pair.linked = true;
-        links.links.push_back({.target_index = pair.target,
-                               .source_index = pair.source,
+        links.links.push_back({.target_index = t,
+                               .source_index = s,
                                .correspondences = std::move(fine.correspondences)});
         links.pair_of_link.push_back(p);
     }

@@ -1,7 +1,10 @@
 #pragma once
 // Internal steps of register_scans (scan_registration.cpp, scan_registration_graph.cpp).
+#include <algorithm>
 #include <chrono>
 #include <cstddef>
+#include <numeric>
+#include <span>
 #include <vector>
 
 #include "anascan/processing/scan_registration.hpp"
@@ -10,6 +13,33 @@ namespace anascan::detail {
 
 /// Seconds since `start` (steady clock).
 double seconds_since(std::chrono::steady_clock::time_point start);
+
+/// Union-find with path halving; a set's root is its lowest index.
+struct DisjointSets {
+    std::vector<std::size_t> parent;
+    explicit DisjointSets(std::size_t n) : parent(n) {
+        std::iota(parent.begin(), parent.end(), std::size_t{0});
+    }
+    std::size_t find(std::size_t i) {
+        while (parent[i] != i) i = parent[i] = parent[parent[i]];
+        return i;
+    }
+    bool unite(std::size_t a, std::size_t b) {
+        a = find(a);
+        b = find(b);
+        if (a == b) return false;
+        parent[std::max(a, b)] = std::min(a, b);
+        return true;
+    }
+};
+
+/// The prepared clouds (empty: not usable), their median sample spacings (metres) and
+/// their features (filled by the features stage).
+struct PreparedScans {
+    std::vector<PointCloud> clouds;
+    std::vector<double> spacing_m;
+    std::vector<ScanFeatures> features;
+};
 
 /// Connected components of the verified pairs and the spanning-tree poses within each.
 struct PoseGraph {
@@ -28,9 +58,9 @@ struct PairLinks {
     std::vector<std::size_t> pair_of_link;
 };
 
-/// Final fine registration of every verified pair from the graph poses; fills the pairs'
-/// fine figures and returns one link per pair good enough.
-PairLinks make_links(const std::vector<PointCloud>& clouds, const PoseGraph& graph,
+/// Final fine registration, from the graph poses, of every pair of one group whose bounding
+/// spheres meet; fills the pairs' fine figures and returns one link per pair good enough.
+PairLinks make_links(const PreparedScans& scans, const PoseGraph& graph,
                      std::vector<PairOutcome>& pairs, const ScanRegistrationConfig& config,
                      const RegistrationProgress& progress);
 

@@ -81,6 +81,19 @@ TEST_F(KdTreeRandom, RadiusMatchesBruteForce) {
     }
 }
 
+TEST_F(KdTreeRandom, RadiusAnyOrderHoldsTheSamePoints) {
+    std::vector<Neighbor> got, sorted;
+    for (const Eigen::Vector3f& q : queries_) {
+        tree_.radius_any_order(q, 0.2f, got);
+        tree_.radius(q, 0.2f, sorted);
+        std::sort(got.begin(), got.end(), [](const Neighbor& a, const Neighbor& b) {
+            return a.distance_sq_m2 != b.distance_sq_m2 ? a.distance_sq_m2 < b.distance_sq_m2
+                                                        : a.index < b.index;
+        });
+        expect_same(got, sorted);
+    }
+}
+
 TEST(KdTree, RadiusIsInclusive) {
     const std::vector<Eigen::Vector3f> points{{0, 0, 0}, {0.5f, 0, 0}, {1, 0, 0}};
     const KdTree tree(points);

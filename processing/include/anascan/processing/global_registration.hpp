@@ -14,6 +14,7 @@
 /// results do not depend on the number of threads.
 
 #include <cstddef>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -149,6 +150,30 @@ struct GlobalRegistrationResult {
     std::vector<HypothesisOutcome> hypotheses;
     GlobalRegistrationTiming timing;
 };
+
+/// What global registration needs of one scan, computed once and matched against many:
+/// descriptors at the shared radii, patches at shared saliency levels, the sample spacing.
+struct ScanFeatures {
+    IntegralInvariantResult invariants;
+    FeaturePatchResult patches;
+    double spacing_m = 0.0;  ///< Median sample spacing (verification scale as a target).
+};
+
+/// Descriptors of one scan at `radii_m` (config.invariants with its radii replaced).
+IntegralInvariantResult describe_scan(const PointCloud& cloud, const InvariantRadii& radii_m,
+                                      const GlobalRegistrationConfig& config);
+
+/// Patches of described scans at saliency levels pooled over all of them (so that every
+/// pair cuts its regions at the same values). Invalid descriptors give no patches.
+std::vector<ScanFeatures> scan_features(std::vector<IntegralInvariantResult> invariants,
+                                        std::span<const double> spacings_m,
+                                        const GlobalRegistrationConfig& config);
+
+/// Registers `source` onto `target` from their precomputed features (same radii; see
+/// `scan_features`): matching, refinement, verification. Otherwise as below.
+GlobalRegistrationResult register_global(const PointCloud& source, const ScanFeatures& source_f,
+                                         const PointCloud& target, const ScanFeatures& target_f,
+                                         const GlobalRegistrationConfig& config);
 
 /// Registers `source` onto `target` without an initial pose. Both clouds need unit normals
 /// pointing out of the solid (e.g. toward the scanner). The returned `T_target_source`

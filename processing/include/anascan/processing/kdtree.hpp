@@ -47,6 +47,11 @@ public:
     /// All points within `radius_m` (inclusive), closest first.
     void radius(const Eigen::Vector3f& query, float radius_m, std::vector<Neighbor>& out) const;
 
+    /// The same points as `radius`, in the tree's traversal order (deterministic, not
+    /// sorted): for sums and counts, where sorting would cost more than the search.
+    void radius_any_order(const Eigen::Vector3f& query, float radius_m,
+                          std::vector<Neighbor>& out) const;
+
 private:
     struct Impl;
     std::unique_ptr<Impl> impl_;

@@ -4,6 +4,7 @@
 /// common rigid motion, so both sets are expressed in the frame of a reference scan (the
 /// first scan present in both) before comparing.
 
+#include <Eigen/Core>
 #include <optional>
 #include <string>
 #include <vector>
@@ -16,6 +17,9 @@ namespace anascan {
 struct NamedPose {
     std::string name;
     Pose T_world_scan;
+    /// Truth only: the point of the scan (its own frame, metres) whose displacement is the
+    /// translation error, e.g. the centroid of its points; default the frame's origin.
+    Eigen::Vector3d measure_at_scan_m = Eigen::Vector3d::Zero();
 };
 
 /// Error of one scan relative to the reference scan.
@@ -23,7 +27,7 @@ struct ScanPoseError {
     std::string name;
     bool placed = false;         ///< False when the estimate lacks this scan.
     double rotation_deg = 0.0;   ///< Angle of the residual rotation, degrees.
-    double translation_m = 0.0;  ///< Distance between the positions, metres.
+    double translation_m = 0.0;  ///< Displacement of the truth's measure_at point, metres.
 };
 
 struct PoseEvaluation {

@@ -1,23 +1,30 @@
 #pragma once
 /// \file
-/// Registration of N unordered scans without initial poses (paper §4, batch form): every
-/// scan is prepared (non-finite points dropped, normals estimated and oriented), every pair
-/// is registered globally (`register_global`), the verified pairs form a pose graph whose
-/// maximum spanning tree (weighted by overlap and RMS) gives initial poses, each verified
-/// pair is refined by `register_fine` from those poses keeping its correspondences, and
-/// `refine_multiview` solves for all poses of a group at once. Groups are the connected
-/// components of the verified pairs; the largest group's first scan (input order) is the
+/// Registration of N unordered scans without initial poses (paper §4, batch form):
+///  1. prepare: every scan loaded once, non-finite points dropped, normals estimated and
+///     oriented (unless given);
+///  2. features: integral-invariant descriptors and patches of each scan, computed once at
+///     radii shared by all scans (from the largest scan) and saliency levels pooled over all;
+///  3. matching: `match_features` for every pair (cheap: patches only);
+///  4. pairwise: pairs in decreasing order of their best consensus score are refined and
+///     verified (`register_global` minus the features) until their two scans are connected
+///     through verified pairs; pairs whose scans are already connected are skipped;
+///  5. pose graph: the verified pairs form a spanning forest giving initial poses;
+///  6. links: every pair of a group whose bounding spheres meet under those poses is fine
+///     registered from them, keeping its correspondences; a converged pair with enough
+///     overlap, agreeing normals and an RMS within the verification limit becomes a link;
+///  7. multi-view: `refine_multiview` solves for all poses of a group at once.
+/// Groups are connected components; the largest group's first scan (input order) is the
 /// world frame and only the largest group's scans are placed. A scan that is not placed is
 /// reported with the reason. See docs/scan-registration.md.
 ///
-/// Cost: N(N-1)/2 global registrations (about 1-2 s each for 40k-point scans), so the batch
-/// is meant for N up to about 60 scans of one stone.
+/// Cost: N features, N(N-1)/2 feature matchings (~0.05 s each for 40k-point scans), about
+/// N-1 to a few N refinements, and the links' fine registrations.
 ///
 /// Memory: each scan's loader is called exactly once, in input order, and the full cloud is
-/// released right after preparation; only the prepared clouds are kept, down-sampled to
-/// `ScanRegistrationConfig::voxel_size_m` when that is positive (default: kept whole, which
-/// is small for scans of ~10^5 points). The multi-view stage needs only the stored
-/// correspondences.
+/// released right after preparation; only the prepared clouds (down-sampled to
+/// `ScanRegistrationConfig::voxel_size_m` when that is positive) and their features are kept.
+/// The multi-view stage needs only the stored correspondences.
 ///
 /// Thread safety: `register_scans` is reentrant; it calls `progress` from the calling
 /// thread only. Results do not depend on the number of threads.
@@ -63,6 +70,10 @@ struct ScanRegistrationConfig {
     /// Pairs whose final fine registration overlaps less than this fraction (of the source
     /// samples) give no multi-view link.
     double min_link_overlap_fraction = 0.1;
+    /// Links also need a mean normal deviation within global.max_normal_deviation_deg and
+    /// an RMS within this many target sample spacings (the links' correspondences reach
+    /// farther than the verification's, so the limit is looser).
+    double max_link_rms_spacing_factor = 2.0;
     MultiviewRefinementConfig multiview{};  ///< fixed_scan_index is set per group.
 };
 
@@ -76,13 +87,19 @@ struct ScanOutcome {
     /// first scan (other groups). Identity and meaningless when group is -1.
     Pose T_world_scan = Pose::Identity();
     std::size_t point_count = 0;     ///< After preparation (and down-sampling).
+    double spacing_m = 0.0;          ///< Median sample spacing after preparation, metres.
     bool normals_estimated = false;  ///< False when the loaded cloud had normals.
 };
 
-/// One pair's figures: global registration of `source` onto `target` (source > target),
-/// then, for verified pairs, the final fine registration from the graph poses.
+/// One pair's figures: feature matching and, unless skipped, global registration of
+/// `source` onto `target` (source > target); then, for pairs of one group, the final fine
+/// registration from the graph poses.
 struct PairOutcome {
     std::size_t source = 0, target = 0;  ///< Scan indices (input order).
+    double match_score = 0.0;            ///< Best hypothesis's consensus score (0: none).
+    std::size_t hypotheses = 0;          ///< Distinct pose hypotheses from matching.
+    /// Not refined: its scans were already connected by verified pairs of higher score.
+    bool global_skipped = false;
     GlobalRegistrationStatus global_status = GlobalRegistrationStatus::kInvalidInput;
     bool verified = false;  ///< Global status success.
     bool in_tree = false;   ///< An edge of the maximum spanning tree.
@@ -91,7 +108,8 @@ struct PairOutcome {
     double global_rms_m = 0.0;                ///< Point-to-plane RMS of the global result, metres.
     double global_overlap_fraction = 0.0;
     double global_time_s = 0.0;
-    /// Final fine registration (verified pairs only; status invalid_input otherwise).
+    /// Final fine registration from the graph poses (pairs of one group whose bounding
+    /// spheres meet; status invalid_input otherwise).
     FineRegistrationStatus fine_status = FineRegistrationStatus::kInvalidInput;
     int fine_iterations = 0;
     double fine_rms_m = 0.0;
@@ -105,7 +123,9 @@ struct PairOutcome {
 /// Wall-clock seconds per stage.
 struct ScanRegistrationTimings {
     double prepare_s = 0.0;
-    double pairwise_s = 0.0;    ///< All global registrations.
+    double features_s = 0.0;    ///< Descriptors and patches of every scan.
+    double matching_s = 0.0;    ///< Feature matching of every pair.
+    double pairwise_s = 0.0;    ///< Refinement and verification of the pairs not skipped.
     double pose_graph_s = 0.0;  ///< Spanning tree and initial poses.
     double fine_s = 0.0;        ///< Final fine registrations (links).
     double multiview_s = 0.0;
@@ -114,7 +134,7 @@ struct ScanRegistrationTimings {
 
 struct ScanRegistrationResult {
     std::vector<ScanOutcome> scans;  ///< Input order.
-    std::vector<PairOutcome> pairs;  ///< Every pair tried, (1,0), (2,0), (2,1), ...
+    std::vector<PairOutcome> pairs;  ///< Every pair, (1,0), (2,0), (2,1), ...
     std::size_t reference_scan = 0;  ///< The world frame's scan (when any is placed).
     std::size_t placed_count = 0;
     std::size_t group_count = 0;  ///< Connected components among the loaded scans.
