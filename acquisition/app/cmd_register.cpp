@@ -51,6 +51,7 @@ void print_result(const ScanRegistrationResult& r) {
     }
     for (const ScanOutcome& s : r.scans) {
         if (!s.placed) std::printf("not placed: %s: %s\n", s.name.c_str(), s.reason.c_str());
+        if (!s.warning.empty()) spdlog::warn("{}: {}", s.name, s.warning);
     }
     const ScanRegistrationTimings& t = r.timings;
     std::printf(
@@ -116,6 +117,7 @@ std::string stats_json(const ScanRegistrationResult& r) {
         scans.push_back({{"name", s.name},
                          {"placed", s.placed},
                          {"reason", s.reason},
+                         {"warning", s.warning},
                          {"group", s.group},
                          {"points", s.point_count},
                          {"spacing_m", s.spacing_m},

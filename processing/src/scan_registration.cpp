@@ -28,46 +28,6 @@ void report(const RegistrationProgress& progress, const std::string& message) {
     if (progress) progress(message);
 }
 
-/// Keeps the points whose normal is finite and of unit length (zero = not estimated).
-void drop_points_without_normal(PointCloud& cloud) {
-    std::vector<std::size_t> keep;
-    keep.reserve(cloud.size());
-    for (std::size_t i = 0; i < cloud.size(); ++i) {
-        const Eigen::Vector3f& n = cloud.normals[i];
-        if (n.allFinite() && std::abs(n.squaredNorm() - 1.0f) < 1e-3f) keep.push_back(i);
-    }
-    if (keep.size() != cloud.size()) cloud = select(cloud, keep);
-}
-
-/// Loads and prepares every scan (one full cloud in memory at a time); fills the outcomes.
-detail::PreparedScans load_and_prepare(const std::vector<ScanInput>& inputs,
-                                       const ScanRegistrationConfig& config,
-                                       const RegistrationProgress& progress,
-                                       ScanRegistrationResult& result) {
-    detail::PreparedScans prepared;
-    prepared.clouds.resize(inputs.size());
-    prepared.spacing_m.assign(inputs.size(), 0.0);
-    for (std::size_t i = 0; i < inputs.size(); ++i) {
-        ScanOutcome& scan = result.scans[i];
-        report(progress, "preparing " + inputs[i].name);
-        Expected<PointCloud> loaded =
-            inputs[i].load ? inputs[i].load() : Expected<PointCloud>(PointCloud{});
-        if (!loaded) {
-            scan.reason = "could not be loaded: " + loaded.error().message;
-            continue;
-        }
-        scan.normals_estimated = !loaded->has_normals();
-        scan.point_count = prepare_scan(*loaded, inputs[i].sensor_origin_scan_m, config);
-        if (scan.point_count == 0) {
-            scan.reason = "empty scan (no finite points with a normal)";
-            continue;
-        }
-        prepared.spacing_m[i] = scan.spacing_m = median_sample_spacing_m(*loaded);
-        prepared.clouds[i] = std::move(*loaded);
-    }
-    return prepared;
-}
-
 /// Weight of a verified pair in the maximum spanning tree (higher is better).
 double pair_weight(const GlobalRegistrationResult& global) {
     const double spacing = std::max(global.target_spacing_m, 1e-9);
@@ -179,6 +139,22 @@ void verify_pairs(const detail::PreparedScans& scans, std::vector<FeatureMatchin
     }
 }
 
+/// Why scan i is not in the largest group: what its pairs gave.
+std::string not_connected_reason(const ScanRegistrationResult& result, std::size_t i) {
+    std::size_t matched = 0, refined = 0, verified = 0;
+    for (const PairOutcome& p : result.pairs) {
+        if (p.source != i && p.target != i) continue;
+        matched += p.hypotheses > 0;
+        refined += p.hypotheses > 0 && !p.global_skipped;
+        verified += p.verified;
+    }
+    std::string reason = "no verified chain of pairs to the largest group (in group " +
+                         std::to_string(result.scans[i].group) + "): ";
+    if (matched == 0) return reason + "no other scan shares consistent features with it";
+    return reason + std::to_string(matched) + " pairs with consistent features, " +
+           std::to_string(refined) + " refined, " + std::to_string(verified) + " verified";
+}
+
 /// Copies the graph's groups and poses into the outcomes and counts.
 void place_scans(const detail::PoseGraph& graph, ScanRegistrationResult& result) {
     bool reference_found = false;
@@ -188,10 +164,7 @@ void place_scans(const detail::PoseGraph& graph, ScanRegistrationResult& result)
         if (scan.group < 0) continue;
         scan.T_world_scan = graph.T_root_scan[i];
         scan.placed = scan.group == 0;
-        if (!scan.placed) {
-            scan.reason = "no verified chain of pairs to the largest group (in group " +
-                          std::to_string(scan.group) + ")";
-        }
+        if (!scan.placed) scan.reason = not_connected_reason(result, i);
         if (scan.placed && !reference_found) {
             result.reference_scan = i;
             reference_found = true;
@@ -203,25 +176,6 @@ void place_scans(const detail::PoseGraph& graph, ScanRegistrationResult& result)
 
 }  // namespace
 
-std::size_t prepare_scan(PointCloud& cloud, const std::optional<Eigen::Vector3d>& sensor_origin_m,
-                         const ScanRegistrationConfig& config) {
-    remove_non_finite(cloud);
-    if (cloud.empty()) return 0;
-    if (!cloud.has_normals()) {
-        NormalEstimationResult estimated = estimate_normals(cloud, config.normals);
-        if (sensor_origin_m) {
-            orient_toward(cloud, (*sensor_origin_m - cloud.origin_m).cast<float>());
-        } else {
-            orient_consistently(cloud, estimated.graph);
-        }
-    }
-    drop_points_without_normal(cloud);
-    if (config.voxel_size_m > 0.0 && !cloud.empty()) {
-        cloud = voxel_downsample(cloud, {.voxel_size_m = config.voxel_size_m});
-    }
-    return cloud.size();
-}
-
 ScanRegistrationResult register_scans(const std::vector<ScanInput>& scans,
                                       const ScanRegistrationConfig& config,
                                       const RegistrationProgress& progress) {
@@ -229,7 +183,7 @@ ScanRegistrationResult register_scans(const std::vector<ScanInput>& scans,
     ScanRegistrationResult result;
     for (const ScanInput& input : scans) result.scans.push_back({.name = input.name});
     auto stage = std::chrono::steady_clock::now();
-    detail::PreparedScans prepared = load_and_prepare(scans, config, progress, result);
+    detail::PreparedScans prepared = detail::load_and_prepare(scans, config, progress, result);
     std::vector<bool> usable(scans.size());
     for (std::size_t i = 0; i < scans.size(); ++i) usable[i] = !prepared.clouds[i].empty();
     result.timings.prepare_s = seconds_since(stage);
@@ -265,6 +219,7 @@ ScanRegistrationResult register_scans(const std::vector<ScanInput>& scans,
     result.timings.multiview_s = seconds_since(stage);
 
     place_scans(graph, result);
+    detail::warn_identical_scans(prepared, result);
     result.timings.total_s = seconds_since(start);
     return result;
 }

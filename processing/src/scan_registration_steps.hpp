@@ -41,6 +41,16 @@ struct PreparedScans {
     std::vector<ScanFeatures> features;
 };
 
+/// Loads and prepares every scan (one full cloud in memory at a time); fills the outcomes'
+/// point counts, spacings and, for unusable scans, the reason.
+PreparedScans load_and_prepare(const std::vector<ScanInput>& inputs,
+                               const ScanRegistrationConfig& config,
+                               const RegistrationProgress& progress,
+                               ScanRegistrationResult& result);
+
+/// Adds a warning to every placed scan whose prepared points equal an earlier scan's.
+void warn_identical_scans(const PreparedScans& scans, ScanRegistrationResult& result);
+
 /// Connected components of the verified pairs and the spanning-tree poses within each.
 struct PoseGraph {
     std::vector<int> group;         ///< Per scan: 0 = largest component; -1 = not usable.

@@ -1,45 +1,18 @@
 // Runs the `anascan` executable as a user would and checks what it prints and returns.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
 
+#include "cli_runner.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
-
-struct CliRun {
-    int exit_code = -1;
-    std::string output;  // stdout and stderr together
-};
-
-CliRun run_cli(const std::string& args) {
-    CliRun run;
-    const std::string command = std::string(ANASCAN_CLI) + " " + args + " 2>&1";
-    FILE* pipe = ::popen(command.c_str(), "r");
-    if (pipe == nullptr) return run;
-    std::array<char, 4096> buffer{};
-    while (std::fgets(buffer.data(), buffer.size(), pipe) != nullptr) run.output += buffer.data();
-    const int status = ::pclose(pipe);
-    run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return run;
-}
-
-class Cli : public ::testing::Test {
-protected:
-    void SetUp() override {
-        dir_ = fs::path(::testing::TempDir()) / ("cli-" + std::to_string(::getpid()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-    fs::path dir_;
-};
+using anascan::testing_util::Cli;
+using anascan::testing_util::CliRun;
+using anascan::testing_util::run_cli;
 
 TEST_F(Cli, HelpListsTheCommands) {
     const CliRun run = run_cli("--help");

@@ -7,6 +7,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
@@ -103,6 +104,52 @@ TEST(ScanRegistration, PlacesViewsAndReportsTheOthers) {
     EXPECT_NE(result.scans[5].reason.find("gone"), std::string::npos);
     EXPECT_GE(result.link_count, 2u);
     EXPECT_GT(result.timings.total_s, 0.0);
+}
+
+/// A loader returning a fixed cloud.
+ScanInput fixed_scan(const std::string& name, PointCloud cloud) {
+    return {.name = name, .load = [cloud] { return Expected<PointCloud>(cloud); }};
+}
+
+PointCloud repeated_point(std::size_t count, const Eigen::Vector3f& p) {
+    PointCloud cloud;
+    cloud.positions.assign(count, p);
+    return cloud;
+}
+
+TEST(ScanRegistration, BadScansGetOneClearReasonEachAndCopiesAWarning) {
+    std::mt19937 rng(11);
+    const std::vector<Bump> bumps = random_bumps(7, 14);
+    const SyntheticScan a = make_view(bumpy_window(bumps, -0.1, 0.02, 0.0), rng, "a");
+    const SyntheticScan b = make_view(bumpy_window(bumps, -0.06, 0.06, 0.0003), rng, "b");
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    std::vector<ScanInput> inputs{a.input, b.input, a.input};
+    inputs[2].name = "copy of a";
+    inputs.push_back(fixed_scan("all nan", repeated_point(500, {nan, nan, nan})));
+    inputs.push_back(fixed_scan("duplicates", repeated_point(2000, {0.1f, 0.2f, 0.3f})));
+    inputs.push_back(
+        fixed_scan("few", select(*a.input.load(), std::vector<std::size_t>{0, 1, 2, 3, 200})));
+    inputs.push_back(fixed_scan("empty", PointCloud{}));
+
+    const ScanRegistrationResult result = register_scans(inputs, {}, {});
+
+    ASSERT_EQ(result.scans.size(), inputs.size());
+    for (std::size_t i = 0; i < 3; ++i) {
+        EXPECT_TRUE(result.scans[i].placed)
+            << result.scans[i].name << ": " << result.scans[i].reason;
+    }
+    EXPECT_TRUE(result.scans[0].warning.empty());
+    EXPECT_NE(result.scans[2].warning.find("the same points as a"), std::string::npos)
+        << result.scans[2].warning;
+    const auto reason_has = [&](std::size_t i, const std::string& words) {
+        EXPECT_FALSE(result.scans[i].placed) << result.scans[i].name;
+        EXPECT_NE(result.scans[i].reason.find(words), std::string::npos)
+            << result.scans[i].name << ": " << result.scans[i].reason;
+    };
+    reason_has(3, "all 500 points are non-finite");
+    reason_has(4, "no normal could be estimated");
+    reason_has(5, "only 5 usable points");
+    reason_has(6, "empty scan");
 }
 
 TEST(ScanRegistration, NoScansIsAnEmptyResult) {

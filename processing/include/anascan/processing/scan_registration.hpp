@@ -67,6 +67,8 @@ struct ScanRegistrationConfig {
     /// Final pairwise refinement from the spanning-tree poses (correspondences are kept
     /// whatever `keep_correspondences` says).
     FineRegistrationConfig fine{};
+    /// Scans with fewer points after preparation are not used (too few for descriptors).
+    std::size_t min_scan_points = 100;
     /// Pairs whose final fine registration overlaps less than this fraction (of the source
     /// samples) give no multi-view link.
     double min_link_overlap_fraction = 0.1;
@@ -82,6 +84,8 @@ struct ScanOutcome {
     std::string name;
     bool placed = false;  ///< In the largest group: T_world_scan is a result.
     std::string reason;   ///< Why it is not placed (empty when placed).
+    /// Something to check although it is placed (e.g. the same points as another scan).
+    std::string warning;
     int group = -1;       ///< Connected component (0 = largest); -1 when not loaded.
     /// Maps scan points into the world frame (placed) or into the frame of its group's
     /// first scan (other groups). Identity and meaningless when group is -1.

@@ -1,0 +1,131 @@
+// The prepare stage of register_scans: load once, clean, normals, reasons for unusable scans.
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <string>
+#include <utility>
+
+#include "anascan/processing/integral_invariants.hpp"
+#include "anascan/processing/voxel_grid.hpp"
+#include "scan_registration_steps.hpp"
+
+namespace anascan {
+namespace {
+
+/// Keeps the points whose normal is finite and of unit length (zero = not estimated).
+void drop_points_without_normal(PointCloud& cloud) {
+    std::vector<std::size_t> keep;
+    keep.reserve(cloud.size());
+    for (std::size_t i = 0; i < cloud.size(); ++i) {
+        const Eigen::Vector3f& n = cloud.normals[i];
+        if (n.allFinite() && std::abs(n.squaredNorm() - 1.0f) < 1e-3f) keep.push_back(i);
+    }
+    if (keep.size() != cloud.size()) cloud = select(cloud, keep);
+}
+
+/// Why a loaded cloud of `loaded_count` points cannot be used after preparation left
+/// `prepared_count`; empty when it can.
+std::string unusable_reason(std::size_t loaded_count, std::size_t finite_count,
+                            std::size_t prepared_count, std::size_t min_points) {
+    const std::string loaded = std::to_string(loaded_count);
+    if (loaded_count == 0) return "empty scan (no points)";
+    if (finite_count == 0) return "all " + loaded + " points are non-finite (NaN or infinite)";
+    if (prepared_count == 0) {
+        return "no normal could be estimated for any of its " + std::to_string(finite_count) +
+               " finite points (duplicate points or too few distinct positions)";
+    }
+    if (prepared_count < min_points) {
+        return "only " + std::to_string(prepared_count) + " usable points of " + loaded +
+               " (at least " + std::to_string(min_points) + " are needed for descriptors)";
+    }
+    return {};
+}
+
+/// FNV-1a over the origin and local positions: equal clouds give equal hashes.
+std::uint64_t position_hash(const PointCloud& cloud) {
+    std::uint64_t hash = 1469598103934665603ull;
+    const auto mix = [&hash](const void* data, std::size_t bytes) {
+        const auto* p = static_cast<const unsigned char*>(data);
+        for (std::size_t i = 0; i < bytes; ++i) hash = (hash ^ p[i]) * 1099511628211ull;
+    };
+    mix(cloud.origin_m.data(), sizeof(double) * 3);
+    mix(cloud.positions.data(), sizeof(Eigen::Vector3f) * cloud.positions.size());
+    return hash;
+}
+
+bool same_positions(const PointCloud& a, const PointCloud& b) {
+    return a.size() == b.size() && a.origin_m == b.origin_m &&
+           std::memcmp(a.positions.data(), b.positions.data(),
+                       sizeof(Eigen::Vector3f) * a.size()) == 0;
+}
+
+}  // namespace
+
+std::size_t prepare_scan(PointCloud& cloud, const std::optional<Eigen::Vector3d>& sensor_origin_m,
+                         const ScanRegistrationConfig& config) {
+    remove_non_finite(cloud);
+    if (cloud.empty()) return 0;
+    if (!cloud.has_normals()) {
+        NormalEstimationResult estimated = estimate_normals(cloud, config.normals);
+        if (sensor_origin_m) {
+            orient_toward(cloud, (*sensor_origin_m - cloud.origin_m).cast<float>());
+        } else {
+            orient_consistently(cloud, estimated.graph);
+        }
+    }
+    drop_points_without_normal(cloud);
+    if (config.voxel_size_m > 0.0 && !cloud.empty()) {
+        cloud = voxel_downsample(cloud, {.voxel_size_m = config.voxel_size_m});
+    }
+    return cloud.size();
+}
+
+namespace detail {
+
+PreparedScans load_and_prepare(const std::vector<ScanInput>& inputs,
+                               const ScanRegistrationConfig& config,
+                               const RegistrationProgress& progress,
+                               ScanRegistrationResult& result) {
+    PreparedScans prepared;
+    prepared.clouds.resize(inputs.size());
+    prepared.spacing_m.assign(inputs.size(), 0.0);
+    for (std::size_t i = 0; i < inputs.size(); ++i) {
+        ScanOutcome& scan = result.scans[i];
+        if (progress) progress("preparing " + inputs[i].name);
+        Expected<PointCloud> loaded =
+            inputs[i].load ? inputs[i].load() : Expected<PointCloud>(PointCloud{});
+        if (!loaded) {
+            scan.reason = "could not be loaded: " + loaded.error().message;
+            continue;
+        }
+        const std::size_t loaded_count = loaded->size();
+        const std::size_t finite_count = loaded_count - remove_non_finite(*loaded);
+        scan.normals_estimated = !loaded->has_normals();
+        scan.point_count = prepare_scan(*loaded, inputs[i].sensor_origin_scan_m, config);
+        scan.reason =
+            unusable_reason(loaded_count, finite_count, scan.point_count, config.min_scan_points);
+        if (!scan.reason.empty()) continue;
+        prepared.spacing_m[i] = scan.spacing_m = median_sample_spacing_m(*loaded);
+        prepared.clouds[i] = std::move(*loaded);
+    }
+    return prepared;
+}
+
+void warn_identical_scans(const PreparedScans& scans, ScanRegistrationResult& result) {
+    std::vector<std::uint64_t> hashes;
+    for (const PointCloud& cloud : scans.clouds) hashes.push_back(position_hash(cloud));
+    for (std::size_t i = 0; i < scans.clouds.size(); ++i) {
+        if (scans.clouds[i].empty()) continue;
+        for (std::size_t j = 0; j < i; ++j) {
+            if (hashes[i] != hashes[j] || !same_positions(scans.clouds[i], scans.clouds[j])) {
+                continue;
+            }
+            result.scans[i].warning = "the same points as " + result.scans[j].name +
+                                      " (a copy of one scan adds nothing; check the file list)";
+            break;
+        }
+    }
+}
+
+}  // namespace detail
+}  // namespace anascan
