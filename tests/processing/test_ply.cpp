@@ -49,9 +49,25 @@ PointCloud full_cloud(std::size_t n) {
     return cloud;
 }
 
+/// With an origin the file holds absolute double coordinates (origin + local), so local
+/// positions come back within the double rounding of the absolute value (~1e-9 m here).
+void expect_same_positions(const PointCloud& expected, const PointCloud& actual) {
+    if (expected.origin_m == Eigen::Vector3d::Zero()) {
+        EXPECT_TRUE(same_bits(expected.positions, actual.positions));
+        return;
+    }
+    ASSERT_EQ(expected.size(), actual.size());
+    for (std::size_t i = 0; i < expected.size(); ++i) {
+        for (int k = 0; k < 3; ++k) {
+            const double a = expected.positions[i][k], b = actual.positions[i][k];
+            ASSERT_LE(std::abs(a - b), 1e-8 + 1e-7 * std::abs(a)) << "point " << i;
+        }
+    }
+}
+
 void expect_same_cloud(const PointCloud& expected, const PointCloud& actual) {
     EXPECT_EQ(expected.origin_m, actual.origin_m);
-    EXPECT_TRUE(same_bits(expected.positions, actual.positions));
+    expect_same_positions(expected, actual);
     EXPECT_TRUE(same_bits(expected.normals, actual.normals));
     EXPECT_TRUE(expected.colors == actual.colors);
     EXPECT_TRUE(same_bits(expected.intensity, actual.intensity));
@@ -59,6 +75,22 @@ void expect_same_cloud(const PointCloud& expected, const PointCloud& actual) {
 }
 
 class PlyRoundTrip : public ::testing::TestWithParam<PlyFormat> {};
+
+TEST(Ply, ACloudWithAnOriginIsWrittenInAbsoluteCoordinatesOtherProgramsRead) {
+    PointCloud cloud;
+    cloud.origin_m = {452123.25, 5412345.5, 12.0};
+    cloud.positions = {{0.5f, -0.25f, 0.125f}};
+    const std::vector<char> bytes = serialize_ply(cloud, {}, {.format = PlyFormat::kAscii});
+    const std::string text(bytes.begin(), bytes.end());
+    EXPECT_NE(text.find("property double x\nproperty double y\nproperty double z\n"),
+              std::string::npos)
+        << text;
+    EXPECT_NE(text.find("end_header\n452123.75 5412345.25 12.125\n"), std::string::npos) << text;
+    const Expected<PlyData> read = parse_ply(bytes, "origin.ply");
+    ASSERT_TRUE(read) << read.error().message;
+    EXPECT_EQ(read->cloud.origin_m, cloud.origin_m);
+    EXPECT_EQ(read->cloud.positions[0], cloud.positions[0]);
+}
 
 TEST_P(PlyRoundTrip, CloudWithEveryAttributeIsBitExact) {
     const PointCloud cloud = full_cloud(500);

@@ -73,6 +73,7 @@ VertexSink sink_for(PointCloud& cloud, Slot slot, PlyScalar type) {
     if (slot >= Slot::kX && slot <= Slot::kZ) {
         sink.floats = cloud.positions.data()->data() + (s - index(Slot::kX));
         sink.stride = 3;
+        sink.offset = cloud.origin_m[static_cast<Eigen::Index>(s - index(Slot::kX))];
     } else if (slot >= Slot::kNx && slot <= Slot::kNz) {
         sink.floats = cloud.normals.data()->data() + (s - index(Slot::kNx));
         sink.stride = 3;
@@ -104,7 +105,7 @@ void merge_run(std::vector<FixedField>& fields, std::vector<Slot>& slots, Slot f
     if (found != 3) return;
     for (std::size_t c = 0; c < 3; ++c) {
         const FixedField& field = fields[at[c]];
-        if (field.sink.type != PlyScalar::kFloat32) return;
+        if (field.sink.type != PlyScalar::kFloat32 || field.sink.offset != 0.0) return;
         if (field.offset != fields[at[0]].offset + 4 * c) return;
     }
     fields[at[0]].run = 3;

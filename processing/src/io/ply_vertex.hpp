@@ -51,9 +51,13 @@ struct VertexSink {
     std::uint8_t* bytes = nullptr;
     std::size_t stride = 0;
     PlyScalar type = PlyScalar::kFloat32;  ///< The file's type (colour scaling depends on it).
+    /// Subtracted (in double) before storing: the cloud origin's component for positions of
+    /// a file with an origin comment, whose coordinates are absolute.
+    double offset = 0.0;
 };
 
 /// The sink of each property (no-op sinks for skipped ones); call after allocate().
+/// Position sinks subtract `cloud.origin_m` (set it first).
 std::vector<VertexSink> make_sinks(PointCloud& cloud, const PlyElement& element,
                                    const VertexPlan& plan);
 
@@ -63,7 +67,7 @@ std::uint8_t to_color(double value, PlyScalar type);
 
 inline void store(const VertexSink& sink, std::size_t i, double value) {
     if (sink.floats != nullptr) {
-        sink.floats[i * sink.stride] = static_cast<float>(value);
+        sink.floats[i * sink.stride] = static_cast<float>(value - sink.offset);
     } else if (sink.bytes != nullptr) {
         sink.bytes[i * sink.stride] = to_color(value, sink.type);
     }
@@ -92,7 +96,8 @@ void decode_fixed_records(const char* base, std::size_t count, std::size_t recor
             const VertexSink& sink = field.sink;
             if (!kSwap && field.run == 3) {
                 std::memcpy(sink.floats + i * sink.stride, record + field.offset, 12);
-            } else if (sink.type == PlyScalar::kFloat32 && sink.floats != nullptr) {
+            } else if (sink.type == PlyScalar::kFloat32 && sink.floats != nullptr &&
+                       sink.offset == 0.0) {
                 sink.floats[i * sink.stride] = load<float, kSwap>(record + field.offset);
             } else {
                 store(sink, i, load_scalar<kSwap>(record + field.offset, sink.type));

@@ -16,16 +16,20 @@ using ply_detail::byte_swapped;
 
 // Which attributes are written: those exactly as long as positions.
 struct VertexLayout {
+    /// Positions as absolute double coordinates (origin + local): other programs (MeshLab,
+    /// CloudCompare, Open3D) ignore our origin comment, so the values must stand alone.
+    bool absolute = false;
     bool normals = false, colors = false, intensity = false, confidence = false;
 
     explicit VertexLayout(const PointCloud& cloud)
-        : normals(cloud.normals.size() == cloud.size() && cloud.has_normals()),
+        : absolute(cloud.origin_m != Eigen::Vector3d::Zero()),
+          normals(cloud.normals.size() == cloud.size() && cloud.has_normals()),
           colors(cloud.colors.size() == cloud.size() && cloud.has_colors()),
           intensity(cloud.intensity.size() == cloud.size() && cloud.has_intensity()),
           confidence(cloud.confidence.size() == cloud.size() && cloud.has_confidence()) {}
 
     std::size_t record_bytes() const {
-        return 12 + (normals ? 12 : 0) + (colors ? 3 : 0) + (intensity ? 4 : 0) +
+        return (absolute ? 24 : 12) + (normals ? 12 : 0) + (colors ? 3 : 0) + (intensity ? 4 : 0) +
                (confidence ? 4 : 0);
     }
 };
@@ -66,7 +70,8 @@ std::string header_text(const PointCloud& cloud, std::size_t triangle_count,
         text += origin;
     }
     text += "element vertex " + std::to_string(cloud.size()) + "\n";
-    text += "property float x\nproperty float y\nproperty float z\n";
+    text += layout.absolute ? "property double x\nproperty double y\nproperty double z\n"
+                            : "property float x\nproperty float y\nproperty float z\n";
     if (layout.normals) text += "property float nx\nproperty float ny\nproperty float nz\n";
     if (layout.colors) text += "property uchar red\nproperty uchar green\nproperty uchar blue\n";
     if (layout.intensity) text += "property float intensity\n";
@@ -97,10 +102,19 @@ char* put3(char* out, const Eigen::Vector3f& v) {
 }
 
 template <bool kSwap>
+char* put_position(char* out, const PointCloud& cloud, std::size_t i, const VertexLayout& layout) {
+    if (!layout.absolute) return put3<kSwap>(out, cloud.positions[i]);
+    const Eigen::Vector3d p = cloud.world_position(i);
+    out = put<kSwap>(out, p.x());
+    out = put<kSwap>(out, p.y());
+    return put<kSwap>(out, p.z());
+}
+
+template <bool kSwap>
 void write_binary_body(const PointCloud& cloud, std::span<const Eigen::Vector3i> triangles,
                        const VertexLayout& layout, char* out) {
     for (std::size_t i = 0; i < cloud.size(); ++i) {
-        out = put3<kSwap>(out, cloud.positions[i]);
+        out = put_position<kSwap>(out, cloud, i, layout);
         if (layout.normals) out = put3<kSwap>(out, cloud.normals[i]);
         if (layout.colors) {
             const Rgb8 c = cloud.colors[i];
@@ -124,7 +138,7 @@ public:
 
     template <class T>
     void add(T value) {
-        char text[32];  // a float or int needs at most 16 characters
+        char text[32];  // a float, double or int needs at most 24 characters
         const auto [end, ec] = std::to_chars(text, text + sizeof(text), value);
         assert(ec == std::errc());
         if (!first_) out_.push_back(' ');
@@ -151,7 +165,14 @@ void write_ascii_body(const PointCloud& cloud, std::span<const Eigen::Vector3i> 
     out.reserve(out.size() + cloud.size() * (layout.record_bytes() * 3) + triangles.size() * 40);
     AsciiLine line(out);
     for (std::size_t i = 0; i < cloud.size(); ++i) {
-        line.add3(cloud.positions[i]);
+        if (layout.absolute) {
+            const Eigen::Vector3d p = cloud.world_position(i);
+            line.add(p.x());
+            line.add(p.y());
+            line.add(p.z());
+        } else {
+            line.add3(cloud.positions[i]);
+        }
         if (layout.normals) line.add3(cloud.normals[i]);
         if (layout.colors) {
             line.add(static_cast<int>(cloud.colors[i].r));
