@@ -111,8 +111,11 @@ void run_sl_decode(const SlDecodeOptions& o) {
         100.0 * double(r.matched) / double(std::max<std::size_t>(r.cam1_valid, 1)));
     std::printf("rejected: %zu ray gap > %.1f mm, %zu depth; median ray gap %.2f mm\n",
                 r.rejected_ray_gap, o.max_ray_gap_mm, r.rejected_depth, r.median_ray_gap_m * 1e3);
-    std::printf("time: %.3f s (load %zu images %.3f s, decode %.3f s, write %.3f s)\n", total_s,
-                files.size(), load_s, decode_s, total_s - load_s - decode_s);
+    std::printf(
+        "time: %.3f s (load %zu images %.3f s, decode %.3f s [codes %.3f s, matching "
+        "%.3f s, triangulation %.3f s], write %.3f s)\n",
+        total_s, files.size(), load_s, decode_s, r.decode_s, r.match_s, r.triangulate_s,
+        total_s - load_s - decode_s);
     std::printf("wrote %s (cam1 frame, metres)\n", o.output.c_str());
 }
 

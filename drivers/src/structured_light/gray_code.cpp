@@ -27,46 +27,66 @@ struct Axis {
     int size_px = 0;
 };
 
-/// Decodes one axis along image row y into out[x] (projector coordinate or NaN).
-/// `ok[x]` says whether the pixel passed the contrast test; `diff` is scratch space.
-void decode_axis_row(std::span<const cv::Mat> images, const Axis& axis, int y,
-                     const std::uint8_t* ok, const GrayCodeDecodeConfig& config,
-                     std::vector<std::int16_t>& diff, float* out) {
+/// Bit planes of one axis along one image row, packed per pixel (MSB = first pattern).
+struct PackedRow {
+    std::vector<std::uint16_t> gray;       ///< Gray code from pattern > inverse.
+    std::vector<std::uint16_t> uncertain;  ///< Bits with |pattern - inverse| < min.
+    std::vector<std::uint8_t> magnitude;   ///< |pattern - inverse| per bit: [bit][x].
+};
+
+void pack_row(std::span<const cv::Mat> images, const Axis& axis, int y, int min_bit_contrast,
+              PackedRow& p) {
     const int width = images[0].cols;
-    diff.resize(static_cast<std::size_t>(axis.bits) * width);
+    p.gray.assign(std::size_t(width), 0);
+    p.uncertain.assign(std::size_t(width), 0);
+    p.magnitude.resize(std::size_t(axis.bits) * width);
     for (int m = 0; m < axis.bits; ++m) {
         const std::uint8_t* pattern = images[axis.first_image + 2 * m].ptr<std::uint8_t>(y);
         const std::uint8_t* inverse = images[axis.first_image + 2 * m + 1].ptr<std::uint8_t>(y);
-        std::int16_t* d = diff.data() + static_cast<std::size_t>(m) * width;
-        for (int x = 0; x < width; ++x) d[x] = std::int16_t(int(pattern[x]) - int(inverse[x]));
+        // Local restrict pointers: uint8 stores could alias the vectors' members otherwise,
+        // which keeps the compiler from vectorising.
+        std::uint8_t* __restrict mag = p.magnitude.data() + std::size_t(m) * width;
+        std::uint16_t* __restrict gray = p.gray.data();
+        std::uint16_t* __restrict uncertain = p.uncertain.data();
+        for (int x = 0; x < width; ++x) {
+            const int d = int(pattern[x]) - int(inverse[x]);
+            const int a = d < 0 ? -d : d;
+            mag[x] = std::uint8_t(a);
+            gray[x] = std::uint16_t((gray[x] << 1) | (d > 0 ? 1 : 0));
+            uncertain[x] = std::uint16_t((uncertain[x] << 1) | (a < min_bit_contrast ? 1 : 0));
+        }
     }
+}
+
+/// Decodes one axis along image row y into out[x] (projector coordinate or NaN).
+/// `ok[x]` says whether the pixel passed the contrast test.
+void decode_axis_row(std::span<const cv::Mat> images, const Axis& axis, int y,
+                     const std::uint8_t* ok, const GrayCodeDecodeConfig& config, PackedRow& p,
+                     float* out) {
+    const int width = images[0].cols;
+    pack_row(images, axis, y, config.min_bit_contrast, p);
     constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
-    const auto bit_diff = [&](int m, int x) {
-        return std::abs(int(diff[std::size_t(m) * width + x]));
+    const auto magnitude = [&](int bit, int x) {
+        return int(p.magnitude[std::size_t(axis.bits - 1 - bit) * width + x]);
     };
     for (int x = 0; x < width; ++x) {
         out[x] = kNaN;
         if (!ok[x]) continue;
-        std::uint32_t gray = 0;
-        for (int m = 0; m < axis.bits; ++m)
-            gray = (gray << 1) | std::uint32_t(diff[std::size_t(m) * width + x] > 0);
-        const std::uint32_t c = gray_to_binary(gray);
+        const std::uint32_t c = gray_to_binary(p.gray[x]);
         if (c >= std::uint32_t(axis.size_px)) continue;
         // Exactly one Gray bit flips between neighbouring codes: bit ctz(c) between c-1 and
-        // c, bit ctz(c+1) between c and c+1 (pattern index = bits - 1 - bit).
-        const int left = c > 0 ? axis.bits - 1 - std::countr_zero(c) : -1;
-        const int right =
-            c + 1 < std::uint32_t(axis.size_px) ? axis.bits - 1 - std::countr_zero(c + 1) : -1;
-        bool certain = true;
-        for (int m = 0; m < axis.bits && certain; ++m)
-            certain = m == left || m == right || bit_diff(m, x) >= config.min_bit_contrast;
-        if (!certain) continue;
+        // c, bit ctz(c+1) between c and c+1. Only those two may be uncertain.
+        const int left = c > 0 ? std::countr_zero(c) : -1;
+        const int right = c + 1 < std::uint32_t(axis.size_px) ? std::countr_zero(c + 1) : -1;
+        const std::uint32_t border =
+            (left >= 0 ? 1u << left : 0u) | (right >= 0 ? 1u << right : 0u);
+        if (p.uncertain[x] & ~border) continue;
         float position = float(c);
         if (config.subpixel && left >= 0 && right >= 0) {
             // The border bits' |pattern - inverse| fall to zero at the pixel's borders: their
             // ratio places the camera pixel inside the projector pixel.
-            const int a = bit_diff(left, x);
-            const int b = bit_diff(right, x);
+            const int a = magnitude(left, x);
+            const int b = magnitude(right, x);
             if (a + b < config.min_bit_contrast) continue;
             position += float(a) / float(a + b) - 0.5f;
         }
@@ -84,13 +104,13 @@ void decode_row(std::span<const cv::Mat> images, const GrayCodeLayout& layout, i
         const int c = int(white[x]) - int(black[x]);
         contrast[x] = c >= config.min_contrast ? std::uint8_t(c) : 0;
     }
-    thread_local std::vector<std::int16_t> diff;
+    thread_local PackedRow packed;
     const Axis columns{0, layout.column_bits(), layout.projector_width_px};
     const Axis rows{2 * layout.column_bits(), layout.row_bits(), layout.projector_height_px};
     float* col = map.column_px.ptr<float>(y);
     float* row = map.row_px.ptr<float>(y);
-    decode_axis_row(images, columns, y, contrast, config, diff, col);
-    decode_axis_row(images, rows, y, contrast, config, diff, row);
+    decode_axis_row(images, columns, y, contrast, config, packed, col);
+    decode_axis_row(images, rows, y, contrast, config, packed, row);
     for (int x = 0; x < width; ++x) {
         if (std::isnan(col[x]) || std::isnan(row[x])) {
             col[x] = row[x] = std::numeric_limits<float>::quiet_NaN();
@@ -156,8 +176,10 @@ Expected<void> check_image_sequence(std::span<const cv::Mat> images, std::size_t
 Expected<ProjectorMap> decode_gray_code(std::span<const cv::Mat> images,
                                         const GrayCodeLayout& layout,
                                         const GrayCodeDecodeConfig& config) {
-    if (layout.projector_width_px < 2 || layout.projector_height_px < 2 || config.min_contrast < 1)
-        return fail(ErrorCode::kInvalidArgument, "Gray code: bad projector size or contrast");
+    if (layout.projector_width_px < 2 || layout.projector_height_px < 2 ||
+        layout.column_bits() > 16 || layout.row_bits() > 16 || config.min_contrast < 1)
+        return fail(ErrorCode::kInvalidArgument,
+                    "Gray code: projector size must be 2..65536 px, min contrast >= 1");
     if (auto ok = check_image_sequence(images, std::size_t(layout.image_count()), "Gray code"); !ok)
         return fail(ok.error());
     const cv::Size size = images[0].size();

@@ -1,11 +1,21 @@
 #include "anascan/drivers/structured_light/stereo_decoder.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <opencv2/core.hpp>
 #include <string>
 
 namespace anascan::drivers::sl {
 namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point& t0) {
+    const Clock::time_point now = Clock::now();
+    const double s = std::chrono::duration<double>(now - t0).count();
+    t0 = now;
+    return s;
+}
 
 Expected<void> check_size(std::span<const cv::Mat> images, const CameraIntrinsics& cam,
                           const std::string& name) {
@@ -31,6 +41,14 @@ void fill_cloud(const StereoMatches& matches, const TriangulatedPoints& points,
                 const ProjectorMap& cam1, const StereoDecodeConfig& config,
                 StereoDecodeResult& result) {
     PointCloud& cloud = result.cloud;
+    const auto ok =
+        std::size_t(std::count(points.status.begin(), points.status.end(), PointStatus::kOk));
+    cloud.positions.reserve(ok);
+    cloud.intensity.reserve(ok);
+    cloud.colors.reserve(ok);
+    cloud.confidence.reserve(ok);
+    result.ray_gap_m.reserve(ok);
+    result.cam1_px.reserve(ok);
     for (std::size_t i = 0; i < points.status.size(); ++i) {
         if (points.status[i] == PointStatus::kRayGap) ++result.rejected_ray_gap;
         if (points.status[i] == PointStatus::kDepth) ++result.rejected_depth;
@@ -77,20 +95,24 @@ Expected<StereoDecodeResult> decode_stereo(std::span<const cv::Mat> cam1_images,
                                            const StereoDecodeConfig& config) {
     if (auto ok = check_size(cam1_images, calibration.cam1, "cam1"); !ok) return fail(ok.error());
     if (auto ok = check_size(cam2_images, calibration.cam2, "cam2"); !ok) return fail(ok.error());
+    StereoDecodeResult result;
+    auto t0 = Clock::now();
     auto map1 = decode_named(cam1_images, config, "cam1");
     if (!map1) return fail(map1.error());
     auto map2 = decode_named(cam2_images, config, "cam2");
     if (!map2) return fail(map2.error());
+    result.decode_s = seconds_since(t0);
     const StereoMatches matches =
         match_projector_maps(*map1, *map2, config.sequence.gray, config.match);
+    result.match_s = seconds_since(t0);
     const TriangulatedPoints points =
         triangulate_matches(matches, calibration, config.triangulation);
-    StereoDecodeResult result;
     result.cam1_valid = map1->valid_count;
     result.cam2_valid = map2->valid_count;
     result.matched = matches.cam1_px.size();
     result.pixel_count = map1->column_px.total();
     fill_cloud(matches, points, *map1, config, result);
+    result.triangulate_s = seconds_since(t0);
     return result;
 }
 

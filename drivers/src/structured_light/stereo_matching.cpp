@@ -41,7 +41,7 @@ public:
     /// The indexed cam2 pixel for projector coordinates (u, v), looking at the 3x3 cells
     /// around when its own cell is empty; false when none.
     bool find(float u, float v, cv::Point2i& out) const {
-        const int cu = int(std::lround(u)), cv_ = int(std::lround(v));
+        const int cu = int(std::floor(u + 0.5f)), cv_ = int(std::floor(v + 0.5f));
         for (int ring = 0; ring <= 1; ++ring) {
             for (int dv = -ring; dv <= ring; ++dv) {
                 for (int du = -ring; du <= ring; ++du) {
@@ -56,11 +56,11 @@ public:
     }
 
 private:
+    /// The projector pixel containing (u, v), or -1 (also for NaN).
     int cell_of(float u, float v) const {
-        if (std::isnan(u) || std::isnan(v)) return -1;
-        const int cu = int(std::lround(u)), cv_ = int(std::lround(v));
-        if (cu < 0 || cv_ < 0 || cu >= width_ || cv_ >= height_) return -1;
-        return cv_ * width_ + cu;
+        const float fu = u + 0.5f, fv = v + 0.5f;  // Pixel c covers [c - 0.5, c + 0.5).
+        if (!(fu >= 0.0f && fv >= 0.0f && fu < float(width_) && fv < float(height_))) return -1;
+        return int(fv) * width_ + int(fu);
     }
 
     int width_, height_, cam_width_;

@@ -53,6 +53,9 @@ struct StereoDecodeResult {
     std::size_t rejected_depth = 0;
     std::size_t pixel_count = 0;  ///< cam1 image pixels.
     double median_ray_gap_m = 0.0;
+    double decode_s = 0.0;       ///< Wall time: decoding both cameras, seconds.
+    double match_s = 0.0;        ///< Wall time: stereo matching, seconds.
+    double triangulate_s = 0.0;  ///< Wall time: triangulation and the cloud, seconds.
 };
 
 /// Decodes one stereo capture. Images are CV_8UC1, `config.sequence.image_count()` per
