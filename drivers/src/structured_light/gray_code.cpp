@@ -3,6 +3,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -83,12 +84,14 @@ void decode_axis_row(std::span<const cv::Mat> images, const Axis& axis, int y,
         if (p.uncertain[x] & ~border) continue;
         float position = float(c);
         if (config.subpixel && left >= 0 && right >= 0) {
-            // The border bits' |pattern - inverse| fall to zero at the pixel's borders: their
-            // ratio places the camera pixel inside the projector pixel.
+            // The border bits' |pattern - inverse| fall linearly to zero at the projector
+            // pixel's borders over half a projector pixel (a one-pixel ramp between pixel
+            // centres) and saturate inside: the unsaturated one, relative to the saturated
+            // one, gives the distance to its border (docs/structured-light.md).
             const int a = magnitude(left, x);
             const int b = magnitude(right, x);
             if (a + b < config.min_bit_contrast) continue;
-            position += float(a) / float(a + b) - 0.5f;
+            position += 0.5f * float(a - b) / float(std::max(a, b));
         }
         out[x] = position;
     }

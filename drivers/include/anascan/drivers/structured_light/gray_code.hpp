@@ -53,7 +53,8 @@ struct ProjectorMap {
 /// Decodes one camera's Gray-code images (CV_8UC1, all the same size, `layout.image_count()`
 /// of them). A pixel is valid when white - black >= min_contrast, its code lies inside the
 /// projector, and every bit is certain except the two that flip at the borders of its
-/// projector pixel (those carry the sub-pixel position, see docs/structured-light.md).
+/// projector pixel (those carry the sub-pixel position: u = c + (a - b) / (2 max(a, b)) with
+/// a, b the |pattern - inverse| of the left and right border bits; docs/structured-light.md).
 /// Thread-safe; runs a TBB loop over rows; the result does not depend on the thread count.
 Expected<ProjectorMap> decode_gray_code(std::span<const cv::Mat> images,
                                         const GrayCodeLayout& layout,
