@@ -1,5 +1,6 @@
 // anascan sl decode: a captured Gray-code stereo sequence -> point cloud (PLY).
 #include <spdlog/spdlog.h>
+#include <tbb/global_control.h>
 
 #include <atomic>
 #include <chrono>
@@ -34,6 +35,7 @@ struct SlDecodeOptions {
     int min_bit_contrast = 5;
     double max_ray_gap_mm = 30.0;
     bool no_subpixel = false;
+    int threads = 0;
 };
 
 double seconds_since(Clock::time_point t0) {
@@ -84,6 +86,11 @@ std::vector<cv::Mat> load_all(const std::vector<std::filesystem::path>& files) {
 
 void run_sl_decode(const SlDecodeOptions& o) {
     const auto t0 = Clock::now();
+    std::unique_ptr<tbb::global_control> thread_limit;
+    if (o.threads > 0) {
+        thread_limit = std::make_unique<tbb::global_control>(
+            tbb::global_control::max_allowed_parallelism, std::size_t(o.threads));
+    }
     const sl::StereoDecodeConfig config = decode_config(o);
     auto calibration = sl::load_stereo_calibration(
         o.calibration, {.swap_cameras = o.swap_cameras, .file_unit_m = o.file_unit_m});
@@ -160,6 +167,9 @@ void add_sl_command(CLI::App& app) {
     cmd->add_option("--max-ray-gap", opts->max_ray_gap_mm, "Largest ray gap, mm")
         ->capture_default_str();
     cmd->add_flag("--no-subpixel", opts->no_subpixel, "Integer projector coordinates only");
+    cmd->add_option("--threads", opts->threads, "Worker threads (0: all cores)")
+        ->capture_default_str()
+        ->check(CLI::NonNegativeNumber);
     cmd->callback([opts] { run_sl_decode(*opts); });
 }
 
