@@ -13,9 +13,8 @@ namespace {
 TEST(PhaseShift, DecodesSubpixelCoordinates) {
     const test::SyntheticRig rig = test::make_rig();
     const PatternSequence sequence{.gray = rig.projector, .phase = PhaseShiftLayout{}};
-    std::vector<cv::Mat> patterns = make_gray_code_patterns(rig.projector);
-    for (cv::Mat& p : make_phase_shift_patterns(rig.projector, *sequence.phase))
-        patterns.push_back(p);
+    const std::vector<cv::Mat> patterns = make_patterns(sequence);
+    ASSERT_EQ(patterns.size(), sequence.image_count());
     const auto images = test::render(rig, 1, patterns, {.supersample = 2, .bilinear = true});
     auto map = decode_camera(images, sequence, {.sequence = sequence});
     ASSERT_TRUE(map) << map.error().message;

@@ -74,6 +74,15 @@ void fill_cloud(const StereoMatches& matches, const TriangulatedPoints& points,
 
 }  // namespace
 
+std::vector<cv::Mat> make_patterns(const PatternSequence& sequence) {
+    std::vector<cv::Mat> patterns = make_gray_code_patterns(sequence.gray);
+    if (sequence.phase) {
+        for (cv::Mat& p : make_phase_shift_patterns(sequence.gray, *sequence.phase))
+            patterns.push_back(std::move(p));
+    }
+    return patterns;
+}
+
 Expected<ProjectorMap> decode_camera(std::span<const cv::Mat> images,
                                      const PatternSequence& sequence,
                                      const StereoDecodeConfig& config) {

@@ -31,6 +31,10 @@ struct PatternSequence {
     }
 };
 
+/// The projector images of the whole sequence (CV_8UC1, projector size), in order: what a
+/// projector (real or simulated) shows and the cameras capture one by one.
+std::vector<cv::Mat> make_patterns(const PatternSequence& sequence);
+
 struct StereoDecodeConfig {
     PatternSequence sequence;
     GrayCodeDecodeConfig gray;
