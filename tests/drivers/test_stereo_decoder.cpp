@@ -90,3 +90,31 @@ TEST(StereoDecode, ClearErrors) {
 
 }  // namespace
 }  // namespace anascan::drivers::sl
+
+namespace anascan::drivers::sl {
+namespace {
+
+// Gray code + phase shift through the whole pipeline, as the simulated scanner calls it.
+TEST(StereoDecode, PhaseShiftPlane) {
+    const test::SyntheticRig rig = test::make_rig();
+    StereoDecodeConfig config = config_for(rig);
+    config.sequence.phase = PhaseShiftLayout{.period_px = 16, .steps = 4};
+    const auto patterns = make_patterns(config.sequence);
+    const test::RenderOptions options{.supersample = 2, .bilinear = true};
+    const auto cam1 = test::render(rig, 1, patterns, options);
+    const auto cam2 = test::render(rig, 2, patterns, options);
+    auto result = decode_stereo(cam1, cam2, rig.calibration, config);
+    ASSERT_TRUE(result) << result.error().message;
+    ASSERT_GT(result->cloud.size(), 50000u);
+    std::vector<double> plane;
+    for (const Eigen::Vector3f& p : result->cloud.positions)
+        plane.push_back(std::abs(rig.plane_normal.dot(p.cast<double>()) - rig.plane_offset_m));
+    std::sort(plane.begin(), plane.end());
+    std::printf("phase shift: %zu points; distance to the plane: median %.3f mm, 99 %% %.3f mm\n",
+                plane.size(), plane[plane.size() / 2] * 1e3, plane[plane.size() * 99 / 100] * 1e3);
+    EXPECT_LT(plane[plane.size() / 2], 0.1e-3);
+    EXPECT_LT(plane[plane.size() * 99 / 100], 0.5e-3);
+}
+
+}  // namespace
+}  // namespace anascan::drivers::sl
