@@ -5,6 +5,8 @@
 // reprojectImageTo3D); no start-up, no file written, i.e. in OpenCV's favour.
 // Usage: anascan_bench_sl_decode [SIDE [REPEATS]]   (SIDE: statue_front_side by default)
 
+#include <sys/resource.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -23,6 +25,14 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
+/// User + system CPU time of this process (or of its finished children), seconds.
+double cpu_seconds(int who) {
+    rusage u{};
+    ::getrusage(who, &u);
+    const auto s = [](const timeval& t) { return double(t.tv_sec) + 1e-6 * double(t.tv_usec); };
+    return s(u.ru_utime) + s(u.ru_stime);
+}
+
 double median(std::vector<double> v) {
     std::sort(v.begin(), v.end());
     return v[v.size() / 2];
@@ -35,8 +45,10 @@ std::string load_average() {
     return a + " " + b + " " + c;
 }
 
-/// Median wall time of the command over `repeats` runs, seconds; its stdout in `report`.
-double time_command(const std::string& side_dir, int threads, int repeats, std::string& report) {
+/// Median wall time of the command over `repeats` runs, seconds; its stdout in `report`,
+/// its mean CPU time (user + system) in `cpu_s`.
+double time_command(const std::string& side_dir, int threads, int repeats, std::string& report,
+                    double& cpu_s) {
     const fs::path out = fs::temp_directory_path() / "anascan_bench_sl.ply";
     const fs::path log = fs::temp_directory_path() / "anascan_bench_sl.txt";
     const std::string cmd = std::string(ANASCAN_CLI) + " -q sl decode --calibration " +
@@ -46,11 +58,13 @@ double time_command(const std::string& side_dir, int threads, int repeats, std::
                             std::to_string(threads) + " --out " + out.string() + " > " +
                             log.string();
     std::vector<double> times;
+    const double cpu0 = cpu_seconds(RUSAGE_CHILDREN);
     for (int i = 0; i < repeats; ++i) {
         const auto t0 = Clock::now();
         if (std::system(cmd.c_str()) != 0) return -1.0;
         times.push_back(std::chrono::duration<double>(Clock::now() - t0).count());
     }
+    cpu_s = (cpu_seconds(RUSAGE_CHILDREN) - cpu0) / repeats;
     std::ifstream in(log);
     report.clear();
     for (std::string line; std::getline(in, line);) report += line + "\n";
@@ -75,12 +89,15 @@ int main(int argc, char** argv) {
                 cam1->size(), cam2->size(), std::thread::hardware_concurrency(),
                 load_average().c_str());
     std::string report;
-    const double ours_all = time_command(dir, 0, repeats, report);
-    std::printf("anascan sl decode, all cores: %.3f s (median of %d)\n%s", ours_all, repeats,
-                report.c_str());
-    const double ours_one = time_command(dir, 1, repeats, report);
-    std::printf("anascan sl decode, 1 thread:  %.3f s (median of %d)\n", ours_one, repeats);
+    double cpu_all = 0.0, cpu_one = 0.0;
+    const double ours_all = time_command(dir, 0, repeats, report, cpu_all);
+    std::printf("anascan sl decode, all cores: %.3f s wall (median of %d), %.3f s CPU\n%s",
+                ours_all, repeats, cpu_all, report.c_str());
+    const double ours_one = time_command(dir, 1, repeats, report, cpu_one);
+    std::printf("anascan sl decode, 1 thread:  %.3f s wall (median of %d), %.3f s CPU\n", ours_one,
+                repeats, cpu_one);
     std::vector<double> peer_times;
+    const double peer_cpu0 = cpu_seconds(RUSAGE_SELF);
     anascan::test::OpenCvGrayCodeResult peer;
     for (int i = 0; i < std::max(1, repeats / 2); ++i) {
         peer = anascan::test::run_opencv_graycode(ANASCAN_STATUE_DIR "/calibrationParameters.yml",
@@ -92,14 +109,19 @@ int main(int argc, char** argv) {
         peer_times.push_back(peer.total_s);
     }
     const double opencv = median(peer_times);
-    std::printf("OpenCV path: %.3f s (load+rectify %.3f s, decode %.3f s), %zu points\n", opencv,
-                peer.load_s, peer.decode_s, peer.cloud.size());
+    const double opencv_cpu = (cpu_seconds(RUSAGE_SELF) - peer_cpu0) / double(peer_times.size());
+    std::printf(
+        "OpenCV path: %.3f s wall (load+rectify %.3f s, decode %.3f s), %.3f s CPU, "
+        "%zu points\n",
+        opencv, peer.load_s, peer.decode_s, opencv_cpu, peer.cloud.size());
     if (ours_all <= 0.0 || ours_one <= 0.0) {
         std::printf("anascan sl decode failed\n");
         return 1;
     }
-    std::printf("speed-up (OpenCV / ours): %.1fx on all cores, %.1fx on 1 thread\n",
-                opencv / ours_all, opencv / ours_one);
+    std::printf(
+        "speed-up (OpenCV / ours), wall: %.1fx on all cores, %.1fx on 1 thread; "
+        "CPU time: %.1fx\n",
+        opencv / ours_all, opencv / ours_one, opencv_cpu / cpu_all);
     std::printf("load average after: %s\n", load_average().c_str());
     return 0;
 }
