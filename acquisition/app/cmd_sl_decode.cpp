@@ -106,6 +106,12 @@ void run_sl_decode(const SlDecodeOptions& o) {
     auto result = sl::decode_stereo(all.first(n), all.subspan(n), *calibration, config);
     if (!result) fail_command(result.error());
     const double decode_s = seconds_since(t0) - load_s;
+    if (2 * result->rejected_ray_gap > result->matched) {
+        spdlog::warn(
+            "{} of {} matches miss by more than {} mm: wrong camera order "
+            "(--swap-cameras), calibration unit or calibration?",
+            result->rejected_ray_gap, result->matched, o.max_ray_gap_mm);
+    }
     if (auto ok = io::write_ply(o.output, result->cloud); !ok) fail_command(ok.error());
     const double total_s = seconds_since(t0);
     const auto& r = *result;
