@@ -5,6 +5,7 @@
 /// inverse, then an all-white and an all-black image. Pattern bit = Gray code bit of the
 /// projector column (row); bright (255) means 1.
 
+#include <cstdint>
 #include <opencv2/core/mat.hpp>
 #include <span>
 #include <string>
