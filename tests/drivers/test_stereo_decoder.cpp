@@ -1,4 +1,5 @@
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include <cmath>
 #include <cstdio>
@@ -59,9 +60,10 @@ TEST(StereoDecode, PlaneIsReconstructed) {
     EXPECT_LT(result->median_ray_gap_m, 0.5e-3);  // Exact calibration: rays meet.
 }
 
-TEST(StereoDecode, DeterministicAcrossRuns) {
+TEST(StereoDecode, SameResultOnOneThread) {
     const Capture& c = capture();
     auto a = decode_stereo(c.cam1, c.cam2, c.rig.calibration, config_for(c.rig));
+    const tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
     auto b = decode_stereo(c.cam1, c.cam2, c.rig.calibration, config_for(c.rig));
     ASSERT_TRUE(a && b);
     ASSERT_EQ(a->cloud.size(), b->cloud.size());
