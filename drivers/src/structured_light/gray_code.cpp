@@ -98,7 +98,7 @@ void decode_axis_row(std::span<const cv::Mat> images, const Axis& axis, int y,
 }
 
 void decode_row(std::span<const cv::Mat> images, const GrayCodeLayout& layout, int y,
-                const GrayCodeDecodeConfig& config, ProjectorMap& map) {
+                const GrayCodeDecodeConfig& config, PackedRow& packed, ProjectorMap& map) {
     const int width = images[0].cols;
     const std::uint8_t* white = images[layout.white_index()].ptr<std::uint8_t>(y);
     const std::uint8_t* black = images[layout.black_index()].ptr<std::uint8_t>(y);
@@ -107,7 +107,6 @@ void decode_row(std::span<const cv::Mat> images, const GrayCodeLayout& layout, i
         const int c = int(white[x]) - int(black[x]);
         contrast[x] = c >= config.min_contrast ? std::uint8_t(c) : 0;
     }
-    thread_local PackedRow packed;
     const Axis columns{0, layout.column_bits(), layout.projector_width_px};
     const Axis rows{2 * layout.column_bits(), layout.row_bits(), layout.projector_height_px};
     float* col = map.column_px.ptr<float>(y);
@@ -192,8 +191,9 @@ Expected<ProjectorMap> decode_gray_code(std::span<const cv::Mat> images,
                      .white = images[layout.white_index()]};
     tbb::parallel_for(tbb::blocked_range<int>(0, size.height, 16),
                       [&](const tbb::blocked_range<int>& r) {
+                          PackedRow packed;  // Scratch, reused over the block's rows.
                           for (int y = r.begin(); y < r.end(); ++y)
-                              decode_row(images, layout, y, config, map);
+                              decode_row(images, layout, y, config, packed, map);
                       });
     map.valid_count = std::size_t(cv::countNonZero(map.contrast));
     return map;
