@@ -1,0 +1,47 @@
+#pragma once
+/// \file
+/// Calibration of a two-camera structured-light scanner, read from OpenCV FileStorage YAML
+/// (the keys written by OpenCV's stereo calibration samples: cam1_intrinsics,
+/// cam1_distorsion, cam1_size, cam2_..., R, T).
+
+#include <Eigen/Core>
+#include <filesystem>
+#include <vector>
+
+#include "anascan/processing/expected.hpp"
+#include "anascan/processing/pose.hpp"
+
+namespace anascan::drivers::sl {
+
+/// Pinhole camera with OpenCV's distortion model.
+struct CameraIntrinsics {
+    Eigen::Matrix3d K = Eigen::Matrix3d::Identity();  ///< Camera matrix, pixels.
+    std::vector<double> distortion;  ///< OpenCV order: k1 k2 p1 p2 [k3 [k4 k5 k6]]; may be empty.
+    int width_px = 0;                ///< Image size the calibration belongs to.
+    int height_px = 0;
+};
+
+/// Both cameras, labelled like the image sequences they belong to (cam1 = the `--cam1`
+/// images). The reconstruction frame is cam1's: x right, y down, z forward, metres.
+struct StereoCalibration {
+    CameraIntrinsics cam1;
+    CameraIntrinsics cam2;
+    Pose T_cam1_cam2 = Pose::Identity();  ///< X_cam1 = T_cam1_cam2 * X_cam2, metres.
+};
+
+/// How to read a calibration file.
+struct StereoCalibrationLoadConfig {
+    /// The file's "cam1" is the camera of the cam2 images and vice versa (true for the
+    /// GSoC 2015 statue data set, see docs/structured-light.md). Without the swap the file
+    /// follows OpenCV's stereoCalibrate convention X_cam2 = R * X_cam1 + T.
+    bool swap_cameras = false;
+    /// Length of one unit of the file's T, metres (calibration boards in mm: 1e-3).
+    double file_unit_m = 1e-3;
+};
+
+/// Reads and checks a calibration (3x3 matrices, positive focal lengths, a rotation R,
+/// image sizes). Errors name the file and the key.
+Expected<StereoCalibration> load_stereo_calibration(const std::filesystem::path& path,
+                                                    const StereoCalibrationLoadConfig& config);
+
+}  // namespace anascan::drivers::sl

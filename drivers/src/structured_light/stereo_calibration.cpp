@@ -1,0 +1,105 @@
+#include "anascan/drivers/structured_light/stereo_calibration.hpp"
+
+#include <Eigen/Geometry>
+#include <opencv2/core.hpp>
+#include <string>
+
+namespace anascan::drivers::sl {
+namespace {
+
+/// A matrix of doubles stored under `key` with the given shape (cols 0: any).
+Expected<cv::Mat> read_matrix(const cv::FileStorage& fs, const std::string& file,
+                              const std::string& key, int rows, int cols) {
+    const cv::FileNode node = fs[key];
+    if (node.empty()) return fail(ErrorCode::kFormat, file + ": missing key '" + key + "'");
+    cv::Mat m;
+    node >> m;
+    if (m.empty() || m.channels() != 1 || m.rows != rows || (cols > 0 && m.cols != cols)) {
+        return fail(ErrorCode::kFormat, file + ": '" + key + "' is not a " + std::to_string(rows) +
+                                            "x" + (cols > 0 ? std::to_string(cols) : "N") +
+                                            " matrix");
+    }
+    cv::Mat d;
+    m.convertTo(d, CV_64F);
+    return d;
+}
+
+Expected<CameraIntrinsics> read_camera(const cv::FileStorage& fs, const std::string& file,
+                                       const std::string& name) {
+    auto K = read_matrix(fs, file, name + "_intrinsics", 3, 3);
+    if (!K) return fail(K.error());
+    CameraIntrinsics cam;
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) cam.K(r, c) = K->at<double>(r, c);
+    if (!(cam.K(0, 0) > 0.0) || !(cam.K(1, 1) > 0.0) || cam.K(2, 2) != 1.0)
+        return fail(ErrorCode::kFormat,
+                    file + ": '" + name + "_intrinsics' is not a camera matrix");
+    // OpenCV's samples spell it "distorsion"; accept the English spelling too.
+    cv::FileNode dist = fs[name + "_distorsion"];
+    if (dist.empty()) dist = fs[name + "_distortion"];
+    if (!dist.empty()) {
+        cv::Mat d;
+        dist >> d;
+        if (d.total() > 8 || (d.rows != 1 && d.cols != 1))
+            return fail(ErrorCode::kFormat, file + ": '" + name + "' distortion is not a vector");
+        d.convertTo(d, CV_64F);
+        cam.distortion.assign(d.begin<double>(), d.end<double>());
+    }
+    const cv::FileNode size = fs[name + "_size"];
+    if (size.isSeq() && size.size() == 2 && size[0].isInt() && size[1].isInt()) {
+        cam.width_px = int(size[0]);
+        cam.height_px = int(size[1]);
+    }
+    if (cam.width_px <= 0 || cam.height_px <= 0)
+        return fail(ErrorCode::kFormat, file + ": missing or bad '" + name + "_size' [w, h]");
+    return cam;
+}
+
+Expected<Pose> read_extrinsics(const cv::FileStorage& fs, const std::string& file, double unit_m) {
+    auto R = read_matrix(fs, file, "R", 3, 3);
+    if (!R) return fail(R.error());
+    auto T = read_matrix(fs, file, "T", 3, 1);
+    if (!T) return fail(T.error());
+    Pose pose = Pose::Identity();
+    for (int r = 0; r < 3; ++r) {
+        for (int c = 0; c < 3; ++c) pose.linear()(r, c) = R->at<double>(r, c);
+        pose.translation()(r) = T->at<double>(r) * unit_m;
+    }
+    const Eigen::Matrix3d RtR = pose.linear().transpose() * pose.linear();
+    if (!RtR.isIdentity(1e-6) || pose.linear().determinant() < 0.0)
+        return fail(ErrorCode::kFormat, file + ": 'R' is not a rotation matrix");
+    return pose;
+}
+
+}  // namespace
+
+Expected<StereoCalibration> load_stereo_calibration(const std::filesystem::path& path,
+                                                    const StereoCalibrationLoadConfig& config) {
+    const std::string file = path.string();
+    if (!(config.file_unit_m > 0.0))
+        return fail(ErrorCode::kInvalidArgument, "calibration unit must be positive");
+    if (!std::filesystem::is_regular_file(path))
+        return fail(ErrorCode::kIo, file + ": no such calibration file");
+    cv::FileStorage fs;
+    try {
+        if (!fs.open(file, cv::FileStorage::READ | cv::FileStorage::FORMAT_AUTO))
+            return fail(ErrorCode::kFormat, file + ": not an OpenCV FileStorage file");
+        auto first = read_camera(fs, file, "cam1");
+        if (!first) return fail(first.error());
+        auto second = read_camera(fs, file, "cam2");
+        if (!second) return fail(second.error());
+        auto T_second_first = read_extrinsics(fs, file, config.file_unit_m);
+        if (!T_second_first) return fail(T_second_first.error());
+        // The file's R, T map its first camera into its second: X_2 = R X_1 + T.
+        if (config.swap_cameras) {
+            return StereoCalibration{
+                .cam1 = *second, .cam2 = *first, .T_cam1_cam2 = *T_second_first};
+        }
+        return StereoCalibration{
+            .cam1 = *first, .cam2 = *second, .T_cam1_cam2 = T_second_first->inverse()};
+    } catch (const cv::Exception& e) {
+        return fail(ErrorCode::kFormat, file + ": " + e.msg);
+    }
+}
+
+}  // namespace anascan::drivers::sl
