@@ -108,7 +108,12 @@ Scene make_scene(const SceneConfig& config) {
     Scene scene{.name = config.name, .block_size_m = config.block.size_m.cwiseAbs()};
     scene.T_world_block = block_pose(config.placement, scene.block_size_m);
     Mesh block = make_stone_block(config.block);
-    block.vertices = transformed(block.vertices, scene.T_world_block);
+    // World coordinates in the positions themselves (origin 0), so that the exported PLY
+    // is in the world frame for every viewer.
+    for (Eigen::Vector3f& p : block.vertices.positions)
+        p = (scene.T_world_block * p.cast<double>()).cast<float>();
+    for (Eigen::Vector3f& n : block.vertices.normals)
+        n = (scene.T_world_block.linear() * n.cast<double>()).cast<float>();
     append_part(scene, block, SurfaceKind::kStone);
     const double hx = 0.5 * config.tent_size_m.x(), hy = 0.5 * config.tent_size_m.y();
     append_part(scene, quad({-hx, -hy, 0}, {2 * hx, 0, 0}, {0, 2 * hy, 0}, 0.5),

@@ -74,22 +74,38 @@ RangeImage cast_sweep(const RayCaster& caster, const std::vector<float>& albedo_
     return image;
 }
 
-// The measured range of pixel i: a mixed pixel between it and its most distant neighbour
-// (when the jump exceeds the threshold and the draw says so), plus Gaussian noise.
+// Range of the surface across a depth edge at pixel (row, col), or NaN: along each grid
+// direction the range's second difference exceeds the jump where the surface breaks (a
+// smooth slanted surface has a small one); the far side is the neighbour farther away.
+double across_edge_range(const TofScannerConfig& c, const SweepGrid& grid, const RangeImage& image,
+                         int row, int col) {
+    auto range_at = [&](int r, int k) {
+        if (r < 0 || r >= grid.rows) return static_cast<double>(NAN);
+        return image.range_m[std::size_t(r) * grid.cols + (k + grid.cols) % grid.cols];
+    };
+    const double r0 = range_at(row, col);
+    double other = NAN, best_jump = c.mixed_pixel_jump_m;
+    const std::array<std::array<int, 2>, 2> axes{{{1, 0}, {0, 1}}};
+    for (const auto& [dr, dc] : axes) {
+        const double before = range_at(row - dr, col - dc), after = range_at(row + dr, col + dc);
+        if (!std::isfinite(before) || !std::isfinite(after)) continue;
+        const double jump = std::abs(after - 2.0 * r0 + before);
+        if (jump <= best_jump) continue;
+        best_jump = jump;
+        other = std::abs(after - r0) > std::abs(before - r0) ? after : before;
+    }
+    return other;
+}
+
+// The measured range of pixel (row, col): at a depth edge, with the configured
+// probability, a mixed pixel uniformly between the two surfaces; plus Gaussian noise.
 double measured_range(const TofScannerConfig& c, const SweepGrid& grid, const RangeImage& image,
                       int row, int col, bool& mixed) {
     const std::size_t i = std::size_t(row) * grid.cols + col;
     const double r = image.range_m[i];
-    double other = r;
-    const std::array<std::array<int, 2>, 4> offsets{{{-1, 0}, {1, 0}, {0, -1}, {0, 1}}};
-    for (const auto& [dr, dc] : offsets) {
-        const int nr = row + dr, nc = (col + dc + grid.cols) % grid.cols;
-        if (nr < 0 || nr >= grid.rows) continue;
-        const double rn = image.range_m[std::size_t(nr) * grid.cols + nc];
-        if (std::isfinite(rn) && std::abs(rn - r) > std::abs(other - r)) other = rn;
-    }
     const std::uint64_t h = detail::hash3(c.seed, i);
-    mixed = std::abs(other - r) > c.mixed_pixel_jump_m &&
+    const double other = across_edge_range(c, grid, image, row, col);
+    mixed = std::isfinite(other) &&
             detail::unit_from_hash(detail::mix64(h + 1)) < c.mixed_pixel_probability;
     const double mixed_r =
         mixed ? r + detail::unit_from_hash(detail::mix64(h + 2)) * (other - r) : r;

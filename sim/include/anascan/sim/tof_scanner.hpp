@@ -23,8 +23,8 @@ struct TofScannerConfig {
     double min_range_m = 2.0;            ///< Closer returns are dropped.
     double max_range_m = 800.0;          ///< Farther returns are dropped.
     double range_noise_sigma_m = 0.007;  ///< Gaussian noise along the ray.
-    /// Mixed pixels: where the true range jumps by more than this to a grid neighbour, the
-    /// beam straddles both surfaces...
+    /// Mixed pixels: where the true range breaks by more than this between grid neighbours
+    /// (second difference along a row or column), the beam straddles both surfaces...
     double mixed_pixel_jump_m = 0.05;
     /// ...and with this probability returns a range between them (uniform in the gap).
     double mixed_pixel_probability = 0.5;
