@@ -80,6 +80,9 @@ Expected<void> write_stereo_calibration(const std::filesystem::path& path,
     const cv::Size size(rig.cam1.width_px, rig.cam1.height_px);
     cv::Mat R1, R2, P1, P2, Q;
     cv::stereoRectify(K1, dist, K2, dist, size, R, T, R1, R2, P1, P2, Q);
+    const std::filesystem::path folder = path.parent_path();
+    if (!folder.empty() && !std::filesystem::is_directory(folder))
+        return fail(ErrorCode::kIo, path.string() + ": cannot write, no folder " + folder.string());
     cv::FileStorage fs;
     try {
         if (!fs.open(path.string(), cv::FileStorage::WRITE | cv::FileStorage::FORMAT_YAML))

@@ -149,10 +149,10 @@ TEST_F(StructuredLightTest, PhaseShiftGivesSubPixelProjectorColumns) {
             const auto xy = lit_projector_xy(*caster_, r, r.cam1, x, y);
             if (!xy) continue;
             double s = 0.0, co = 0.0;
-            for (int k = 0; k < 4; ++k) {
+            for (int k = 0; k < config.patterns.phase_steps; ++k) {
                 const double v = capture.cam1[44 + k].at<std::uint8_t>(y, x);
-                s += v * std::sin(0.5 * std::numbers::pi * k);
-                co += v * std::cos(0.5 * std::numbers::pi * k);
+                s += v * std::sin(2.0 * std::numbers::pi * k / config.patterns.phase_steps);
+                co += v * std::cos(2.0 * std::numbers::pi * k / config.patterns.phase_steps);
             }
             const double expected = 2.0 * std::numbers::pi * xy->x() / period;
             const double e = std::remainder(std::atan2(s, co) - expected, 2.0 * std::numbers::pi);
@@ -163,7 +163,7 @@ TEST_F(StructuredLightTest, PhaseShiftGivesSubPixelProjectorColumns) {
     ASSERT_GT(n, 10000);
     const double rms_px = std::sqrt(sum2 / n) * period / (2.0 * std::numbers::pi);
     std::printf("phase error RMS %.4f projector px over %d pixels\n", rms_px, n);
-    EXPECT_LT(rms_px, 0.1);
+    EXPECT_LT(rms_px, 0.07);
 }
 
 TEST_F(StructuredLightTest, ProjectorShadowsStayDarkAndLitSurfacesBright) {

@@ -13,9 +13,9 @@ namespace anascan::sim {
 struct PatternSequenceConfig {
     int width_px = 1280;  ///< Projector resolution.
     int height_px = 800;
-    int phase_steps = 4;          ///< Shifts per axis (0: no phase patterns).
-    double phase_period_px = 16;  ///< Sinusoid period in projector pixels.
-    bool row_phase = true;        ///< Also shift a sinusoid along the rows.
+    int phase_steps = 4;         ///< Shifts per axis (0: no phase patterns).
+    double phase_period_px = 8;  ///< Sinusoid period in projector pixels.
+    bool row_phase = true;       ///< Also shift a sinusoid along the rows.
 };
 
 enum class PatternKind { kGrayCode, kWhite, kBlack, kPhase };
