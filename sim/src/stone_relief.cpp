@@ -83,29 +83,15 @@ double ornament_m(const StoneBlockConfig& config, const FaceFrame& frame, double
 }  // namespace
 
 FaceFrame face_frame(BlockFace face, const Eigen::Vector3d& half_m) {
-    const Eigen::Vector3d x = Eigen::Vector3d::UnitX(), y = Eigen::Vector3d::UnitY(),
-                          z = Eigen::Vector3d::UnitZ();
-    FaceFrame f{.face = face};
-    switch (face) {
-        case BlockFace::kPosX:
-            f.n = x, f.a = y, f.b = z;
-            break;
-        case BlockFace::kNegX:
-            f.n = -x, f.a = z, f.b = y;
-            break;
-        case BlockFace::kPosY:
-            f.n = y, f.a = z, f.b = x;
-            break;
-        case BlockFace::kNegY:
-            f.n = -y, f.a = x, f.b = z;
-            break;
-        case BlockFace::kPosZ:
-            f.n = z, f.a = x, f.b = y;
-            break;
-        case BlockFace::kNegZ:
-            f.n = -z, f.a = y, f.b = x;
-            break;
-    }
+    // Normal axis, first and second in-face axes (a x b = n), as signed axis indices + 1.
+    static constexpr int kAxes[kBlockFaceCount][3] = {{1, 2, 3},  {-1, 3, 2}, {2, 3, 1},
+                                                      {-2, 1, 3}, {3, 1, 2},  {-3, 2, 1}};
+    auto axis = [](int signed_index) {
+        return static_cast<double>(signed_index > 0 ? 1 : -1) *
+               Eigen::Vector3d::Unit(std::abs(signed_index) - 1);
+    };
+    const int* axes = kAxes[static_cast<int>(face)];
+    FaceFrame f{.face = face, .n = axis(axes[0]), .a = axis(axes[1]), .b = axis(axes[2])};
     f.half_a_m = f.a.cwiseAbs().dot(half_m);
     f.half_b_m = f.b.cwiseAbs().dot(half_m);
     f.half_n_m = f.n.cwiseAbs().dot(half_m);
