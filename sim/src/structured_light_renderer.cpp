@@ -101,27 +101,38 @@ SurfaceImage trace_surface(const Scenery& s, const PinholeModel& cam) {
     return image;
 }
 
-// Mean pattern level over [centre - width/2, centre + width/2] in projector pixels, the
-// pattern being constant over each projector pixel [c - 0.5, c + 0.5) (zero outside).
-float box_filtered(const std::vector<float>& levels, double centre, double width) {
-    const double lo = centre - 0.5 * width, hi = centre + 0.5 * width;
-    const int n = static_cast<int>(levels.size());
-    double sum = 0.0;
-    for (int c = static_cast<int>(std::floor(lo + 0.5));
-         c <= static_cast<int>(std::floor(hi + 0.5)); ++c) {
-        const double overlap = std::min(hi, c + 0.5) - std::max(lo, c - 0.5);
-        if (overlap > 0.0 && c >= 0 && c < n) sum += overlap * levels[c];
+// A pattern along one projector axis, constant over each projector pixel
+// [c - 0.5, c + 0.5) and zero outside, with its running integral for O(1) box filtering.
+struct PatternProfile {
+    std::vector<float> levels;
+    std::vector<double> integral;  ///< integral[c] = sum of levels[0..c).
+
+    PatternProfile(const PatternSequenceConfig& config, const Pattern& pattern)
+        : levels(static_cast<std::size_t>(pattern.columns ? config.width_px : config.height_px)),
+          integral(levels.size() + 1, 0.0) {
+        for (std::size_t c = 0; c < levels.size(); ++c) {
+            levels[c] = static_cast<float>(pattern_level(config, pattern, static_cast<int>(c)));
+            integral[c + 1] = integral[c] + levels[c];
+        }
     }
-    return static_cast<float>(sum / width);
-}
+
+    // Integral of the pattern from -0.5 to x (projector pixel coordinates).
+    double cumulative(double x) const {
+        const double shifted = std::clamp(x + 0.5, 0.0, static_cast<double>(levels.size()));
+        const auto c = std::min(static_cast<std::size_t>(shifted), levels.size() - 1);
+        return integral[c] + (shifted - static_cast<double>(c)) * levels[c];
+    }
+
+    // Mean level over [centre - width / 2, centre + width / 2].
+    float box_filtered(double centre, double width) const {
+        return static_cast<float>(
+            (cumulative(centre + 0.5 * width) - cumulative(centre - 0.5 * width)) / width);
+    }
+};
 
 cv::Mat render_pattern(const SurfaceImage& surface, const StructuredLightRenderConfig& config,
                        const Pattern& pattern, std::uint64_t noise_seed) {
-    const PatternSequenceConfig& pc = config.patterns;
-    std::vector<float> levels(
-        static_cast<std::size_t>(pattern.columns ? pc.width_px : pc.height_px));
-    for (std::size_t c = 0; c < levels.size(); ++c)
-        levels[c] = static_cast<float>(pattern_level(pc, pattern, static_cast<int>(c)));
+    const PatternProfile profile(config.patterns, pattern);
     const int axis = pattern.columns ? 0 : 1;
     const double blur_var = 12.0 * config.projector_blur_sigma_px * config.projector_blur_sigma_px;
     cv::Mat radiance(surface.albedo.size(), CV_32F);
@@ -132,8 +143,8 @@ cv::Mat render_pattern(const SurfaceImage& surface, const StructuredLightRenderC
             if (light > 0.0f) {
                 const double centre = surface.truth.projector_xy.at<cv::Vec2f>(y, x)[axis];
                 const double w = surface.footprint.at<cv::Vec2f>(y, x)[axis];
-                level = box_filtered(levels, centre,
-                                     std::clamp(std::sqrt(w * w + blur_var), 0.05, 16.0));
+                level = profile.box_filtered(centre,
+                                             std::clamp(std::sqrt(w * w + blur_var), 0.05, 16.0));
             }
             radiance.at<float>(y, x) =
                 static_cast<float>(config.exposure_dn * surface.albedo.at<float>(y, x) *
@@ -148,10 +159,10 @@ cv::Mat render_pattern(const SurfaceImage& surface, const StructuredLightRenderC
             const double signal = radiance.at<float>(y, x);
             const double sigma = std::sqrt(config.read_noise_dn * config.read_noise_dn +
                                            config.shot_noise_dn2_per_dn * std::max(signal, 0.0));
-            const double noise = sigma * detail::normal_from_hash(detail::hash3(
+            const double noise = sigma * detail::fast_normal_from_hash(detail::hash3(
                                              noise_seed, std::uint64_t(y) * image.cols + x));
             image.at<std::uint8_t>(y, x) =
-                cv::saturate_cast<std::uint8_t>(std::lround(signal + noise));
+                cv::saturate_cast<std::uint8_t>(signal + noise);  // Rounds.
         }
     }
     return image;
