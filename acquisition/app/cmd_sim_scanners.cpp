@@ -107,8 +107,7 @@ void run_sl(const SlOptions& o) {
     spdlog::info("rendered 2 x {} images in {:.2f} s", capture->patterns.size(),
                  seconds_since(start));
     const fs::path dir(o.scene.out);
-    if (auto ok = sim::write_structured_light_capture(dir, *capture, rig); !ok)
-        fail_command(ok.error());
+    if (auto ok = sim::write_structured_light_capture(dir, *capture); !ok) fail_command(ok.error());
     Mesh stone = sim::surface_mesh(scene, sim::SurfaceKind::kStone);
     stone.vertices = transformed(stone.vertices, rig.cam1.T_world_device.inverse());
     if (auto ok = io::write_ply(dir / "stone_in_cam1.ply", stone); !ok) fail_command(ok.error());

@@ -28,15 +28,14 @@ Expected<void> write_images(const fs::path& dir, const char* camera,
 }  // namespace
 
 Expected<void> write_structured_light_capture(const fs::path& dir,
-                                              const StructuredLightCapture& capture,
-                                              const StructuredLightRig& rig) {
+                                              const StructuredLightCapture& capture) {
     std::error_code ec;
     fs::create_directories(dir, ec);
     if (ec)
         return fail(ErrorCode::kIo, dir.string() + ": cannot create the folder: " + ec.message());
     if (auto ok = write_images(dir, "cam1", capture.cam1); !ok) return ok;
     if (auto ok = write_images(dir, "cam2", capture.cam2); !ok) return ok;
-    return write_stereo_calibration(dir / "calibration.yml", rig);
+    return write_stereo_calibration(dir / "calibration.yml", capture.rig);
 }
 
 }  // namespace anascan::sim

@@ -194,7 +194,7 @@ Expected<StructuredLightCapture> render_structured_light(
         rig.cam2.height_px <= 0)
         return fail(ErrorCode::kInvalidArgument, "sim:structured-light: empty camera image size");
     const Scenery scenery{caster, albedo_of_triangle, rig.projector, config};
-    StructuredLightCapture capture{.patterns = pattern_sequence(config.patterns)};
+    StructuredLightCapture capture{.rig = rig, .patterns = pattern_sequence(config.patterns)};
     capture.cam1 = render_camera(scenery, rig.cam1, capture.patterns, 1, capture.truth1);
     capture.cam2 = render_camera(scenery, rig.cam2, capture.patterns, 2, capture.truth2);
     return capture;

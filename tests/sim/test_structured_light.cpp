@@ -217,6 +217,11 @@ TEST_F(StructuredLightTest, SameSeedSameImagesAndBadProjectorSizeIsAnError) {
     }
     EXPECT_EQ(diff_same, 0.0);
     EXPECT_GT(diff_other, 0.0);
+    // The capture carries its true poses; writing it into an impossible folder is an error.
+    EXPECT_TRUE(a.rig.cam2.T_world_device.isApprox(r.cam2.T_world_device, 0.0));
+    const auto written = write_structured_light_capture("/proc/anascan-no-such/dir", a);
+    ASSERT_FALSE(written.has_value());
+    EXPECT_NE(written.error().message.find("/proc/anascan-no-such/dir"), std::string::npos);
     StructuredLightRenderConfig mismatch;
     mismatch.patterns.width_px = 1024;
     EXPECT_EQ(render_structured_light(*caster_, {}, r, mismatch).error().code,

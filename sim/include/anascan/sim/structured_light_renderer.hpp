@@ -38,6 +38,7 @@ struct CameraTruth {
 };
 
 struct StructuredLightCapture {
+    StructuredLightRig rig;         ///< The rig with its true poses (T_world_device).
     std::vector<Pattern> patterns;  ///< In projection order.
     std::vector<cv::Mat> cam1;      ///< CV_8UC1 images, one per pattern.
     std::vector<cv::Mat> cam2;
@@ -51,9 +52,8 @@ Expected<StructuredLightCapture> render_structured_light(
     const StructuredLightRig& rig, const StructuredLightRenderConfig& config = {});
 
 /// Writes the capture as `dir/pattern_cam{1,2}_imNN.png` (NN from 01, projection order)
-/// and the rig's calibration as `dir/calibration.yml`; creates `dir` if needed.
+/// and its rig's calibration as `dir/calibration.yml`; creates `dir` if needed.
 Expected<void> write_structured_light_capture(const std::filesystem::path& dir,
-                                              const StructuredLightCapture& capture,
-                                              const StructuredLightRig& rig);
+                                              const StructuredLightCapture& capture);
 
 }  // namespace anascan::sim
