@@ -9,6 +9,7 @@ PACKAGES=(
     clang libclang-rt-14-dev           # libFuzzer targets
     libeigen3-dev libnanoflann-dev libtbb-dev
     libopencv-dev libopencv-contrib-dev
+    libembree-dev                      # ray caster of the simulated scanners (sim/)
     libusb-1.0-0-dev libv4l-dev
     libglfw3-dev libimgui-dev libgl-dev libgl1-mesa-dri
     libsqlite3-dev sqlite3

@@ -29,5 +29,9 @@ void add_align_command(CLI::App& app);
 void add_sl_command(CLI::App& app);
 /// Hidden `sim move-scans`: randomly moved copies of the scans of a .conf (for tests).
 void add_sim_command(CLI::App& app);
+/// `sim list-scenes`, `sim export-scene` (registered by add_sim_command on its group).
+void add_sim_scene_commands(CLI::App& sim);
+/// `sim tof-scan`, `sim sl-capture`: simulated scanners on the named scenes.
+void add_sim_scanner_commands(CLI::App& sim);
 
 }  // namespace anascan::cli

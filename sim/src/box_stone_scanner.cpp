@@ -7,6 +7,8 @@
 #include <optional>
 #include <random>
 
+#include "anascan/sim/viewpoints.hpp"
+
 namespace anascan::sim {
 namespace {
 
@@ -20,22 +22,10 @@ constexpr double kMaxRays = 1e9;
 // `distance_m` from its centre, raised by `elevation_deg`; the sensor looks at the centre
 // along its +z, with +x to the right and +y down (camera convention).
 Pose sensor_pose(const BoxStoneScanConfig& config, int view) {
-    const double azimuth = 2.0 * std::numbers::pi * view / config.view_count;
-    const double elevation = config.elevation_deg * kDegToRad;
-    const Eigen::Vector3d position =
-        config.distance_m * Eigen::Vector3d(std::cos(elevation) * std::cos(azimuth),
-                                            std::cos(elevation) * std::sin(azimuth),
-                                            std::sin(elevation));
-    const Eigen::Vector3d forward = -position.normalized();
-    Eigen::Vector3d right = forward.cross(Eigen::Vector3d::UnitZ());
-    if (right.norm() < 1e-9) right = forward.cross(Eigen::Vector3d::UnitX());  // Looking down.
-    right.normalize();
-    Pose T_world_sensor = Pose::Identity();
-    T_world_sensor.linear().col(0) = right;
-    T_world_sensor.linear().col(1) = forward.cross(right);
-    T_world_sensor.linear().col(2) = forward;
-    T_world_sensor.translation() = position;
-    return T_world_sensor;
+    return sensor_looking_at(Eigen::Vector3d::Zero(),
+                             Viewpoint{.azimuth_deg = 360.0 * view / config.view_count,
+                                       .elevation_deg = config.elevation_deg,
+                                       .distance_m = config.distance_m});
 }
 
 // Angles of the ray grid: a ray at (ax, ay) has direction (tan ax, tan ay, 1), normalised,

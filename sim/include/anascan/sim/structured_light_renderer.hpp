@@ -1,0 +1,59 @@
+#pragma once
+/// \file
+/// Simulated structured-light capture: the projector's patterns rendered onto a scene and
+/// imaged by the two cameras of a rig, with ambient light, projector shadows, occlusion,
+/// projector and camera blur, projector pixel quantisation and sensor noise.
+
+#include <cstdint>
+#include <filesystem>
+#include <opencv2/core.hpp>
+#include <vector>
+
+#include "anascan/processing/expected.hpp"
+#include "anascan/sim/pattern_sequence.hpp"
+#include "anascan/sim/ray_caster.hpp"
+#include "anascan/sim/structured_light_rig.hpp"
+
+namespace anascan::sim {
+
+/// Photometry (camera digital numbers, DN, 8-bit) and noise. A surface of albedo a whose
+/// normal makes angle theta with the direction to the projector at distance d shows
+/// exposure_dn * a * (ambient_level + cos(theta) * (reference_distance_m / d)^2 * pattern).
+struct StructuredLightRenderConfig {
+    PatternSequenceConfig patterns;
+    double exposure_dn = 230.0;
+    double ambient_level = 0.08;  ///< Tent light, relative to the projector's white.
+    double reference_distance_m = 1.0;
+    double read_noise_dn = 1.0;            ///< Gaussian sensor noise, DN.
+    double shot_noise_dn2_per_dn = 0.02;   ///< Photon noise variance per DN of signal.
+    double camera_blur_sigma_px = 0.5;     ///< Lens blur, camera pixels (Gaussian).
+    double projector_blur_sigma_px = 0.4;  ///< Projector defocus, projector pixels.
+    std::uint64_t seed = 1;                ///< Same scene, rig and config: identical images.
+};
+
+/// What each camera pixel truly sees (for tests and accuracy checks).
+struct CameraTruth {
+    cv::Mat projector_xy;  ///< CV_32FC2: projector pixel lighting the surface seen; NaN if unlit.
+    cv::Mat depth_m;       ///< CV_32F: z of the surface point in the camera frame; NaN: none.
+};
+
+struct StructuredLightCapture {
+    StructuredLightRig rig;         ///< The rig with its true poses (T_world_device).
+    std::vector<Pattern> patterns;  ///< In projection order.
+    std::vector<cv::Mat> cam1;      ///< CV_8UC1 images, one per pattern.
+    std::vector<cv::Mat> cam2;
+    CameraTruth truth1, truth2;
+};
+
+/// Renders every pattern of the sequence as seen by both cameras of the rig. The rig's
+/// projector must have config.patterns' resolution (kInvalidArgument otherwise).
+Expected<StructuredLightCapture> render_structured_light(
+    const RayCaster& caster, const std::vector<float>& albedo_of_triangle,
+    const StructuredLightRig& rig, const StructuredLightRenderConfig& config = {});
+
+/// Writes the capture as `dir/pattern_cam{1,2}_imNN.png` (NN from 01, projection order)
+/// and its rig's calibration as `dir/calibration.yml`; creates `dir` if needed.
+Expected<void> write_structured_light_capture(const std::filesystem::path& dir,
+                                              const StructuredLightCapture& capture);
+
+}  // namespace anascan::sim

@@ -1,0 +1,41 @@
+#include <cstdio>
+#include <opencv2/imgcodecs.hpp>
+
+#include "anascan/sim/structured_light_renderer.hpp"
+
+namespace anascan::sim {
+namespace {
+
+namespace fs = std::filesystem;
+
+Expected<void> write_images(const fs::path& dir, const char* camera,
+                            const std::vector<cv::Mat>& images) {
+    for (std::size_t i = 0; i < images.size(); ++i) {
+        char name[64];
+        std::snprintf(name, sizeof(name), "pattern_%s_im%02zu.png", camera, i + 1);
+        const fs::path path = dir / name;
+        bool written = false;
+        try {
+            written = cv::imwrite(path.string(), images[i]);
+        } catch (const cv::Exception& e) {
+            return fail(ErrorCode::kIo, path.string() + ": cannot write the image: " + e.what());
+        }
+        if (!written) return fail(ErrorCode::kIo, path.string() + ": cannot write the image");
+    }
+    return {};
+}
+
+}  // namespace
+
+Expected<void> write_structured_light_capture(const fs::path& dir,
+                                              const StructuredLightCapture& capture) {
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec)
+        return fail(ErrorCode::kIo, dir.string() + ": cannot create the folder: " + ec.message());
+    if (auto ok = write_images(dir, "cam1", capture.cam1); !ok) return ok;
+    if (auto ok = write_images(dir, "cam2", capture.cam2); !ok) return ok;
+    return write_stereo_calibration(dir / "calibration.yml", capture.rig);
+}
+
+}  // namespace anascan::sim

@@ -1,0 +1,203 @@
+#include "anascan/sim/structured_light_renderer.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <opencv2/imgproc.hpp>
+
+#include "hash_random.hpp"
+
+namespace anascan::sim {
+namespace {
+
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+// Neighbours whose projector coordinates differ more than this lie across a depth edge
+// and do not tell a pixel's footprint.
+constexpr float kMaxFootprintPx = 8.0f;
+// Shadow rays start this far from the surface so that they do not hit it again.
+constexpr double kShadowOffsetM = 2e-5;
+
+// Per camera pixel: what the surface seen receives from the projector.
+struct SurfaceImage {
+    cv::Mat albedo;     ///< CV_32F, 0 where nothing is hit.
+    cv::Mat light;      ///< CV_32F: cos(theta) (d_ref / d)^2, 0 where unlit.
+    cv::Mat footprint;  ///< CV_32FC2: extent of the pixel in projector columns and rows.
+    CameraTruth truth;
+};
+
+struct Scenery {
+    const RayCaster& caster;
+    const std::vector<float>& albedos;
+    const PinholeModel& projector;
+    const StructuredLightRenderConfig& config;
+};
+
+// Fills pixel (x, y) of `image`: the surface point seen, lit if the projector sees it.
+void sample_pixel(const Scenery& s, const PinholeModel& cam, int x, int y, SurfaceImage& image) {
+    const Eigen::Vector3d origin = cam.T_world_device.translation();
+    const Eigen::Vector3d dir = cam.ray_world(x, y);
+    const auto hit = s.caster.cast(origin, dir);
+    if (!hit) return;
+    const Eigen::Vector3d p = origin + hit->distance_m * dir;
+    const Eigen::Vector3d n =
+        hit->normal.dot(dir) > 0.0 ? Eigen::Vector3d(-hit->normal) : hit->normal;
+    image.albedo.at<float>(y, x) = s.albedos.empty() ? 0.5f : s.albedos[hit->triangle];
+    image.truth.depth_m.at<float>(y, x) =
+        static_cast<float>((cam.T_world_device.inverse() * p).z());
+    const Eigen::Vector3d uvz = s.projector.project(p);
+    const Eigen::Vector3d to_projector = s.projector.T_world_device.translation() - p;
+    const double distance_m = to_projector.norm();
+    const double cos_theta = n.dot(to_projector) / distance_m;
+    if (uvz.z() <= 0.0 || cos_theta <= 0.0 || uvz.x() < -0.5 || uvz.y() < -0.5 ||
+        uvz.x() > s.projector.width_px - 0.5 || uvz.y() > s.projector.height_px - 0.5)
+        return;
+    if (s.caster.occluded(p + kShadowOffsetM * n, to_projector / distance_m, 0.0,
+                          distance_m - 2 * kShadowOffsetM))
+        return;  // Projector shadow.
+    const double falloff = s.config.reference_distance_m / distance_m;
+    image.light.at<float>(y, x) = static_cast<float>(cos_theta * falloff * falloff);
+    image.truth.projector_xy.at<cv::Vec2f>(y, x) =
+        cv::Vec2f(static_cast<float>(uvz.x()), static_cast<float>(uvz.y()));
+}
+
+// Extent of each camera pixel in projector pixels, from neighbouring coordinates.
+void estimate_footprints(SurfaceImage& image) {
+    const cv::Mat& xy = image.truth.projector_xy;
+    auto delta = [&](int y, int x, int dy, int dx) -> cv::Vec2f {
+        const int ny = y + dy, nx = x + dx;
+        if (ny < 0 || nx < 0 || ny >= xy.rows || nx >= xy.cols) return {kNaN, kNaN};
+        const cv::Vec2f d = xy.at<cv::Vec2f>(ny, nx) - xy.at<cv::Vec2f>(y, x);
+        if (std::abs(d[0]) > kMaxFootprintPx || std::abs(d[1]) > kMaxFootprintPx)
+            return {kNaN, kNaN};
+        return d;
+    };
+    auto pick = [](cv::Vec2f a, cv::Vec2f b) { return std::isfinite(a[0]) ? a : b; };
+    tbb::parallel_for(0, xy.rows, [&](int y) {
+        for (int x = 0; x < xy.cols; ++x) {
+            const cv::Vec2f dx = pick(delta(y, x, 0, 1), -delta(y, x, 0, -1));
+            const cv::Vec2f dy = pick(delta(y, x, 1, 0), -delta(y, x, -1, 0));
+            cv::Vec2f extent(1.0f, 1.0f);  // Unknown: about one projector pixel.
+            if (std::isfinite(dx[0]) && std::isfinite(dy[0]))
+                extent =
+                    cv::Vec2f(std::abs(dx[0]) + std::abs(dy[0]), std::abs(dx[1]) + std::abs(dy[1]));
+            image.footprint.at<cv::Vec2f>(y, x) = extent;
+        }
+    });
+}
+
+SurfaceImage trace_surface(const Scenery& s, const PinholeModel& cam) {
+    const cv::Size size(cam.width_px, cam.height_px);
+    SurfaceImage image{.albedo = cv::Mat::zeros(size, CV_32F),
+                       .light = cv::Mat::zeros(size, CV_32F),
+                       .footprint = cv::Mat(size, CV_32FC2, cv::Scalar(1, 1)),
+                       .truth = {.projector_xy = cv::Mat(size, CV_32FC2, cv::Scalar(kNaN, kNaN)),
+                                 .depth_m = cv::Mat(size, CV_32F, cv::Scalar(kNaN))}};
+    tbb::parallel_for(0, size.height, [&](int y) {
+        for (int x = 0; x < size.width; ++x) sample_pixel(s, cam, x, y, image);
+    });
+    estimate_footprints(image);
+    return image;
+}
+
+// A pattern along one projector axis, constant over each projector pixel
+// [c - 0.5, c + 0.5) and zero outside, with its running integral for O(1) box filtering.
+struct PatternProfile {
+    std::vector<float> levels;
+    std::vector<double> integral;  ///< integral[c] = sum of levels[0..c).
+
+    PatternProfile(const PatternSequenceConfig& config, const Pattern& pattern)
+        : levels(static_cast<std::size_t>(pattern.columns ? config.width_px : config.height_px)),
+          integral(levels.size() + 1, 0.0) {
+        for (std::size_t c = 0; c < levels.size(); ++c) {
+            levels[c] = static_cast<float>(pattern_level(config, pattern, static_cast<int>(c)));
+            integral[c + 1] = integral[c] + levels[c];
+        }
+    }
+
+    // Integral of the pattern from -0.5 to x (projector pixel coordinates).
+    double cumulative(double x) const {
+        const double shifted = std::clamp(x + 0.5, 0.0, static_cast<double>(levels.size()));
+        const auto c = std::min(static_cast<std::size_t>(shifted), levels.size() - 1);
+        return integral[c] + (shifted - static_cast<double>(c)) * levels[c];
+    }
+
+    // Mean level over [centre - width / 2, centre + width / 2].
+    float box_filtered(double centre, double width) const {
+        return static_cast<float>(
+            (cumulative(centre + 0.5 * width) - cumulative(centre - 0.5 * width)) / width);
+    }
+};
+
+cv::Mat render_pattern(const SurfaceImage& surface, const StructuredLightRenderConfig& config,
+                       const Pattern& pattern, std::uint64_t noise_seed) {
+    const PatternProfile profile(config.patterns, pattern);
+    const int axis = pattern.columns ? 0 : 1;
+    const double blur_var = 12.0 * config.projector_blur_sigma_px * config.projector_blur_sigma_px;
+    cv::Mat radiance(surface.albedo.size(), CV_32F);
+    for (int y = 0; y < radiance.rows; ++y) {
+        for (int x = 0; x < radiance.cols; ++x) {
+            const float light = surface.light.at<float>(y, x);
+            float level = 0.0f;
+            if (light > 0.0f) {
+                const double centre = surface.truth.projector_xy.at<cv::Vec2f>(y, x)[axis];
+                const double w = surface.footprint.at<cv::Vec2f>(y, x)[axis];
+                level = profile.box_filtered(centre,
+                                             std::clamp(std::sqrt(w * w + blur_var), 0.05, 16.0));
+            }
+            radiance.at<float>(y, x) =
+                static_cast<float>(config.exposure_dn * surface.albedo.at<float>(y, x) *
+                                   (config.ambient_level + light * level));
+        }
+    }
+    if (config.camera_blur_sigma_px > 0.0)
+        cv::GaussianBlur(radiance, radiance, cv::Size(0, 0), config.camera_blur_sigma_px);
+    cv::Mat image(radiance.size(), CV_8UC1);
+    for (int y = 0; y < image.rows; ++y) {
+        for (int x = 0; x < image.cols; ++x) {
+            const double signal = radiance.at<float>(y, x);
+            const double sigma = std::sqrt(config.read_noise_dn * config.read_noise_dn +
+                                           config.shot_noise_dn2_per_dn * std::max(signal, 0.0));
+            const double noise = sigma * detail::fast_normal_from_hash(detail::hash3(
+                                             noise_seed, std::uint64_t(y) * image.cols + x));
+            image.at<std::uint8_t>(y, x) =
+                cv::saturate_cast<std::uint8_t>(signal + noise);  // Rounds.
+        }
+    }
+    return image;
+}
+
+std::vector<cv::Mat> render_camera(const Scenery& s, const PinholeModel& cam,
+                                   const std::vector<Pattern>& patterns, int camera_index,
+                                   CameraTruth& truth) {
+    SurfaceImage surface = trace_surface(s, cam);
+    std::vector<cv::Mat> images(patterns.size());
+    tbb::parallel_for(std::size_t{0}, patterns.size(), [&](std::size_t i) {
+        images[i] = render_pattern(surface, s.config, patterns[i],
+                                   detail::hash3(s.config.seed, std::uint64_t(camera_index), i));
+    });
+    truth = surface.truth;
+    return images;
+}
+
+}  // namespace
+
+Expected<StructuredLightCapture> render_structured_light(
+    const RayCaster& caster, const std::vector<float>& albedo_of_triangle,
+    const StructuredLightRig& rig, const StructuredLightRenderConfig& config) {
+    if (rig.projector.width_px != config.patterns.width_px ||
+        rig.projector.height_px != config.patterns.height_px)
+        return fail(ErrorCode::kInvalidArgument,
+                    "sim:structured-light: the projector resolution differs from the patterns'");
+    if (rig.cam1.width_px <= 0 || rig.cam1.height_px <= 0 || rig.cam2.width_px <= 0 ||
+        rig.cam2.height_px <= 0)
+        return fail(ErrorCode::kInvalidArgument, "sim:structured-light: empty camera image size");
+    const Scenery scenery{caster, albedo_of_triangle, rig.projector, config};
+    StructuredLightCapture capture{.rig = rig, .patterns = pattern_sequence(config.patterns)};
+    capture.cam1 = render_camera(scenery, rig.cam1, capture.patterns, 1, capture.truth1);
+    capture.cam2 = render_camera(scenery, rig.cam2, capture.patterns, 2, capture.truth2);
+    return capture;
+}
+
+}  // namespace anascan::sim
