@@ -57,12 +57,13 @@ Expected<void> check_frame(const Frame& frame, std::string_view source) {
     const std::size_t row = bytes_per_pixel(frame.format) * static_cast<std::size_t>(frame.width);
     const std::size_t need = frame.stride_bytes * static_cast<std::size_t>(frame.height);
     if (frame.stride_bytes < row || frame.data.size() < need) {
-        return fail(ErrorCode::kFormat,
-                    where + ": frame " + std::to_string(frame.sequence) + " holds " +
-                        std::to_string(frame.data.size()) + " bytes, stride " +
-                        std::to_string(frame.stride_bytes) + "; " + std::string(to_string(frame.format)) +
-                        " " + std::to_string(frame.width) + " x " + std::to_string(frame.height) +
-                        " needs " + std::to_string(row * frame.height) + " bytes");
+        return fail(ErrorCode::kFormat, where + ": frame " + std::to_string(frame.sequence) +
+                                            " holds " + std::to_string(frame.data.size()) +
+                                            " bytes, stride " + std::to_string(frame.stride_bytes) +
+                                            "; " + std::string(to_string(frame.format)) + " " +
+                                            std::to_string(frame.width) + " x " +
+                                            std::to_string(frame.height) + " needs " +
+                                            std::to_string(row * frame.height) + " bytes");
     }
     return {};
 }

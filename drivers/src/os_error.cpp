@@ -27,8 +27,8 @@ ErrorCode classify_errno(int e) {
 }
 
 Error errno_error(const std::string& device, const std::string& what, int e) {
-    std::string message = device + ": " + what + ": " + std::strerror(e) + " (errno " +
-                          std::to_string(e) + ")";
+    std::string message =
+        device + ": " + what + ": " + std::strerror(e) + " (errno " + std::to_string(e) + ")";
     if (e == EACCES || e == EPERM) message += "; is the user in the 'video' or 'plugdev' group?";
     return Error{classify_errno(e), std::move(message)};
 }

@@ -58,8 +58,7 @@ Expected<void> validate_settings(const DeviceSettings& requested, const Capabili
         {&requested.angular_step_deg, &caps.angular_step_deg},
         {&requested.min_range_m, &caps.range_m},
         {&requested.max_range_m, &caps.range_m}};
-    const char* names[] = {"exposure_us", "gain", "angular_step_deg", "min_range_m",
-                           "max_range_m"};
+    const char* names[] = {"exposure_us", "gain", "angular_step_deg", "min_range_m", "max_range_m"};
     for (std::size_t i = 0; i < std::size(checks); ++i) {
         if (auto ok = check_numeric(*checks[i].first, *checks[i].second, names[i], device_name);
             !ok) {
@@ -118,7 +117,9 @@ Expected<DeviceSettings> settings_from_json(std::string_view json, std::string_v
         if (j.contains("profile")) {
             const auto& p = j.at("profile");
             auto format = parse_pixel_format(p.at("format").get<std::string>());
-            if (!format) return fail(ErrorCode::kFormat, std::string(source) + ": " + format.error().message);
+            if (!format)
+                return fail(ErrorCode::kFormat,
+                            std::string(source) + ": " + format.error().message);
             s.profile = StreamProfile{p.at("width").get<int>(), p.at("height").get<int>(), *format,
                                       p.value("frame_rate_hz", 0.0)};
         }

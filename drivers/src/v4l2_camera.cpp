@@ -95,7 +95,8 @@ Expected<void> V4l2Camera::configure(const DeviceSettings& requested) {
         v4l2_control manual{V4L2_CID_EXPOSURE_AUTO, V4L2_EXPOSURE_MANUAL};
         (void)v4l2::xioctl(fd_.get(), VIDIOC_S_CTRL, &manual);  // absent on fixed-exposure cameras
         const auto units = static_cast<std::int32_t>(std::lround(*requested.exposure_us / 100.0));
-        if (auto ok = apply_control(V4L2_CID_EXPOSURE_ABSOLUTE, units, "set exposure"); !ok) return ok;
+        if (auto ok = apply_control(V4L2_CID_EXPOSURE_ABSOLUTE, units, "set exposure"); !ok)
+            return ok;
     }
     if (requested.gain) {
         const auto gain = static_cast<std::int32_t>(std::lround(*requested.gain));
@@ -162,15 +163,14 @@ std::vector<DeviceInfo> enumerate_v4l2_cameras(const std::filesystem::path& sysf
 }
 
 Backend make_v4l2_backend() {
-    return Backend{
-        .scheme = "v4l2",
-        .description = "Video4Linux2 cameras, e.g. v4l2:/dev/video0",
-        .enumerate = [] { return enumerate_v4l2_cameras(); },
-        .open = [](const DeviceUri& uri) -> Expected<std::unique_ptr<Device>> {
-            auto camera = open_v4l2_camera({.device_path = uri.target});
-            if (!camera) return fail(camera.error());
-            return std::unique_ptr<Device>(std::move(*camera));
-        }};
+    return Backend{.scheme = "v4l2",
+                   .description = "Video4Linux2 cameras, e.g. v4l2:/dev/video0",
+                   .enumerate = [] { return enumerate_v4l2_cameras(); },
+                   .open = [](const DeviceUri& uri) -> Expected<std::unique_ptr<Device>> {
+                       auto camera = open_v4l2_camera({.device_path = uri.target});
+                       if (!camera) return fail(camera.error());
+                       return std::unique_ptr<Device>(std::move(*camera));
+                   }};
 }
 
 }  // namespace anascan::drivers

@@ -14,8 +14,8 @@ namespace anascan::drivers {
 Expected<void> V4l2Camera::start_stream() {
     if (auto ok = check_open(); !ok) return ok;
     if (streaming_) return fail(ErrorCode::kBusy, config_.device_path + ": already streaming");
-    use_read_ = config_.io == V4l2IoMethod::kRead ||
-                (config_.io == V4l2IoMethod::kAuto && can_read_);
+    use_read_ =
+        config_.io == V4l2IoMethod::kRead || (config_.io == V4l2IoMethod::kAuto && can_read_);
     if (use_read_ && !can_read_) {
         return fail(ErrorCode::kUnsupported, config_.device_path + ": the driver has no read()");
     }
@@ -36,7 +36,8 @@ Expected<void> V4l2Camera::start_user_pointers() {
     req.count = static_cast<std::uint32_t>(config_.buffer_count);
     req.type = V4L2_BUF_TYPE_VIDEO_CAPTURE;
     req.memory = V4L2_MEMORY_USERPTR;
-    if (int e = v4l2::xioctl(fd_.get(), VIDIOC_REQBUFS, &req)) return fail(fail_os("VIDIOC_REQBUFS", e));
+    if (int e = v4l2::xioctl(fd_.get(), VIDIOC_REQBUFS, &req))
+        return fail(fail_os("VIDIOC_REQBUFS", e));
     buffers_.assign(req.count, std::vector<std::uint8_t>(image_bytes_));
     for (std::uint32_t i = 0; i < req.count; ++i) {
         v4l2_buffer b{};
@@ -45,10 +46,12 @@ Expected<void> V4l2Camera::start_user_pointers() {
         b.index = i;
         b.m.userptr = reinterpret_cast<unsigned long>(buffers_[i].data());
         b.length = static_cast<std::uint32_t>(buffers_[i].size());
-        if (int e = v4l2::xioctl(fd_.get(), VIDIOC_QBUF, &b)) return fail(fail_os("VIDIOC_QBUF", e));
+        if (int e = v4l2::xioctl(fd_.get(), VIDIOC_QBUF, &b))
+            return fail(fail_os("VIDIOC_QBUF", e));
     }
     int type = V4L2_BUF_TYPE_VIDEO_CAPTURE;
-    if (int e = v4l2::xioctl(fd_.get(), VIDIOC_STREAMON, &type)) return fail(fail_os("VIDIOC_STREAMON", e));
+    if (int e = v4l2::xioctl(fd_.get(), VIDIOC_STREAMON, &type))
+        return fail(fail_os("VIDIOC_STREAMON", e));
     return {};
 }
 
@@ -118,7 +121,8 @@ Expected<Frame> V4l2Camera::try_dequeue() { return use_read_ ? try_read() : try_
 // (umockdev) never signals poll(), so the frames it has ready are taken by the first try.
 Expected<Frame> V4l2Camera::next_frame(std::chrono::milliseconds timeout) {
     if (auto ok = check_open(); !ok) return fail(ok.error());
-    if (!streaming_) return fail(ErrorCode::kInvalidArgument, config_.device_path + ": not streaming");
+    if (!streaming_)
+        return fail(ErrorCode::kInvalidArgument, config_.device_path + ": not streaming");
     Expected<Frame> frame = try_dequeue();
     if (frame || frame.error().code != ErrorCode::kTimeout) return frame;
     pollfd p{fd_.get(), POLLIN, 0};

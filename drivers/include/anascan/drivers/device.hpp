@@ -19,12 +19,12 @@ class Scanner;
 
 /// What a device is, as enumeration reports it (before or after opening).
 struct DeviceInfo {
-    std::string uri;          ///< Opens the device: "v4l2:/dev/video2", "usb:1d6b:0104", ...
-    std::string model;        ///< Human-readable model ("UVC Camera", "Riegl LMS-Z420i").
-    std::string serial;       ///< Serial number or bus address; may be empty.
+    std::string uri;     ///< Opens the device: "v4l2:/dev/video2", "usb:1d6b:0104", ...
+    std::string model;   ///< Human-readable model ("UVC Camera", "Riegl LMS-Z420i").
+    std::string serial;  ///< Serial number or bus address; may be empty.
     DeviceKind kind = DeviceKind::kUnknown;  ///< What its scans are (structured light, ToF).
-    bool is_camera = false;   ///< Opens as a Camera (streams frames).
-    bool is_scanner = false;  ///< Opens as a Scanner (captures scans).
+    bool is_camera = false;                  ///< Opens as a Camera (streams frames).
+    bool is_scanner = false;                 ///< Opens as a Scanner (captures scans).
     friend bool operator==(const DeviceInfo&, const DeviceInfo&) = default;
 };
 

@@ -4,8 +4,8 @@
 /// every backend; USB also has libusb hotplug, see usb_hotplug.hpp).
 
 #include <chrono>
-#include <functional>
 #include <condition_variable>
+#include <functional>
 #include <mutex>
 #include <thread>
 #include <vector>

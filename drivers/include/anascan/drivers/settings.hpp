@@ -43,12 +43,12 @@ struct Capabilities {
 
 /// Requested or current settings; an empty field means "leave as it is".
 struct DeviceSettings {
-    std::optional<StreamProfile> profile;     ///< Camera stream (size, format, rate).
-    std::optional<double> exposure_us;        ///< Microseconds.
-    std::optional<double> gain;               ///< Device units.
-    std::optional<double> angular_step_deg;   ///< Degrees.
-    std::optional<double> min_range_m;        ///< Metres; with max_range_m within range_m.
-    std::optional<double> max_range_m;        ///< Metres.
+    std::optional<StreamProfile> profile;    ///< Camera stream (size, format, rate).
+    std::optional<double> exposure_us;       ///< Microseconds.
+    std::optional<double> gain;              ///< Device units.
+    std::optional<double> angular_step_deg;  ///< Degrees.
+    std::optional<double> min_range_m;       ///< Metres; with max_range_m within range_m.
+    std::optional<double> max_range_m;       ///< Metres.
     friend bool operator==(const DeviceSettings&, const DeviceSettings&) = default;
 };
 
