@@ -1,0 +1,92 @@
+// A recording played back as a camera.
+#include <fstream>
+#include <optional>
+#include <sstream>
+
+#include "anascan/drivers/recording.hpp"
+#include "frame_file.hpp"
+#include "recording_manifest.hpp"
+
+namespace anascan::drivers {
+namespace {
+
+/// Not thread-safe (see Camera).
+class PlaybackCamera final : public Camera {
+public:
+    PlaybackCamera(RecordingManifest manifest, PlaybackConfig config)
+        : manifest_(std::move(manifest)), config_(std::move(config)) {
+        manifest_.device.model += " (playback)";
+        manifest_.device.uri = "playback:" + config_.folder.string();
+        // A recording replays what was recorded: its only stream is the recorded one.
+        if (manifest_.settings.profile)
+            manifest_.capabilities.profiles = {*manifest_.settings.profile};
+    }
+    const DeviceInfo& info() const override { return manifest_.device; }
+    const Capabilities& capabilities() const override { return manifest_.capabilities; }
+    DeviceSettings settings() const override { return manifest_.settings; }
+    std::string calibration_json() const override { return manifest_.calibration_json; }
+    Expected<void> configure(const DeviceSettings& requested) override {
+        if (closed_) return fail(ErrorCode::kDisconnected, info().uri + ": closed");
+        if (auto ok = validate_settings(requested, manifest_.capabilities, info().uri); !ok)
+            return ok;
+        manifest_.settings = merge_settings(manifest_.settings, requested);
+        return {};
+    }
+    void close() override {
+        reader_.reset();
+        closed_ = true;
+    }
+    Expected<void> start_stream() override {
+        if (closed_) return fail(ErrorCode::kDisconnected, info().uri + ": closed");
+        auto reader = FrameFileReader::open(config_.folder / "frames.bin");
+        if (!reader) return fail(reader.error());
+        reader_.emplace(std::move(*reader));
+        return {};
+    }
+    Expected<Frame> next_frame(std::chrono::milliseconds) override {
+        if (!reader_) return fail(ErrorCode::kInvalidArgument, info().uri + ": not streaming");
+        Expected<Frame> frame = reader_->next();
+        if (!frame && config_.loop && !reader_->stopped_early()) {
+            reader_->rewind();
+            frame = reader_->next();
+        }
+        return frame;
+    }
+    void stop_stream() override { reader_.reset(); }
+
+private:
+    RecordingManifest manifest_;
+    PlaybackConfig config_;
+    std::optional<FrameFileReader> reader_;
+    bool closed_ = false;
+};
+
+}  // namespace
+
+Expected<std::unique_ptr<Camera>> open_playback(const PlaybackConfig& config) {
+    const std::filesystem::path path = config.folder / "device.json";
+    std::ifstream in(path);
+    if (!in)
+        return fail(ErrorCode::kIo, path.string() + ": cannot open (is this a recording folder?)");
+    std::stringstream text;
+    text << in.rdbuf();
+    auto manifest = manifest_from_json(text.str(), path);
+    if (!manifest) return fail(manifest.error());
+    if (!manifest->device.is_camera) {
+        return fail(ErrorCode::kUnsupported, path.string() + ": only camera recordings play back");
+    }
+    return std::unique_ptr<Camera>(new PlaybackCamera(std::move(*manifest), config));
+}
+
+Backend make_playback_backend() {
+    return Backend{.scheme = "playback",
+                   .description = "recorded camera streams, e.g. playback:/data/rec-0001",
+                   .enumerate = [] { return std::vector<DeviceInfo>{}; },
+                   .open = [](const DeviceUri& uri) -> Expected<std::unique_ptr<Device>> {
+                       auto camera = open_playback({.folder = uri.target});
+                       if (!camera) return fail(camera.error());
+                       return std::unique_ptr<Device>(std::move(*camera));
+                   }};
+}
+
+}  // namespace anascan::drivers
