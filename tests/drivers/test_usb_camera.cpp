@@ -1,0 +1,138 @@
+// The libusb transport, discovery, hotplug and the bulk-frame camera against a scripted
+// usbfs device under umockdev (run by umockdev-wrapper).
+#include <gtest/gtest.h>
+
+#include <condition_variable>
+#include <mutex>
+
+#include "anascan/drivers/stream_runner.hpp"
+#include "anascan/drivers/usb_devices.hpp"
+#include "mock_usb_camera.hpp"
+#include "mock_v4l2_camera.hpp"
+
+namespace anascan::drivers::test {
+namespace {
+
+class UsbTest : public ::testing::Test {
+protected:
+    void SetUp() override {
+        if (!umockdev_preloaded()) GTEST_SKIP() << "run under umockdev-wrapper (LD_PRELOAD)";
+        mock_ = std::make_unique<MockUsbCamera>(testbed_, MockUsbConfig{});
+        registry_.add(make_usb_backend());
+    }
+    std::unique_ptr<Device> open() {
+        auto device = registry_.open(mock_->uri());
+        EXPECT_TRUE(device) << device.error().message;
+        return device ? std::move(*device) : nullptr;
+    }
+
+    Testbed testbed_;
+    std::unique_ptr<MockUsbCamera> mock_;
+    DeviceRegistry registry_;
+};
+
+TEST_F(UsbTest, DiscoversSupportedDevicesOnly) {
+    MockUsbCamera other(testbed_, {.vendor_id = 0x046d, .product_id = 0xc52b, .address = 3});
+    const std::vector<DeviceInfo> found = enumerate_usb_devices();
+    ASSERT_EQ(found.size(), 1u);
+    EXPECT_EQ(found[0].uri, "usb:1209:0001");
+    EXPECT_EQ(found[0].serial, "bus 1 address 2");
+    EXPECT_TRUE(found[0].is_camera);
+}
+
+TEST_F(UsbTest, StreamsFramesOverBulkTransfers) {
+    auto device = open();
+    ASSERT_TRUE(device);
+    Camera* camera = device->as_camera();
+    ASSERT_NE(camera, nullptr);
+    ASSERT_TRUE(camera->configure({.exposure_us = 3000.0}));
+    EXPECT_EQ(mock_->exposure_units(), 30);
+    ASSERT_TRUE(camera->start_stream());
+    EXPECT_TRUE(mock_->streaming());
+    for (std::uint64_t i = 0; i < 3; ++i) {
+        auto frame = camera->next_frame(std::chrono::milliseconds(1000));
+        ASSERT_TRUE(frame) << frame.error().message;
+        EXPECT_EQ(frame->sequence, i);
+        EXPECT_EQ(frame->format, PixelFormat::kZ16);
+        EXPECT_EQ(frame->z16_at(5, 7), mock_pixel(5, 7, i));
+    }
+    camera->stop_stream();
+    EXPECT_FALSE(mock_->streaming());
+}
+
+TEST_F(UsbTest, BulkTimeoutIsReportedAndRecoverable) {
+    auto device = open();
+    ASSERT_TRUE(device);
+    Camera* camera = device->as_camera();
+    ASSERT_TRUE(camera->start_stream());
+    mock_->set_stalled(true);
+    auto none = camera->next_frame(std::chrono::milliseconds(50));
+    ASSERT_FALSE(none);
+    EXPECT_EQ(none.error().code, ErrorCode::kTimeout);
+    EXPECT_NE(none.error().message.find("usb:1209:0001"), std::string::npos);
+    mock_->set_stalled(false);
+    auto frame = camera->next_frame(std::chrono::milliseconds(1000));
+    EXPECT_TRUE(frame) << frame.error().message;
+}
+
+TEST_F(UsbTest, UnplugDuringStreamingEndsWithDisconnected) {
+    auto device = open();
+    ASSERT_TRUE(device);
+    mock_->unplug_after(4);
+    std::mutex m;
+    std::condition_variable cv;
+    std::optional<Error> error;
+    auto runner = StreamRunner::start(*device->as_camera(), {.on_frame = [](const Frame&) {},
+                                                             .on_error =
+                                                                 [&](const Error& e) {
+                                                                     std::lock_guard lock(m);
+                                                                     error = e;
+                                                                     cv.notify_all();
+                                                                 }});
+    ASSERT_TRUE(runner) << runner.error().message;
+    {
+        std::unique_lock lock(m);
+        ASSERT_TRUE(cv.wait_for(lock, std::chrono::seconds(10), [&] { return error.has_value(); }));
+    }
+    EXPECT_EQ(error->code, ErrorCode::kDisconnected) << error->message;
+    (*runner)->stop();
+    EXPECT_EQ((*runner)->frames_delivered(), 4u);
+    device->close();
+}
+
+TEST_F(UsbTest, UnknownAndAbsentDevicesAreClassified) {
+    auto unknown = registry_.open("usb:dead:beef");
+    ASSERT_FALSE(unknown);
+    EXPECT_EQ(unknown.error().code, ErrorCode::kUnsupported);
+    mock_->unplug_now();
+    auto absent = registry_.open("usb:1209:0001");
+    ASSERT_FALSE(absent);
+    EXPECT_EQ(absent.error().code, ErrorCode::kDisconnected);
+}
+
+TEST_F(UsbTest, HotplugReportsArrivalAndRemoval) {
+    std::mutex m;
+    std::condition_variable cv;
+    std::vector<DeviceEvent> events;
+    auto watcher = UsbHotplugWatcher::start(
+        [&](const DeviceEvent& e) {
+            std::lock_guard lock(m);
+            events.push_back(e);
+            cv.notify_all();
+        },
+        std::chrono::milliseconds(20));
+    ASSERT_TRUE(watcher);
+    std::unique_lock lock(m);
+    ASSERT_TRUE(cv.wait_for(lock, std::chrono::seconds(10), [&] { return events.size() >= 1; }));
+    EXPECT_EQ(events[0].type, DeviceEventType::kArrived);
+    EXPECT_EQ(events[0].device.uri, "usb:1209:0001");
+    lock.unlock();
+    mock_->unplug_now();
+    lock.lock();
+    ASSERT_TRUE(cv.wait_for(lock, std::chrono::seconds(10), [&] { return events.size() >= 2; }))
+        << "no removal event (libusb hotplug: " << (*watcher)->uses_libusb_hotplug() << ")";
+    EXPECT_EQ(events[1].type, DeviceEventType::kRemoved);
+}
+
+}  // namespace
+}  // namespace anascan::drivers::test
