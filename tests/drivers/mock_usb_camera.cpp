@@ -11,7 +11,7 @@
 
 #include "anascan/drivers/frame.hpp"
 #include "anascan/drivers/usb_bulk_camera.hpp"
-#include "mock_v4l2_camera.hpp"
+#include "mock_pixel.hpp"
 
 namespace anascan::drivers::test {
 namespace {

@@ -40,10 +40,6 @@ T* as(UMockdevIoctlData* d) {
 
 }  // namespace
 
-std::uint16_t mock_pixel(int row, int col, std::uint64_t sequence) {
-    return static_cast<std::uint16_t>(1000 + 10 * row + col + 3 * sequence);
-}
-
 MockV4l2Camera::MockV4l2Camera(Testbed& testbed, MockV4l2Config config)
     : testbed_(testbed), config_(std::move(config)), format_(config_.formats.front()) {
     sysfs_path_ = testbed_.add_from_string("P: /devices/virtual/video4linux/" + config_.node +

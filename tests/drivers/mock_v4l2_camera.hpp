@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "anascan/drivers/frame.hpp"
+#include "mock_pixel.hpp"
 #include "umockdev_testbed.hpp"
 
 namespace anascan::drivers::test {
@@ -27,10 +28,6 @@ struct MockV4l2Config {
     int exposure_min = 1;   ///< 100 µs units, as V4L2_CID_EXPOSURE_ABSOLUTE.
     int exposure_max = 1000;
 };
-
-/// The value the mock puts at (row, col) of frame `sequence` (Z16 depth in device units;
-/// grey and YUYV use its low byte).
-std::uint16_t mock_pixel(int row, int col, std::uint64_t sequence);
 
 /// Thread-safe: the test thread changes the behaviour while umockdev's worker thread
 /// answers the device's calls.
