@@ -25,6 +25,8 @@ void add_demo_command(CLI::App& app);
 void add_eval_command(CLI::App& app);
 void add_register_command(CLI::App& app);
 void add_align_command(CLI::App& app);
+/// `devices`: connected and named devices with their capabilities (text or --json).
+void add_devices_command(CLI::App& app);
 /// Hidden `sim move-scans`: randomly moved copies of the scans of a .conf (for tests).
 void add_sim_command(CLI::App& app);
 

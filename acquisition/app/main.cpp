@@ -35,6 +35,7 @@ int main(int argc, char** argv) {
     anascan::cli::add_eval_command(app);
     anascan::cli::add_register_command(app);
     anascan::cli::add_align_command(app);
+    anascan::cli::add_devices_command(app);
     anascan::cli::add_sim_command(app);
     anascan::cli::add_demo_command(app);
     app.parse_complete_callback([&] { configure_logging(verbose, quiet); });

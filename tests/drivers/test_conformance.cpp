@@ -13,7 +13,7 @@
 #include "anascan/drivers/scanner.hpp"
 #include "anascan/drivers/stream_runner.hpp"
 #include "conformance_harness.hpp"
-#include "umockdev_testbed.hpp"
+#include "preload_check.hpp"
 
 namespace anascan::drivers::test {
 namespace {

@@ -8,11 +8,6 @@
 
 namespace anascan::drivers::test {
 
-bool umockdev_preloaded() {
-    const char* preload = std::getenv("LD_PRELOAD");
-    return preload != nullptr && std::strstr(preload, "umockdev-preload") != nullptr;
-}
-
 Testbed::Testbed() : testbed_(umockdev_testbed_new()) {}
 
 Testbed::~Testbed() { g_object_unref(testbed_); }

@@ -4,13 +4,12 @@
 
 #include <string>
 
+#include "preload_check.hpp"
+
 typedef struct _UMockdevTestbed UMockdevTestbed;
 typedef struct _UMockdevIoctlBase UMockdevIoctlBase;
 
 namespace anascan::drivers::test {
-
-/// True when the umockdev preload library is loaded (the tests skip otherwise).
-bool umockdev_preloaded();
 
 /// Owns one UMockdevTestbed. Not thread-safe.
 class Testbed {
