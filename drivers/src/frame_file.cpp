@@ -128,19 +128,4 @@ Expected<Frame> FrameFileReader::next() {
     return f;
 }
 
-Expected<void> write_file_atomically(const std::filesystem::path& path, const std::string& text) {
-    const std::filesystem::path tmp = path.string() + ".tmp";
-    UniqueFd fd(::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644));
-    if (!fd) return fail(errno_error(tmp.string(), "create", errno));
-    if (auto ok = write_all(fd.get(), text.data(), text.size(), tmp.string()); !ok) return ok;
-    if (::fsync(fd.get()) != 0) return fail(errno_error(tmp.string(), "fsync", errno));
-    fd.reset();
-    if (std::rename(tmp.c_str(), path.c_str()) != 0)
-        return fail(errno_error(path.string(), "rename", errno));
-    UniqueFd dir(::open(path.parent_path().empty() ? "." : path.parent_path().c_str(),
-                        O_RDONLY | O_DIRECTORY | O_CLOEXEC));
-    if (dir) (void)::fsync(dir.get());
-    return {};
-}
-
 }  // namespace anascan::drivers

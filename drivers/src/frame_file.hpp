@@ -49,7 +49,4 @@ private:
     bool stopped_early_ = false;
 };
 
-/// Writes `text` to `path` crash-safely: temporary file, fsync, rename, fsync of the folder.
-Expected<void> write_file_atomically(const std::filesystem::path& path, const std::string& text);
-
 }  // namespace anascan::drivers

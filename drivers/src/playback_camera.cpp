@@ -1,7 +1,5 @@
 // A recording played back as a camera.
-#include <fstream>
 #include <optional>
-#include <sstream>
 
 #include "anascan/drivers/recording.hpp"
 #include "frame_file.hpp"
@@ -64,28 +62,21 @@ private:
 }  // namespace
 
 Expected<std::unique_ptr<Camera>> open_playback(const PlaybackConfig& config) {
-    const std::filesystem::path path = config.folder / "device.json";
-    std::ifstream in(path);
-    if (!in)
-        return fail(ErrorCode::kIo, path.string() + ": cannot open (is this a recording folder?)");
-    std::stringstream text;
-    text << in.rdbuf();
-    auto manifest = manifest_from_json(text.str(), path);
+    auto manifest = read_manifest(config.folder);
     if (!manifest) return fail(manifest.error());
     if (!manifest->device.is_camera) {
-        return fail(ErrorCode::kUnsupported, path.string() + ": only camera recordings play back");
+        return fail(ErrorCode::kUnsupported,
+                    config.folder.string() + ": a scanner recording, not a camera recording");
     }
     return std::unique_ptr<Camera>(new PlaybackCamera(std::move(*manifest), config));
 }
 
 Backend make_playback_backend() {
     return Backend{.scheme = "playback",
-                   .description = "recorded camera streams, e.g. playback:/data/rec-0001",
+                   .description = "recorded cameras and scanners, e.g. playback:/data/rec-0001",
                    .enumerate = [] { return std::vector<DeviceInfo>{}; },
                    .open = [](const DeviceUri& uri) -> Expected<std::unique_ptr<Device>> {
-                       auto camera = open_playback({.folder = uri.target});
-                       if (!camera) return fail(camera.error());
-                       return std::unique_ptr<Device>(std::move(*camera));
+                       return open_playback_device({.folder = uri.target});
                    }};
 }
 

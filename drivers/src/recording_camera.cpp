@@ -2,6 +2,7 @@
 #include <optional>
 
 #include "anascan/drivers/recording.hpp"
+#include "anascan/processing/io/file_bytes.hpp"
 #include "frame_file.hpp"
 #include "recording_manifest.hpp"
 
@@ -31,10 +32,7 @@ public:
     Expected<void> start_stream() override {
         if (!writer_) {
             RecordingManifest m{info(), capabilities(), settings(), calibration_json()};
-            if (auto ok =
-                    write_file_atomically(config_.folder / "device.json", manifest_to_json(m));
-                !ok)
-                return ok;
+            if (auto ok = write_manifest(config_.folder, m); !ok) return ok;
             auto writer =
                 FrameFileWriter::create(config_.folder / "frames.bin", config_.fsync_every_frames);
             if (!writer) return fail(writer.error());

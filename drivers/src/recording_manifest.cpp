@@ -2,6 +2,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "anascan/processing/io/file_bytes.hpp"
+
 namespace anascan::drivers {
 namespace {
 
@@ -99,6 +101,23 @@ Expected<RecordingManifest> manifest_from_json(const std::string& text,
     if (!settings) return fail(settings.error());
     m.settings = *settings;
     return m;
+}
+
+Expected<void> write_manifest(const std::filesystem::path& folder, const RecordingManifest& m) {
+    const std::string text = manifest_to_json(m);
+    return io::write_file_atomically(folder / "device.json",
+                                     std::span<const char>(text.data(), text.size()));
+}
+
+Expected<RecordingManifest> read_manifest(const std::filesystem::path& folder) {
+    const std::filesystem::path path = folder / "device.json";
+    auto bytes = io::read_file_bytes(path);
+    if (!bytes) {
+        return fail(ErrorCode::kIo,
+                    path.string() +
+                        ": cannot read (is this a recording folder?): " + bytes.error().message);
+    }
+    return manifest_from_json(std::string(bytes->begin(), bytes->end()), path);
 }
 
 }  // namespace anascan::drivers

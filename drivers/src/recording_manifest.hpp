@@ -16,6 +16,11 @@ struct RecordingManifest {
 };
 
 std::string manifest_to_json(const RecordingManifest& manifest);
+/// Writes `folder`/device.json crash-safely.
+Expected<void> write_manifest(const std::filesystem::path& folder,
+                              const RecordingManifest& manifest);
+/// Reads `folder`/device.json (kIo naming it when missing).
+Expected<RecordingManifest> read_manifest(const std::filesystem::path& folder);
 /// kFormat naming `path` when the text is not a version-1 anascan recording manifest.
 Expected<RecordingManifest> manifest_from_json(const std::string& text,
                                                const std::filesystem::path& path);

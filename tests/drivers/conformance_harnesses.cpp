@@ -132,6 +132,35 @@ private:
     TempFolder folder_;
 };
 
+/// The PTX stations recorded, played back as a scanner; "unplugged" = n recorded scans.
+class ScanPlaybackHarness : public ConformanceHarness {
+public:
+    ScanPlaybackHarness() { record(5); }
+    Expected<std::unique_ptr<Device>> open() override {
+        return open_playback_device({.folder = folder_.path() / "rec"});
+    }
+    DeviceSettings valid_settings() const override { return {}; }
+    DeviceSettings invalid_settings() const override { return {.exposure_us = 100.0}; }
+    void unplug_after(int n) override { record(n); }
+    bool stall() override { return false; }
+    ErrorCode gone_code() const override { return ErrorCode::kEmpty; }
+
+private:
+    void record(int scans) {
+        std::filesystem::remove_all(folder_.path());
+        std::filesystem::create_directories(folder_.path() / "ptx");
+        for (int i = 0; i < scans; ++i)
+            std::ofstream(folder_.path() / "ptx" / ("s" + std::to_string(i) + ".ptx"))
+                << "1\n2\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n1 0 0 0\n0 1 0 0\n0 0 1 0\n0 0 0 1\n"
+                   "1 2 3 0.5\n1 2 4 0.5\n";
+        auto ptx = open_ptx_station_scanner(folder_.path() / "ptx");
+        auto recorder = record_scanner(std::move(*ptx), {.folder = folder_.path() / "rec"});
+        while ((*recorder)->capture_scan({})) {
+        }
+    }
+    TempFolder folder_;
+};
+
 }  // namespace
 
 std::vector<HarnessEntry> conformance_harnesses() {
@@ -143,6 +172,7 @@ std::vector<HarnessEntry> conformance_harnesses() {
         {"usb_bulk", [] { return std::make_unique<UsbHarness>(); }, true},
         {"playback", [] { return std::make_unique<PlaybackHarness>(); }, false},
         {"ptx_stations", [] { return std::make_unique<PtxHarness>(); }, false},
+        {"scan_playback", [] { return std::make_unique<ScanPlaybackHarness>(); }, false},
         // sim/: {"sim_tof", [] { return std::make_unique<SimTofHarness>(); }, false},
     };
 }
