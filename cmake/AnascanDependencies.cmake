@@ -10,3 +10,5 @@ find_package(Threads REQUIRED)
 find_package(ZLIB REQUIRED)                 # drivers: CRC-32 of recorded frames
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(LIBUSB REQUIRED IMPORTED_TARGET GLOBAL libusb-1.0)  # drivers: USB backend
+find_package(glfw3 3.3 REQUIRED)            # drivers: projector output window
+find_package(OpenGL REQUIRED)
