@@ -1,12 +1,11 @@
 // The projector window under a virtual X server (xvfb-run): each pattern is on screen,
 // read back with glReadPixels, when its callback runs.
-#include <X11/Xlib.h>
-#include <X11/Xutil.h>
 #include <gtest/gtest.h>
 
 #include <cstdlib>
 
 #include "anascan/drivers/projector_output.hpp"
+#include "x_screen.hpp"
 
 namespace anascan::drivers {
 namespace {
@@ -18,22 +17,6 @@ Pattern stripes(int w, int h, int bit) {
         for (int c = 0; c < w; ++c)
             p.grey[static_cast<std::size_t>(r) * w + c] = ((c >> bit) & 1) ? 255 : 0;
     p.grey[0] = 128;  // mark the top-left corner: catches a flipped image
-    return p;
-}
-
-/// The red channel of the screen as the X server shows it (the full-screen window covers it).
-Pattern screen_from_x_server(int w, int h) {
-    Pattern p{w, h, std::vector<std::uint8_t>(static_cast<std::size_t>(w) * h)};
-    Display* display = XOpenDisplay(nullptr);
-    if (display == nullptr) return {};
-    XImage* image = XGetImage(display, DefaultRootWindow(display), 0, 0, static_cast<unsigned>(w),
-                              static_cast<unsigned>(h), AllPlanes, ZPixmap);
-    for (int r = 0; image != nullptr && r < h; ++r)
-        for (int c = 0; c < w; ++c)
-            p.grey[static_cast<std::size_t>(r) * w + c] =
-                static_cast<std::uint8_t>(XGetPixel(image, c, r) >> 16);
-    if (image != nullptr) XDestroyImage(image);
-    XCloseDisplay(display);
     return p;
 }
 
@@ -73,7 +56,7 @@ TEST_F(Projector, EachPatternIsOnScreenWhenItsCallbackRuns) {
         shown.push_back(i);
         EXPECT_EQ(differing_pixels(projector_->read_back(), patterns[i]), 0u)
             << "pattern " << i << " is not in the frame buffer";
-        EXPECT_EQ(differing_pixels(screen_from_x_server(w, h), patterns[i]), 0u)
+        EXPECT_EQ(differing_pixels(test::screen_from_x_server(w, h), patterns[i]), 0u)
             << "pattern " << i << " is not on screen";
         return true;
     });
