@@ -12,9 +12,8 @@ namespace {
 class PlaybackCamera final : public Camera {
 public:
     PlaybackCamera(RecordingManifest manifest, PlaybackConfig config)
-        : manifest_(std::move(manifest)), config_(std::move(config)) {
-        manifest_.device.model += " (playback)";
-        manifest_.device.uri = "playback:" + config_.folder.string();
+        : manifest_(as_played_back(std::move(manifest), config.folder)),
+          config_(std::move(config)) {
         // A recording replays what was recorded: its only stream is the recorded one.
         if (manifest_.settings.profile)
             manifest_.capabilities.profiles = {*manifest_.settings.profile};
@@ -24,11 +23,7 @@ public:
     DeviceSettings settings() const override { return manifest_.settings; }
     std::string calibration_json() const override { return manifest_.calibration_json; }
     Expected<void> configure(const DeviceSettings& requested) override {
-        if (closed_) return fail(ErrorCode::kDisconnected, info().uri + ": closed");
-        if (auto ok = validate_settings(requested, manifest_.capabilities, info().uri); !ok)
-            return ok;
-        manifest_.settings = merge_settings(manifest_.settings, requested);
-        return {};
+        return configure_played_back(manifest_, closed_, requested);
     }
     void close() override {
         reader_.reset();

@@ -62,14 +62,7 @@ private:
 
 Expected<std::unique_ptr<Camera>> record_camera(std::unique_ptr<Camera> camera,
                                                 const RecordingConfig& config) {
-    std::error_code ec;
-    std::filesystem::create_directories(config.folder, ec);
-    if (ec)
-        return fail(ErrorCode::kIo, config.folder.string() + ": cannot create: " + ec.message());
-    if (std::filesystem::exists(config.folder / "frames.bin")) {
-        return fail(ErrorCode::kInvalidArgument,
-                    config.folder.string() + ": already holds a recording; choose a new folder");
-    }
+    if (auto ok = prepare_recording_folder(config.folder); !ok) return fail(ok.error());
     return std::unique_ptr<Camera>(new RecordingCamera(std::move(camera), config));
 }
 

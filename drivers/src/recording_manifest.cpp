@@ -120,4 +120,30 @@ Expected<RecordingManifest> read_manifest(const std::filesystem::path& folder) {
     return manifest_from_json(std::string(bytes->begin(), bytes->end()), path);
 }
 
+Expected<void> prepare_recording_folder(const std::filesystem::path& folder) {
+    std::error_code ec;
+    std::filesystem::create_directories(folder, ec);
+    if (ec) return fail(ErrorCode::kIo, folder.string() + ": cannot create: " + ec.message());
+    if (std::filesystem::exists(folder / "device.json") ||
+        std::filesystem::exists(folder / "frames.bin")) {
+        return fail(ErrorCode::kInvalidArgument,
+                    folder.string() + ": already holds a recording; choose a new folder");
+    }
+    return {};
+}
+
+RecordingManifest as_played_back(RecordingManifest m, const std::filesystem::path& folder) {
+    m.device.model += " (playback)";
+    m.device.uri = "playback:" + folder.string();
+    return m;
+}
+
+Expected<void> configure_played_back(RecordingManifest& m, bool closed,
+                                     const DeviceSettings& requested) {
+    if (closed) return fail(ErrorCode::kDisconnected, m.device.uri + ": closed");
+    if (auto ok = validate_settings(requested, m.capabilities, m.device.uri); !ok) return ok;
+    m.settings = merge_settings(m.settings, requested);
+    return {};
+}
+
 }  // namespace anascan::drivers

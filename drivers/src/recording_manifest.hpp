@@ -25,4 +25,15 @@ Expected<RecordingManifest> read_manifest(const std::filesystem::path& folder);
 Expected<RecordingManifest> manifest_from_json(const std::string& text,
                                                const std::filesystem::path& path);
 
+/// Creates `folder` for a new recording: kIo when it cannot, kInvalidArgument when it
+/// already holds one (device.json or frames.bin): recordings are never overwritten.
+Expected<void> prepare_recording_folder(const std::filesystem::path& folder);
+
+/// The manifest as its playback device shows it: uri `playback:<folder>`, model marked.
+RecordingManifest as_played_back(RecordingManifest manifest, const std::filesystem::path& folder);
+
+/// configure() of a playback device: only what the recorded capabilities allow.
+Expected<void> configure_played_back(RecordingManifest& manifest, bool closed,
+                                     const DeviceSettings& requested);
+
 }  // namespace anascan::drivers

@@ -43,20 +43,14 @@ private:
 class PlaybackScanner final : public Scanner {
 public:
     PlaybackScanner(RecordingManifest manifest, const PlaybackConfig& config)
-        : manifest_(std::move(manifest)), records_(list_scan_records(config.folder / "scans")) {
-        manifest_.device.model += " (playback)";
-        manifest_.device.uri = "playback:" + config.folder.string();
-    }
+        : manifest_(as_played_back(std::move(manifest), config.folder)),
+          records_(list_scan_records(config.folder / "scans")) {}
     const DeviceInfo& info() const override { return manifest_.device; }
     const Capabilities& capabilities() const override { return manifest_.capabilities; }
     DeviceSettings settings() const override { return manifest_.settings; }
     std::string calibration_json() const override { return manifest_.calibration_json; }
     Expected<void> configure(const DeviceSettings& requested) override {
-        if (closed_) return fail(ErrorCode::kDisconnected, info().uri + ": closed");
-        if (auto ok = validate_settings(requested, manifest_.capabilities, info().uri); !ok)
-            return ok;
-        manifest_.settings = merge_settings(manifest_.settings, requested);
-        return {};
+        return configure_played_back(manifest_, closed_, requested);
     }
     void close() override { closed_ = true; }
     Expected<Scan> capture_scan(const CaptureControl& control) override {
@@ -81,14 +75,7 @@ private:
 
 Expected<std::unique_ptr<Scanner>> record_scanner(std::unique_ptr<Scanner> scanner,
                                                   const RecordingConfig& config) {
-    std::error_code ec;
-    std::filesystem::create_directories(config.folder, ec);
-    if (ec)
-        return fail(ErrorCode::kIo, config.folder.string() + ": cannot create: " + ec.message());
-    if (std::filesystem::exists(config.folder / "device.json")) {
-        return fail(ErrorCode::kInvalidArgument,
-                    config.folder.string() + ": already holds a recording; choose a new folder");
-    }
+    if (auto ok = prepare_recording_folder(config.folder); !ok) return fail(ok.error());
     auto recorder = std::make_unique<RecordingScanner>(std::move(scanner), config);
     if (auto ok = recorder->write_current_manifest(); !ok) return fail(ok.error());
     return std::unique_ptr<Scanner>(std::move(recorder));

@@ -4,9 +4,7 @@
 // the middle of a capture, timeouts, invalid settings, no leaked descriptors.
 #include <gtest/gtest.h>
 
-#include <condition_variable>
 #include <filesystem>
-#include <mutex>
 #include <thread>
 
 #include "anascan/drivers/camera.hpp"
@@ -14,6 +12,7 @@
 #include "anascan/drivers/stream_runner.hpp"
 #include "conformance_harness.hpp"
 #include "preload_check.hpp"
+#include "stream_until_error.hpp"
 
 namespace anascan::drivers::test {
 namespace {
@@ -132,27 +131,12 @@ TEST_P(Conformance, UnplugInTheMiddleEndsCleanly) {
             ASSERT_FALSE(gone);
             EXPECT_EQ(gone.error().code, harness_->gone_code()) << gone.error().message;
         } else {
-            std::mutex m;
-            std::condition_variable cv;
-            std::optional<Error> error;
-            auto runner = StreamRunner::start(*device->as_camera(),
-                                              {.on_frame = [](const Frame&) {},
-                                               .on_error =
-                                                   [&](const Error& e) {
-                                                       std::lock_guard lock(m);
-                                                       error = e;
-                                                       cv.notify_all();
-                                                   }},
-                                              {.frame_timeout = milliseconds(2000)});
-            ASSERT_TRUE(runner) << runner.error().message;
-            std::unique_lock lock(m);
-            ASSERT_TRUE(cv.wait_for(lock, std::chrono::seconds(20), [&] {
-                return error.has_value();
-            })) << "the stream did not end after the unplug";
-            lock.unlock();
-            EXPECT_EQ(error->code, harness_->gone_code()) << error->message;
-            (*runner)->stop();
-            EXPECT_EQ((*runner)->frames_delivered(), 2u);
+            const StreamEnd end = stream_until_error(*device->as_camera(), std::chrono::seconds(20),
+                                                     {.frame_timeout = milliseconds(2000)});
+            ASSERT_TRUE(end.started) << end.error->message;
+            ASSERT_TRUE(end.error) << "the stream did not end after the unplug";
+            EXPECT_EQ(end.error->code, harness_->gone_code()) << end.error->message;
+            EXPECT_EQ(end.frames, 2u);
         }
         device->close();
     }

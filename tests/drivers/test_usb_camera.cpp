@@ -9,6 +9,7 @@
 #include "anascan/drivers/usb_devices.hpp"
 #include "mock_usb_camera.hpp"
 #include "mock_v4l2_camera.hpp"
+#include "stream_until_error.hpp"
 
 namespace anascan::drivers::test {
 namespace {
@@ -79,24 +80,11 @@ TEST_F(UsbTest, UnplugDuringStreamingEndsWithDisconnected) {
     auto device = open();
     ASSERT_TRUE(device);
     mock_->unplug_after(4);
-    std::mutex m;
-    std::condition_variable cv;
-    std::optional<Error> error;
-    auto runner = StreamRunner::start(*device->as_camera(), {.on_frame = [](const Frame&) {},
-                                                             .on_error =
-                                                                 [&](const Error& e) {
-                                                                     std::lock_guard lock(m);
-                                                                     error = e;
-                                                                     cv.notify_all();
-                                                                 }});
-    ASSERT_TRUE(runner) << runner.error().message;
-    {
-        std::unique_lock lock(m);
-        ASSERT_TRUE(cv.wait_for(lock, std::chrono::seconds(10), [&] { return error.has_value(); }));
-    }
-    EXPECT_EQ(error->code, ErrorCode::kDisconnected) << error->message;
-    (*runner)->stop();
-    EXPECT_EQ((*runner)->frames_delivered(), 4u);
+    const StreamEnd end = stream_until_error(*device->as_camera(), std::chrono::seconds(10));
+    ASSERT_TRUE(end.started);
+    ASSERT_TRUE(end.error) << "no error reported after the unplug";
+    EXPECT_EQ(end.error->code, ErrorCode::kDisconnected) << end.error->message;
+    EXPECT_EQ(end.frames, 4u);
     device->close();
 }
 

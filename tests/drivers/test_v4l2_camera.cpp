@@ -1,12 +1,10 @@
 // The V4L2 backend against a scripted device under umockdev (run by umockdev-wrapper).
 #include <gtest/gtest.h>
 
-#include <condition_variable>
-#include <mutex>
-
 #include "anascan/drivers/stream_runner.hpp"
 #include "anascan/drivers/v4l2_camera.hpp"
 #include "mock_v4l2_camera.hpp"
+#include "stream_until_error.hpp"
 
 namespace anascan::drivers::test {
 namespace {
@@ -140,27 +138,12 @@ TEST_F(V4l2Test, UnplugDuringStreamingEndsWithDisconnected) {
     auto camera = open(V4l2IoMethod::kUserPointer);
     ASSERT_TRUE(camera);
     mock_->unplug_after(5);
-    std::mutex m;
-    std::condition_variable cv;
-    std::optional<Error> error;
-    auto runner = StreamRunner::start(*camera, {.on_frame = [](const Frame&) {},
-                                                .on_error =
-                                                    [&](const Error& e) {
-                                                        std::lock_guard lock(m);
-                                                        error = e;
-                                                        cv.notify_all();
-                                                    }});
-    ASSERT_TRUE(runner) << runner.error().message;
-    {
-        std::unique_lock lock(m);
-        ASSERT_TRUE(cv.wait_for(lock, std::chrono::seconds(10), [&] { return error.has_value(); }))
-            << "no error reported after the unplug";
-    }
-    EXPECT_EQ(error->code, ErrorCode::kDisconnected);
-    EXPECT_NE(error->message.find(mock_->dev_path()), std::string::npos);
-    (*runner)->stop();
-    EXPECT_EQ((*runner)->frames_delivered(), 5u);
-    EXPECT_FALSE((*runner)->running());
+    const StreamEnd end = stream_until_error(*camera, std::chrono::seconds(10));
+    ASSERT_TRUE(end.started);
+    ASSERT_TRUE(end.error) << "no error reported after the unplug";
+    EXPECT_EQ(end.error->code, ErrorCode::kDisconnected);
+    EXPECT_NE(end.error->message.find(mock_->dev_path()), std::string::npos);
+    EXPECT_EQ(end.frames, 5u);
     auto after = camera->configure({.exposure_us = 1000.0});
     ASSERT_FALSE(after);
     EXPECT_EQ(after.error().code, ErrorCode::kDisconnected);
