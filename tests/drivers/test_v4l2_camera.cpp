@@ -1,6 +1,10 @@
 // The V4L2 backend against a scripted device under umockdev (run by umockdev-wrapper).
 #include <gtest/gtest.h>
 
+#include <condition_variable>
+#include <mutex>
+
+#include "anascan/drivers/device_watcher.hpp"
 #include "anascan/drivers/stream_runner.hpp"
 #include "anascan/drivers/v4l2_camera.hpp"
 #include "mock_v4l2_camera.hpp"
@@ -148,6 +152,32 @@ TEST_F(V4l2Test, UnplugDuringStreamingEndsWithDisconnected) {
     ASSERT_FALSE(after);
     EXPECT_EQ(after.error().code, ErrorCode::kDisconnected);
     camera->close();
+}
+
+TEST_F(V4l2Test, WatcherReportsArrivalAndRemoval) {
+    DeviceRegistry registry;
+    ASSERT_TRUE(registry.add(make_v4l2_backend()));
+    std::mutex m;
+    std::condition_variable cv;
+    std::vector<DeviceEvent> events;
+    DeviceWatcher watcher(
+        registry,
+        [&](const DeviceEvent& e) {
+            std::lock_guard lock(m);
+            events.push_back(e);
+            cv.notify_all();
+        },
+        std::chrono::milliseconds(10));
+    std::unique_lock lock(m);
+    ASSERT_TRUE(cv.wait_for(lock, std::chrono::seconds(10), [&] { return events.size() == 1; }));
+    EXPECT_EQ(events[0].type, DeviceEventType::kArrived);
+    EXPECT_EQ(events[0].device.uri, mock_->uri());
+    lock.unlock();
+    mock_->unplug_now();
+    lock.lock();
+    ASSERT_TRUE(cv.wait_for(lock, std::chrono::seconds(10), [&] { return events.size() == 2; }));
+    EXPECT_EQ(events[1].type, DeviceEventType::kRemoved);
+    EXPECT_EQ(events[1].device.model, "anascan mock depth camera");
 }
 
 TEST_F(V4l2Test, MissingNodeIsDisconnectedAndNamed) {
