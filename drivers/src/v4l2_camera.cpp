@@ -143,6 +143,7 @@ Expected<std::unique_ptr<Camera>> open_v4l2_camera(const V4l2CameraConfig& confi
                                                (caps & V4L2_CAP_READWRITE) != 0,
                                                (caps & V4L2_CAP_STREAMING) != 0);
     if (auto ok = camera->refresh_settings(); !ok) return fail(ok.error());
+    camera->mark_depth_camera();
     return std::unique_ptr<Camera>(std::move(camera));
 }
 

@@ -29,7 +29,11 @@ public:
 
     /// Reads the current format and controls into settings_ (after open and configure).
     Expected<void> refresh_settings();
-    Capabilities& mutable_caps() { return caps_; }
+    /// A camera offering Z16 depth is a time-of-flight sensor.
+    void mark_depth_camera() {
+        for (const StreamProfile& p : caps_.profiles)
+            if (p.format == PixelFormat::kZ16) info_.kind = DeviceKind::kTimeOfFlight;
+    }
 
 private:
     Expected<void> apply_profile(const StreamProfile& profile);

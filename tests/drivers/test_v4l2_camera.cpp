@@ -41,6 +41,7 @@ TEST_F(V4l2Test, ReportsModelProfilesAndExposureRange) {
     ASSERT_TRUE(camera);
     EXPECT_EQ(camera->info().model, "anascan mock depth camera");
     EXPECT_EQ(camera->info().uri, mock_->uri());
+    EXPECT_EQ(camera->info().kind, DeviceKind::kTimeOfFlight);  // it offers Z16 depth
     const Capabilities& caps = camera->capabilities();
     EXPECT_TRUE(caps.can_stream);
     ASSERT_EQ(caps.profiles.size(), 4u);
