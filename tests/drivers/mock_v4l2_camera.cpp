@@ -254,7 +254,8 @@ bool MockV4l2Camera::handle_ioctl(void* c) {
         umockdev_ioctl_client_complete(client, -1, EFAULT);
         return true;
     }
-    int result = handle_format_ioctl(request, data->data);
+    const bool blocked = busy_ && (request == VIDIOC_S_FMT || request == VIDIOC_REQBUFS);
+    int result = blocked ? EBUSY : handle_format_ioctl(request, data->data);
     if (result == ENOTTY) result = handle_buffer_ioctl(client, request, data);
     if (result >= 0) umockdev_ioctl_client_complete(client, result == 0 ? 0 : -1, result);
     g_object_unref(data);

@@ -43,6 +43,8 @@ public:
     void unplug_now();
     /// While stalled, no frame is ready (read/DQBUF: EAGAIN).
     void set_stalled(bool stalled) { stalled_ = stalled; }
+    /// While busy (another program streams), S_FMT and REQBUFS fail with EBUSY.
+    void set_busy(bool busy) { busy_ = busy; }
     std::uint64_t frames_sent() const { return frames_sent_.load(); }
     int streamon_count() const { return streamon_count_.load(); }
     int queued_buffers() const;
@@ -70,6 +72,7 @@ private:
     std::atomic<int> unplug_after_{-1};
     std::atomic<bool> unplugged_{false};
     std::atomic<bool> stalled_{false};
+    std::atomic<bool> busy_{false};
     std::atomic<std::uint64_t> frames_sent_{0};
     std::atomic<int> streamon_count_{0};
 };

@@ -126,6 +126,24 @@ TEST_F(V4l2Test, RejectsInvalidSettingsAndKeepsTheOldOnes) {
     EXPECT_DOUBLE_EQ(camera->settings().exposure_us.value_or(0), 2500.0);
 }
 
+TEST_F(V4l2Test, BusyDevicesAndConfiguringWhileStreamingAreBusy) {
+    auto camera = open(V4l2IoMethod::kUserPointer);
+    ASSERT_TRUE(camera);
+    mock_->set_busy(true);
+    auto taken = camera->configure({.profile = StreamProfile{16, 12, PixelFormat::kGrey8}});
+    ASSERT_FALSE(taken);
+    EXPECT_EQ(taken.error().code, ErrorCode::kBusy);
+    EXPECT_NE(taken.error().message.find("VIDIOC_S_FMT"), std::string::npos);
+    auto no_buffers = camera->start_stream();
+    ASSERT_FALSE(no_buffers);
+    EXPECT_EQ(no_buffers.error().code, ErrorCode::kBusy);
+    mock_->set_busy(false);
+    ASSERT_TRUE(camera->start_stream());
+    auto streaming = camera->configure({.exposure_us = 1000.0});
+    ASSERT_FALSE(streaming);
+    EXPECT_EQ(streaming.error().code, ErrorCode::kBusy);
+}
+
 TEST_F(V4l2Test, TimesOutWhenNoFrameComesThenRecovers) {
     auto camera = open();
     ASSERT_TRUE(camera);
