@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "anascan/drivers/device_registry.hpp"
+#include "anascan/drivers/device_watcher.hpp"
 #include "commands.hpp"
 #include "device_registry_setup.hpp"
 
@@ -18,6 +19,7 @@ struct DevicesOptions {
     std::vector<std::string> uris;
     bool json_output = false;
     bool no_open = false;
+    double watch_s = 0.0;
 };
 
 /// One listed device: what enumeration says, and what opening it says.
@@ -91,8 +93,33 @@ Listing describe(const drivers::DeviceRegistry& registry, drivers::DeviceInfo in
     return l;
 }
 
+/// Prints arrivals and removals for `seconds` (devices present at the start arrive first).
+void watch_devices(const drivers::DeviceRegistry& registry, double seconds, bool json_lines) {
+    drivers::DeviceWatcher watcher(
+        registry,
+        [json_lines](const drivers::DeviceEvent& e) {
+            const bool arrived = e.type == drivers::DeviceEventType::kArrived;
+            if (json_lines) {
+                const json j = {{"event", arrived ? "arrived" : "removed"},
+                                {"uri", e.device.uri},
+                                {"model", e.device.model}};
+                std::printf("%s\n", j.dump().c_str());
+            } else {
+                std::printf("%s %s \"%s\"\n", arrived ? "arrived" : "removed", e.device.uri.c_str(),
+                            e.device.model.c_str());
+            }
+            std::fflush(stdout);
+        },
+        std::chrono::milliseconds(200));
+    std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
+}
+
 void run_devices(const DevicesOptions& o) {
     const drivers::DeviceRegistry registry = make_cli_registry();
+    if (o.watch_s > 0.0) {
+        watch_devices(registry, o.watch_s, o.json_output);
+        return;
+    }
     std::vector<Listing> listings;
     for (drivers::DeviceInfo& info : registry.enumerate())
         listings.push_back(describe(registry, std::move(info), !o.no_open));
@@ -129,6 +156,9 @@ void add_devices_command(CLI::App& app) {
     cmd->add_flag("--json", opts->json_output, "Print a JSON array instead of text");
     cmd->add_flag("--no-open", opts->no_open,
                   "Do not open enumerated devices (no capabilities, but no side effects)");
+    cmd->add_option("--watch", opts->watch_s,
+                    "Print arrivals and removals (polled every 0.2 s) for this many seconds")
+        ->check(CLI::PositiveNumber);
     cmd->callback([opts] { run_devices(*opts); });
 }
 

@@ -7,7 +7,9 @@
 #include <array>
 #include <cstdio>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
+#include <thread>
 
 #include "mock_usb_camera.hpp"
 #include "mock_v4l2_camera.hpp"
@@ -67,6 +69,25 @@ TEST_F(DevicesCommand, PrintsUnitsAndReportsDevicesThatCannotOpen) {
     const CliRun gone = run_cli("devices v4l2:/dev/video2");
     EXPECT_EQ(gone.exit_code, 1) << gone.out;
     EXPECT_NE(gone.out.find("/dev/video2"), std::string::npos) << gone.out;
+}
+
+// The camera is unplugged once both arrivals are printed; the watch lasts long enough for
+// the removal to be seen on a loaded machine (polled every 0.2 s).
+TEST_F(DevicesCommand, WatchPrintsArrivalsAndRemovals) {
+    FILE* pipe = ::popen((std::string(ANASCAN_CLI) + " devices --watch 4 --json").c_str(), "r");
+    ASSERT_NE(pipe, nullptr);
+    std::vector<nlohmann::json> events;
+    std::array<char, 4096> line{};
+    while (std::fgets(line.data(), line.size(), pipe) != nullptr) {
+        events.push_back(nlohmann::json::parse(line.data(), nullptr, false));
+        if (events.size() == 2) v4l2_->unplug_now();
+    }
+    ASSERT_EQ(::pclose(pipe), 0);
+    ASSERT_EQ(events.size(), 3u);
+    EXPECT_EQ(events[0]["event"], "arrived");
+    EXPECT_EQ(events[1]["event"], "arrived");
+    EXPECT_EQ(events[2]["event"], "removed");
+    EXPECT_EQ(events[2]["uri"], "v4l2:/dev/video2");
 }
 
 }  // namespace
