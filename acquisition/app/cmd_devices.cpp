@@ -61,6 +61,13 @@ void print_range(const char* name, const std::optional<drivers::NumericRange>& r
     if (r) std::printf("    %s: %g to %g %s\n", name, r->min, r->max, unit);
 }
 
+std::string rate_text(double rate_hz) {
+    if (rate_hz <= 0.0) return "";
+    char text[32];
+    std::snprintf(text, sizeof(text), " at %g Hz", rate_hz);
+    return text;
+}
+
 void print_listing(const Listing& l) {
     const char* role = l.info.is_scanner ? "scanner" : (l.info.is_camera ? "camera" : "device");
     std::printf("%s\n  %s, %s, model \"%s\"%s%s\n", l.info.uri.c_str(), role,
@@ -69,8 +76,9 @@ void print_listing(const Listing& l) {
     if (l.open_error) std::printf("  cannot open: %s\n", l.open_error->message.c_str());
     if (!l.caps) return;
     for (const drivers::StreamProfile& p : l.caps->profiles)
-        std::printf("    stream: %d x %d px %s\n", p.width, p.height,
-                    std::string(drivers::to_string(p.format)).c_str());
+        std::printf("    stream: %d x %d px %s%s\n", p.width, p.height,
+                    std::string(drivers::to_string(p.format)).c_str(),
+                    rate_text(p.frame_rate_hz).c_str());
     print_range("exposure", l.caps->exposure_us, "us");
     print_range("gain", l.caps->gain, "(device units)");
     print_range("angular step", l.caps->angular_step_deg, "deg");

@@ -45,8 +45,9 @@ Expected<void> V4l2Camera::refresh_settings() {
     f.type = V4L2_BUF_TYPE_VIDEO_CAPTURE;
     if (int e = v4l2::xioctl(fd_.get(), VIDIOC_G_FMT, &f)) return fail(fail_os("VIDIOC_G_FMT", e));
     if (auto format = v4l2::from_fourcc(f.fmt.pix.pixelformat)) {
-        settings_.profile = StreamProfile{static_cast<int>(f.fmt.pix.width),
-                                          static_cast<int>(f.fmt.pix.height), *format, 0.0};
+        settings_.profile =
+            StreamProfile{static_cast<int>(f.fmt.pix.width), static_cast<int>(f.fmt.pix.height),
+                          *format, v4l2::query_frame_rate(fd_.get())};
     }
     stride_bytes_ = f.fmt.pix.bytesperline;
     image_bytes_ = f.fmt.pix.sizeimage;
@@ -66,6 +67,10 @@ Expected<void> V4l2Camera::apply_profile(const StreamProfile& p) {
     f.fmt.pix.pixelformat = v4l2::to_fourcc(p.format);
     f.fmt.pix.field = V4L2_FIELD_NONE;
     if (int e = v4l2::xioctl(fd_.get(), VIDIOC_S_FMT, &f)) return fail(fail_os("VIDIOC_S_FMT", e));
+    if (p.frame_rate_hz > 0.0) {
+        if (int e = v4l2::set_frame_rate(fd_.get(), p.frame_rate_hz))
+            return fail(fail_os("VIDIOC_S_PARM", e));
+    }
     if (v4l2::from_fourcc(f.fmt.pix.pixelformat) != p.format ||
         static_cast<int>(f.fmt.pix.width) != p.width ||
         static_cast<int>(f.fmt.pix.height) != p.height) {

@@ -3,6 +3,7 @@
 #include <sys/ioctl.h>
 
 #include <cerrno>
+#include <cmath>
 
 namespace anascan::drivers::v4l2 {
 
@@ -45,14 +46,31 @@ std::uint32_t to_fourcc(PixelFormat format) {
 
 namespace {
 
+/// One profile per discrete frame interval of the size (rate 0 when the driver lists none).
+void add_rates(int fd, std::uint32_t fourcc, StreamProfile p, std::vector<StreamProfile>& out) {
+    v4l2_frmivalenum ival{};
+    ival.pixel_format = fourcc;
+    ival.width = static_cast<std::uint32_t>(p.width);
+    ival.height = static_cast<std::uint32_t>(p.height);
+    const std::size_t before = out.size();
+    for (ival.index = 0; xioctl(fd, VIDIOC_ENUM_FRAMEINTERVALS, &ival) == 0; ++ival.index) {
+        if (ival.type != V4L2_FRMIVAL_TYPE_DISCRETE || ival.discrete.numerator == 0) break;
+        p.frame_rate_hz = static_cast<double>(ival.discrete.denominator) / ival.discrete.numerator;
+        out.push_back(p);
+    }
+    if (out.size() == before) out.push_back(p);
+}
+
 void add_sizes(int fd, std::uint32_t fourcc, PixelFormat format, std::vector<StreamProfile>& out) {
     v4l2_frmsizeenum size{};
     size.pixel_format = fourcc;
     const std::size_t before = out.size();
     for (size.index = 0; xioctl(fd, VIDIOC_ENUM_FRAMESIZES, &size) == 0; ++size.index) {
         if (size.type != V4L2_FRMSIZE_TYPE_DISCRETE) break;
-        out.push_back({static_cast<int>(size.discrete.width),
-                       static_cast<int>(size.discrete.height), format, 0.0});
+        add_rates(fd, fourcc,
+                  {static_cast<int>(size.discrete.width), static_cast<int>(size.discrete.height),
+                   format, 0.0},
+                  out);
     }
     if (out.size() != before) return;
     v4l2_format current{};
@@ -83,6 +101,24 @@ std::optional<NumericRange> query_control(int fd, std::uint32_t id) {
         return std::nullopt;
     }
     return NumericRange{static_cast<double>(q.minimum), static_cast<double>(q.maximum)};
+}
+
+double query_frame_rate(int fd) {
+    v4l2_streamparm parm{};
+    parm.type = V4L2_BUF_TYPE_VIDEO_CAPTURE;
+    if (xioctl(fd, VIDIOC_G_PARM, &parm) != 0 || parm.parm.capture.timeperframe.numerator == 0)
+        return 0.0;
+    return static_cast<double>(parm.parm.capture.timeperframe.denominator) /
+           parm.parm.capture.timeperframe.numerator;
+}
+
+int set_frame_rate(int fd, double rate_hz) {
+    v4l2_streamparm parm{};
+    parm.type = V4L2_BUF_TYPE_VIDEO_CAPTURE;
+    parm.parm.capture.timeperframe.numerator = 1000;
+    parm.parm.capture.timeperframe.denominator =
+        static_cast<std::uint32_t>(std::lround(rate_hz * 1000.0));
+    return xioctl(fd, VIDIOC_S_PARM, &parm);
 }
 
 }  // namespace anascan::drivers::v4l2

@@ -26,7 +26,7 @@ public:
         return as_device(open_v4l2_camera({.device_path = mock_.dev_path(), .io = io_}));
     }
     DeviceSettings valid_settings() const override {
-        return {.profile = StreamProfile{16, 12, PixelFormat::kZ16}, .exposure_us = 2500.0};
+        return {.profile = StreamProfile{16, 12, PixelFormat::kZ16, 30.0}, .exposure_us = 2500.0};
     }
     DeviceSettings invalid_settings() const override { return {.exposure_us = 5e6}; }
     void unplug_after(int n) override { mock_.unplug_after(n); }

@@ -163,6 +163,22 @@ int MockV4l2Camera::handle_format_ioctl(unsigned long request, void* p) {
             f->fmt.pix.sizeimage = static_cast<std::uint32_t>(image_bytes());
             return 0;
         }
+        case VIDIOC_ENUM_FRAMEINTERVALS: {  // 30 Hz and 15 Hz
+            auto* i = static_cast<v4l2_frmivalenum*>(p);
+            if (i->index > 1) return EINVAL;
+            i->type = V4L2_FRMIVAL_TYPE_DISCRETE;
+            i->discrete = {1, i->index == 0 ? 30u : 15u};
+            return 0;
+        }
+        case VIDIOC_G_PARM:
+        case VIDIOC_S_PARM: {
+            auto* parm = static_cast<v4l2_streamparm*>(p);
+            v4l2_fract& t = parm->parm.capture.timeperframe;
+            if (request == VIDIOC_S_PARM && t.numerator != 0)
+                rate_hz_ = static_cast<int>(t.denominator / t.numerator);
+            t = {1, static_cast<std::uint32_t>(rate_hz_)};
+            return 0;
+        }
         case VIDIOC_QUERYCTRL: {
             auto* q = static_cast<v4l2_queryctrl*>(p);
             if (q->id != V4L2_CID_EXPOSURE_ABSOLUTE) return EINVAL;

@@ -48,6 +48,10 @@ public:
     std::uint64_t frames_sent() const { return frames_sent_.load(); }
     int streamon_count() const { return streamon_count_.load(); }
     int queued_buffers() const;
+    int frame_rate_hz() const {
+        std::lock_guard lock(mutex_);
+        return rate_hz_;
+    }
 
     // Called by the umockdev signal trampolines (worker thread).
     bool handle_ioctl(void* client);
@@ -67,6 +71,7 @@ private:
     mutable std::mutex mutex_;
     PixelFormat format_;
     int exposure_ = 100;
+    int rate_hz_ = 30;
     std::vector<unsigned long> queued_userptrs_;
     std::vector<std::uint32_t> queued_indices_;
     std::atomic<int> unplug_after_{-1};

@@ -53,7 +53,7 @@ TEST_F(DevicesCommand, ListsCamerasWithCapabilitiesAsJson) {
     ASSERT_EQ(j.size(), 2u) << run.out;
     EXPECT_EQ(j[0]["uri"], "v4l2:/dev/video2");
     EXPECT_EQ(j[0]["model"], "anascan mock depth camera");
-    EXPECT_EQ(j[0]["capabilities"]["streams"].size(), 4u);
+    EXPECT_EQ(j[0]["capabilities"]["streams"].size(), 8u);  // 4 formats x 2 rates
     EXPECT_EQ(j[0]["capabilities"]["exposure_us"][1], 100000.0);
     EXPECT_EQ(j[1]["uri"], "usb:1209:0001");
     EXPECT_EQ(j[1]["kind"], "time-of-flight");
@@ -63,7 +63,7 @@ TEST_F(DevicesCommand, PrintsUnitsAndReportsDevicesThatCannotOpen) {
     const CliRun run = run_cli("devices");
     ASSERT_EQ(run.exit_code, 0) << run.out;
     EXPECT_NE(run.out.find("v4l2:/dev/video2"), std::string::npos) << run.out;
-    EXPECT_NE(run.out.find("stream: 16 x 12 px z16"), std::string::npos) << run.out;
+    EXPECT_NE(run.out.find("stream: 16 x 12 px z16 at 30 Hz"), std::string::npos) << run.out;
     EXPECT_NE(run.out.find("exposure: 100 to 100000 us"), std::string::npos) << run.out;
     v4l2_->unplug_now();
     const CliRun gone = run_cli("devices v4l2:/dev/video2");

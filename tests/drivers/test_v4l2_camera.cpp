@@ -44,8 +44,9 @@ TEST_F(V4l2Test, ReportsModelProfilesAndExposureRange) {
     EXPECT_EQ(camera->info().kind, DeviceKind::kTimeOfFlight);  // it offers Z16 depth
     const Capabilities& caps = camera->capabilities();
     EXPECT_TRUE(caps.can_stream);
-    ASSERT_EQ(caps.profiles.size(), 4u);
-    EXPECT_EQ(caps.profiles[0], (StreamProfile{16, 12, PixelFormat::kZ16, 0.0}));
+    ASSERT_EQ(caps.profiles.size(), 8u);  // 4 formats x 2 frame rates
+    EXPECT_EQ(caps.profiles[0], (StreamProfile{16, 12, PixelFormat::kZ16, 30.0}));
+    EXPECT_EQ(caps.profiles[1], (StreamProfile{16, 12, PixelFormat::kZ16, 15.0}));
     ASSERT_TRUE(caps.exposure_us);
     EXPECT_DOUBLE_EQ(caps.exposure_us->min, 100.0);
     EXPECT_DOUBLE_EQ(caps.exposure_us->max, 100000.0);
@@ -105,6 +106,18 @@ TEST_F(V4l2Test, DeliversGreyYuyvAndMjpeg) {
         }
         camera->stop_stream();
     }
+}
+
+TEST_F(V4l2Test, SetsTheFrameRate) {
+    auto camera = open();
+    ASSERT_TRUE(camera);
+    EXPECT_DOUBLE_EQ(camera->settings().profile->frame_rate_hz, 30.0);
+    ASSERT_TRUE(camera->configure({.profile = StreamProfile{16, 12, PixelFormat::kGrey8, 15.0}}));
+    EXPECT_EQ(mock_->frame_rate_hz(), 15);
+    EXPECT_EQ(camera->settings().profile, (StreamProfile{16, 12, PixelFormat::kGrey8, 15.0}));
+    auto odd = camera->configure({.profile = StreamProfile{16, 12, PixelFormat::kGrey8, 60.0}});
+    ASSERT_FALSE(odd);
+    EXPECT_EQ(odd.error().code, ErrorCode::kInvalidArgument);
 }
 
 TEST_F(V4l2Test, RejectsInvalidSettingsAndKeepsTheOldOnes) {
