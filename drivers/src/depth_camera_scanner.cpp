@@ -1,5 +1,6 @@
 #include "anascan/drivers/depth_camera_scanner.hpp"
 
+#include <algorithm>
 #include <chrono>
 
 namespace anascan::drivers {
@@ -34,6 +35,7 @@ public:
     Expected<Scan> capture_scan(const CaptureControl& control) override;
 
 private:
+    Expected<Frame> wait_for_frame(const CaptureControl& control);
     std::unique_ptr<Camera> camera_;
     DepthIntrinsics intrinsics_;
     DeviceInfo info_;
@@ -41,16 +43,33 @@ private:
     std::int64_t sequence_ = 0;
 };
 
+// Waits in slices so that a stop request ends the wait within one slice.
+Expected<Frame> DepthCameraScanner::wait_for_frame(const CaptureControl& control) {
+    using std::chrono::milliseconds;
+    const auto deadline = std::chrono::steady_clock::now() + control.timeout;
+    for (;;) {
+        if (control.stop.stop_requested())
+            return fail(ErrorCode::kCancelled, info_.uri + ": cancelled");
+        const auto left =
+            std::chrono::duration_cast<milliseconds>(deadline - std::chrono::steady_clock::now());
+        Expected<Frame> frame =
+            camera_->next_frame(std::clamp(left, milliseconds(1), milliseconds(100)));
+        if (frame || frame.error().code != ErrorCode::kTimeout) return frame;
+        if (std::chrono::steady_clock::now() >= deadline) {
+            return fail(ErrorCode::kTimeout, info_.uri + ": no depth frame within " +
+                                                 std::to_string(control.timeout.count()) + " ms");
+        }
+    }
+}
+
 Expected<Scan> DepthCameraScanner::capture_scan(const CaptureControl& control) {
     if (control.stop.stop_requested())
         return fail(ErrorCode::kCancelled, info_.uri + ": cancelled");
     if (control.on_progress) control.on_progress({0.0, "waiting for a depth frame"});
     if (auto ok = camera_->start_stream(); !ok) return fail(ok.error());
-    Expected<Frame> frame = camera_->next_frame(control.timeout);
+    Expected<Frame> frame = wait_for_frame(control);
     camera_->stop_stream();
     if (!frame) return fail(frame.error());
-    if (control.stop.stop_requested())
-        return fail(ErrorCode::kCancelled, info_.uri + ": cancelled");
     auto cloud = depth_to_point_cloud(*frame, intrinsics_);
     if (!cloud) return fail(Error{cloud.error().code, info_.uri + ": " + cloud.error().message});
     Scan scan;

@@ -1,5 +1,7 @@
 #include "scripted_camera.hpp"
 
+#include <thread>
+
 #include "mock_pixel.hpp"
 
 namespace anascan::drivers::test {
@@ -28,7 +30,11 @@ public:
         if (closed_) return fail(ErrorCode::kDisconnected, "test:scripted: closed");
         return {};
     }
-    Expected<Frame> next_frame(std::chrono::milliseconds) override {
+    Expected<Frame> next_frame(std::chrono::milliseconds timeout) override {
+        if (config_.silent) {
+            std::this_thread::sleep_for(timeout);
+            return fail(ErrorCode::kTimeout, "test:scripted: silent");
+        }
         if (closed_ || sequence_ == static_cast<std::uint64_t>(config_.unplug_after_frames)) {
             return fail(ErrorCode::kDisconnected, "test:scripted: unplugged");
         }

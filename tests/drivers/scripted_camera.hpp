@@ -13,6 +13,7 @@ struct ScriptedCameraConfig {
     int height = 12;
     PixelFormat format = PixelFormat::kZ16;
     int unplug_after_frames = -1;  ///< -1: never.
+    bool silent = false;           ///< Every next_frame waits its timeout, then kTimeout.
     std::string calibration_json = R"({"fx_px":20.0})";
 };
 

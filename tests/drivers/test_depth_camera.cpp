@@ -1,6 +1,8 @@
 // Time-of-flight: Z16 depth + intrinsics → oriented point cloud, and the depth scanner.
 #include <gtest/gtest.h>
 
+#include <thread>
+
 #include "anascan/drivers/depth_camera_scanner.hpp"
 #include "mock_pixel.hpp"
 #include "scripted_camera.hpp"
@@ -87,6 +89,31 @@ TEST(DepthCameraScanner, ReportsTheCameraUnplug) {
     auto scan = scanner->capture_scan({});
     ASSERT_FALSE(scan);
     EXPECT_EQ(scan.error().code, ErrorCode::kDisconnected);
+}
+
+TEST(DepthCameraScanner, ACancelEndsTheWaitForAFrame) {
+    auto scanner = make_depth_camera_scanner(test::make_scripted_camera({.silent = true}),
+                                             {.fx_px = 20, .fy_px = 20});
+    std::stop_source stop;
+    std::thread canceller([&] {
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+        stop.request_stop();
+    });
+    // With a 60 s timeout, only the cancel can end this call soon (and with kCancelled).
+    auto scan =
+        scanner->capture_scan({.stop = stop.get_token(), .timeout = std::chrono::seconds(60)});
+    canceller.join();
+    ASSERT_FALSE(scan);
+    EXPECT_EQ(scan.error().code, ErrorCode::kCancelled);
+}
+
+TEST(DepthCameraScanner, SilenceIsATimeoutNamingTheDevice) {
+    auto scanner = make_depth_camera_scanner(test::make_scripted_camera({.silent = true}),
+                                             {.fx_px = 20, .fy_px = 20});
+    auto scan = scanner->capture_scan({.timeout = std::chrono::milliseconds(30)});
+    ASSERT_FALSE(scan);
+    EXPECT_EQ(scan.error().code, ErrorCode::kTimeout);
+    EXPECT_NE(scan.error().message.find("test:scripted"), std::string::npos);
 }
 
 }  // namespace
