@@ -9,6 +9,7 @@
 #include "anascan/drivers/device_registry.hpp"
 #include "anascan/drivers/device_watcher.hpp"
 #include "anascan/drivers/stream_runner.hpp"
+#include "event_log.hpp"
 #include "scripted_camera.hpp"
 
 namespace anascan::drivers {
@@ -127,23 +128,12 @@ TEST(Watcher, PollsTheRegistry) {
     std::vector<DeviceInfo> present{{.uri = "fake:a"}};
     DeviceRegistry registry;
     ASSERT_TRUE(registry.add(fake_backend("fake", &present)));
-    std::mutex m;
-    std::condition_variable cv;
-    std::vector<DeviceEvent> events;
-    DeviceWatcher watcher(
-        registry,
-        [&](const DeviceEvent& e) {
-            std::lock_guard lock(m);
-            events.push_back(e);
-            cv.notify_all();
-        },
-        std::chrono::milliseconds(5));
-    std::unique_lock lock(m);
-    ASSERT_TRUE(cv.wait_for(lock, std::chrono::seconds(10), [&] { return !events.empty(); }));
-    EXPECT_EQ(events[0].device.uri, "fake:a");
-    EXPECT_EQ(events[0].type, DeviceEventType::kArrived);
-    lock.unlock();
+    test::EventLog log;
+    DeviceWatcher watcher(registry, log.recorder(), std::chrono::milliseconds(5));
+    ASSERT_TRUE(log.wait_for(1));
     watcher.stop();  // the list is read by the watcher thread: change it only when stopped
+    EXPECT_EQ(log.events()[0].device.uri, "fake:a");
+    EXPECT_EQ(log.events()[0].type, DeviceEventType::kArrived);
 }
 
 TEST(StreamRunner, DeliversFramesInOrderThenReportsTheUnplugOnce) {

@@ -2,11 +2,9 @@
 // usbfs device under umockdev (run by umockdev-wrapper).
 #include <gtest/gtest.h>
 
-#include <condition_variable>
-#include <mutex>
-
 #include "anascan/drivers/stream_runner.hpp"
 #include "anascan/drivers/usb_devices.hpp"
+#include "event_log.hpp"
 #include "mock_usb_camera.hpp"
 #include "mock_v4l2_camera.hpp"
 #include "stream_until_error.hpp"
@@ -99,26 +97,16 @@ TEST_F(UsbTest, UnknownAndAbsentDevicesAreClassified) {
 }
 
 TEST_F(UsbTest, HotplugReportsArrivalAndRemoval) {
-    std::mutex m;
-    std::condition_variable cv;
-    std::vector<DeviceEvent> events;
-    auto watcher = UsbHotplugWatcher::start(
-        [&](const DeviceEvent& e) {
-            std::lock_guard lock(m);
-            events.push_back(e);
-            cv.notify_all();
-        },
-        std::chrono::milliseconds(20));
+    EventLog log;
+    auto watcher = UsbHotplugWatcher::start(log.recorder(), std::chrono::milliseconds(20));
     ASSERT_TRUE(watcher);
-    std::unique_lock lock(m);
-    ASSERT_TRUE(cv.wait_for(lock, std::chrono::seconds(10), [&] { return events.size() >= 1; }));
+    ASSERT_TRUE(log.wait_for(1));
+    mock_->unplug_now();
+    ASSERT_TRUE(log.wait_for(2)) << "no removal event (libusb hotplug: "
+                                 << (*watcher)->uses_libusb_hotplug() << ")";
+    const std::vector<DeviceEvent> events = log.events();
     EXPECT_EQ(events[0].type, DeviceEventType::kArrived);
     EXPECT_EQ(events[0].device.uri, "usb:1209:0001");
-    lock.unlock();
-    mock_->unplug_now();
-    lock.lock();
-    ASSERT_TRUE(cv.wait_for(lock, std::chrono::seconds(10), [&] { return events.size() >= 2; }))
-        << "no removal event (libusb hotplug: " << (*watcher)->uses_libusb_hotplug() << ")";
     EXPECT_EQ(events[1].type, DeviceEventType::kRemoved);
 }
 

@@ -1,12 +1,10 @@
 // The V4L2 backend against a scripted device under umockdev (run by umockdev-wrapper).
 #include <gtest/gtest.h>
 
-#include <condition_variable>
-#include <mutex>
-
 #include "anascan/drivers/device_watcher.hpp"
 #include "anascan/drivers/stream_runner.hpp"
 #include "anascan/drivers/v4l2_camera.hpp"
+#include "event_log.hpp"
 #include "mock_v4l2_camera.hpp"
 #include "stream_until_error.hpp"
 
@@ -189,25 +187,14 @@ TEST_F(V4l2Test, UnplugDuringStreamingEndsWithDisconnected) {
 TEST_F(V4l2Test, WatcherReportsArrivalAndRemoval) {
     DeviceRegistry registry;
     ASSERT_TRUE(registry.add(make_v4l2_backend()));
-    std::mutex m;
-    std::condition_variable cv;
-    std::vector<DeviceEvent> events;
-    DeviceWatcher watcher(
-        registry,
-        [&](const DeviceEvent& e) {
-            std::lock_guard lock(m);
-            events.push_back(e);
-            cv.notify_all();
-        },
-        std::chrono::milliseconds(10));
-    std::unique_lock lock(m);
-    ASSERT_TRUE(cv.wait_for(lock, std::chrono::seconds(10), [&] { return events.size() == 1; }));
+    EventLog log;
+    DeviceWatcher watcher(registry, log.recorder(), std::chrono::milliseconds(10));
+    ASSERT_TRUE(log.wait_for(1));
+    mock_->unplug_now();
+    ASSERT_TRUE(log.wait_for(2));
+    const std::vector<DeviceEvent> events = log.events();
     EXPECT_EQ(events[0].type, DeviceEventType::kArrived);
     EXPECT_EQ(events[0].device.uri, mock_->uri());
-    lock.unlock();
-    mock_->unplug_now();
-    lock.lock();
-    ASSERT_TRUE(cv.wait_for(lock, std::chrono::seconds(10), [&] { return events.size() == 2; }));
     EXPECT_EQ(events[1].type, DeviceEventType::kRemoved);
     EXPECT_EQ(events[1].device.model, "anascan mock depth camera");
 }
