@@ -16,6 +16,7 @@ PACKAGES=(
     libspdlog-dev libfmt-dev libcli11-dev nlohmann-json3-dev
     libgtest-dev libgmock-dev googletest libbenchmark-dev
     umockdev libumockdev-dev
+    zlib1g-dev libx11-dev              # drivers: recording CRC-32; projector test reads the X screen
     xvfb xauth
     python3-open3d python3-numpy       # peer for the side-by-side benchmarks
     libopen3d-dev                      # Open3D C++: peer linked into anascan_bench_ply

@@ -27,6 +27,8 @@ void add_register_command(CLI::App& app);
 void add_align_command(CLI::App& app);
 /// `sl decode`: structured-light stereo images -> point cloud.
 void add_sl_command(CLI::App& app);
+/// `devices`: connected and named devices with their capabilities (text or --json).
+void add_devices_command(CLI::App& app);
 /// Hidden `sim move-scans`: randomly moved copies of the scans of a .conf (for tests).
 void add_sim_command(CLI::App& app);
 /// `sim list-scenes`, `sim export-scene` (registered by add_sim_command on its group).

@@ -36,6 +36,7 @@ int main(int argc, char** argv) {
     anascan::cli::add_register_command(app);
     anascan::cli::add_align_command(app);
     anascan::cli::add_sl_command(app);
+    anascan::cli::add_devices_command(app);
     anascan::cli::add_sim_command(app);
     anascan::cli::add_demo_command(app);
     app.parse_complete_callback([&] { configure_logging(verbose, quiet); });

@@ -22,6 +22,8 @@ std::string_view to_string(ErrorCode code) {
             return "timeout";
         case ErrorCode::kBusy:
             return "busy";
+        case ErrorCode::kCancelled:
+            return "cancelled";
     }
     return "unknown";
 }

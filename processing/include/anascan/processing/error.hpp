@@ -18,6 +18,7 @@ enum class ErrorCode {
     kDisconnected,     ///< A device went away.
     kTimeout,          ///< A device or operation did not answer in time.
     kBusy,             ///< A device or resource is in use.
+    kCancelled,        ///< The caller asked the operation to stop (e.g. a scan cancelled).
 };
 
 /// A failure with a message a user can act on. The message names the file or device and,

@@ -1,0 +1,39 @@
+#pragma once
+/// \file
+/// A scanner: one call, one scan, with progress and cancellation.
+
+#include <chrono>
+#include <functional>
+#include <stop_token>
+#include <string>
+
+#include "anascan/drivers/device.hpp"
+#include "anascan/processing/scan.hpp"
+
+namespace anascan::drivers {
+
+/// Progress of a capture: fraction done and the stage ("projecting pattern 12/44").
+struct CaptureProgress {
+    double fraction = 0.0;  ///< 0..1.
+    std::string stage;
+};
+
+/// How capture_scan reports and can be stopped.
+struct CaptureControl {
+    std::function<void(const CaptureProgress&)> on_progress;  ///< May be empty.
+    std::stop_token stop;                                     ///< Request → kCancelled.
+    std::chrono::milliseconds timeout{30000};                 ///< Whole capture.
+};
+
+/// Not thread-safe: capture_scan runs on the caller's thread; another thread may only
+/// request a stop through CaptureControl::stop.
+class Scanner : public Device {
+public:
+    Scanner* as_scanner() override { return this; }
+
+    /// One scan in the sensor frame with meta.sensor_origin_scan_m, device id and kind,
+    /// settings_json and (when the device knows it) meta.T_world_scan.
+    virtual Expected<Scan> capture_scan(const CaptureControl& control) = 0;
+};
+
+}  // namespace anascan::drivers

@@ -1,0 +1,18 @@
+#include "anascan/drivers/device_registry.hpp"
+#include "anascan/drivers/ptx_station_scanner.hpp"
+#include "anascan/drivers/recording.hpp"
+#include "anascan/drivers/usb_devices.hpp"
+#include "anascan/drivers/v4l2_camera.hpp"
+
+namespace anascan::drivers {
+
+DeviceRegistry make_hardware_registry() {
+    DeviceRegistry registry;
+    for (Backend b :
+         {make_v4l2_backend(), make_usb_backend(), make_ptx_backend(), make_playback_backend()}) {
+        (void)registry.add(std::move(b));  // distinct schemes: cannot fail
+    }
+    return registry;
+}
+
+}  // namespace anascan::drivers
