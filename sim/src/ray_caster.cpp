@@ -171,7 +171,7 @@ std::optional<RayHit> RayCaster::cast(const Eigen::Vector3d& origin,
 }
 
 std::optional<SurfacePoint> RayCaster::closest_point(const Eigen::Vector3d& point,
-                                                    double max_distance_m) const {
+                                                     double max_distance_m) const {
     NearestQuery q{.vertices = &impl_->vertices,
                    .triangles = &impl_->triangles,
                    .point = point,

@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <string>
 #include <opencv2/imgproc.hpp>
+#include <string>
 
 #include "hash_random.hpp"
 
