@@ -84,6 +84,16 @@ TEST_F(SimSlCli, CaptureDecodesOnTheStoneInMetresWithoutSwap) {
     EXPECT_NEAR(m.median_depth_m, 1.0, 0.15);  // Metres: the rig stands 1 m from the block.
     EXPECT_GT(m.near, m.points * 8 / 10);
     EXPECT_GE(double(m.within), 0.95 * double(m.near));
+    // The same measurement as a command (every point, ground ones included).
+    const CliRun dist = run_cli("sim surface-distance " + (dir_ / "cloud.ply").string() +
+                                " --mesh " + (dir_ / "cap" / "stone_in_cam1.ply").string());
+    EXPECT_EQ(dist.exit_code, 0) << dist.output;
+    EXPECT_NE(dist.output.find(" within 0.30 mm of "), std::string::npos) << dist.output;
+    // A cloud is no mesh: the error names the file.
+    const CliRun bad = run_cli("sim surface-distance " + (dir_ / "cloud.ply").string() +
+                               " --mesh " + (dir_ / "cloud.ply").string());
+    EXPECT_NE(bad.exit_code, 0);
+    EXPECT_NE(bad.output.find("cloud.ply: no triangles"), std::string::npos) << bad.output;
 }
 
 // The statue data's --swap-cameras is wrong here: the mirrored rig still triangulates

@@ -11,6 +11,7 @@
 
 #include "anascan/drivers/structured_light/stereo_decoder.hpp"
 #include "anascan/sim/structured_light_renderer.hpp"
+#include "anascan/sim/surface_distance.hpp"
 #include "anascan/sim/viewpoints.hpp"
 #include "sim_test_scenes.hpp"
 
@@ -24,34 +25,12 @@ constexpr double kMaxDistanceM = 0.01;
 // What the rig is built for (docs/simulation.md: PT-M 1024-like, ~0.1 mm at 1 m).
 constexpr double kRigNoiseM = 1e-4;
 
-struct Accuracy {
-    std::size_t points = 0;
-    double within_0_3mm = 0.0;  ///< Fraction.
-    double median_m = 0.0, rms_m = 0.0, rms_best95_m = 0.0;
-};
+using Accuracy = SurfaceDistanceSummary;
 
 // Distance of each cloud point (cam1 frame) to the mesh, via the rig's true pose.
 Accuracy measure(const PointCloud& cloud, const Pose& T_world_cam1, const RayCaster& truth) {
-    std::vector<double> d(cloud.size());
-    for (std::size_t i = 0; i < cloud.size(); ++i) {
-        const auto nearest =
-            truth.closest_point(T_world_cam1 * cloud.world_position(i), kMaxDistanceM);
-        d[i] = nearest ? nearest->distance_m : kMaxDistanceM;
-    }
-    Accuracy a{.points = d.size()};
-    if (d.empty()) return a;
-    std::sort(d.begin(), d.end());
-    double sum2 = 0.0, sum2_best = 0.0;
-    const std::size_t best = d.size() * 95 / 100;
-    for (std::size_t i = 0; i < d.size(); ++i) {
-        sum2 += d[i] * d[i];
-        if (i < best) sum2_best += d[i] * d[i];
-    }
-    a.within_0_3mm = double(std::upper_bound(d.begin(), d.end(), 3e-4) - d.begin()) / d.size();
-    a.median_m = d[d.size() / 2];
-    a.rms_m = std::sqrt(sum2 / d.size());
-    a.rms_best95_m = std::sqrt(sum2_best / std::max<std::size_t>(best, 1));
-    return a;
+    return summarize_distances(surface_distances(cloud, T_world_cam1, truth, kMaxDistanceM), 3e-4,
+                               kMaxDistanceM);
 }
 
 class StructuredLightScanTest : public ::testing::Test {
@@ -119,7 +98,7 @@ void print(const char* what, const sl::StereoDecodeResult& r, const Accuracy& a)
         "%.2f %% within 0.3 mm, median %.3f mm, RMS %.3f mm, RMS of best 95 %% %.3f mm, "
         "median ray gap %.3f mm\n",
         what, a.points, r.pixel_count, r.cam1_valid, r.matched, r.rejected_ray_gap,
-        100.0 * a.within_0_3mm, 1e3 * a.median_m, 1e3 * a.rms_m, 1e3 * a.rms_best95_m,
+        100.0 * a.within_fraction, 1e3 * a.median_m, 1e3 * a.rms_m, 1e3 * a.rms_best95_m,
         1e3 * r.median_ray_gap_m);
 }
 
@@ -146,7 +125,7 @@ TEST_F(StructuredLightScanTest, BlockAt1mIsWithin0_3mmOfTheTrueSurface) {
     std::printf("cam1 pixels lit and seen by cam2: %zu; points: %.1f %% of them\n", both,
                 100.0 * double(a.points) / double(both));
     EXPECT_GT(double(a.points), 0.9 * double(both));
-    EXPECT_GE(a.within_0_3mm, 0.95);
+    EXPECT_GE(a.within_fraction, 0.95);
     // Every point, outliers included (a point farther than 10 mm counts as 10 mm).
     EXPECT_LT(a.rms_m, kRigNoiseM);
 }
@@ -171,7 +150,7 @@ TEST_F(StructuredLightScanTest, ErrorFollowsTheImageNoise) {
     const Accuracy x4 = at_noise(noisy, "4x the sensor noise");
     EXPECT_LT(none.rms_best95_m, base.rms_best95_m);
     EXPECT_GT(x4.rms_best95_m, 2.0 * base.rms_best95_m);
-    EXPECT_GE(base.within_0_3mm, 0.95);
+    EXPECT_GE(base.within_fraction, 0.95);
 }
 
 }  // namespace
