@@ -102,6 +102,21 @@ void print(const char* what, const sl::StereoDecodeResult& r, const Accuracy& a)
         1e3 * r.median_ray_gap_m);
 }
 
+// The renderer projects the decoder's images; the sim's own description of each pattern
+// (kind, axis, level) must say the same, image for image.
+TEST(PatternSequence, SimPatternsAreTheDecodersPatterns) {
+    const PatternSequenceConfig config;
+    const std::vector<Pattern> sim = pattern_sequence(config);
+    const std::vector<cv::Mat> decoder = sl::make_patterns(decoder_sequence(config));
+    ASSERT_EQ(sim.size(), decoder.size());
+    for (std::size_t i = 0; i < sim.size(); ++i) {
+        // Phase levels: the sim's exact cosine, the decoder's rounded to 8 bits.
+        const double tolerance = sim[i].kind == PatternKind::kPhase ? 1.0 : 0.0;
+        EXPECT_LE(cv::norm(projector_image(config, sim[i]), decoder[i], cv::NORM_INF), tolerance)
+            << "pattern " << i;
+    }
+}
+
 TEST(RayCasterClosestPoint, IsTheExactDistanceToATriangle) {
     Mesh mesh;
     mesh.vertices.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
