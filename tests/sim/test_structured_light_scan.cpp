@@ -33,16 +33,8 @@ Accuracy measure(const PointCloud& cloud, const Pose& T_world_cam1, const RayCas
                                kMaxDistanceM);
 }
 
-class StructuredLightScanTest : public ::testing::Test {
+class StructuredLightScanTest : public testing::SmallSceneSuite {
 protected:
-    static void SetUpTestSuite() {
-        scene_ = new Scene(testing::small_scene(0.002));
-        caster_ = new RayCaster(testing::caster_of(scene_->mesh));
-    }
-    static void TearDownTestSuite() {
-        delete caster_;
-        delete scene_;
-    }
     // The full rig's optics (f = 2700 px, 0.4 m baseline, verging at 1 m) with a crop of
     // the cameras: the same geometry at 1 m as 1600 x 1200, a fraction of the rendering.
     static StructuredLightRig rig_at_1m(const Viewpoint& view) {
@@ -67,9 +59,6 @@ protected:
         if (result) s.result = *std::move(result);
         return s;
     }
-
-    static inline Scene* scene_ = nullptr;
-    static inline RayCaster* caster_ = nullptr;
 };
 
 // cam1 pixels whose surface point the projector lights and cam2 sees (from the renderer's
