@@ -1,8 +1,9 @@
-// anascan sim tof-scan | sl-capture (hidden `sim` group): simulated terrestrial
+// anascan sim tof-scan | sl-capture | surface-distance (hidden `sim` group): simulated terrestrial
 // time-of-flight scans and structured-light image sequences of the named scenes, with their
 // true sensor poses, for tests and accuracy checks.
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -12,6 +13,7 @@
 #include "anascan/processing/io/stanford_conf.hpp"
 #include "anascan/sim/ray_caster.hpp"
 #include "anascan/sim/structured_light_renderer.hpp"
+#include "anascan/sim/surface_distance.hpp"
 #include "anascan/sim/tof_scanner.hpp"
 #include "anascan/sim/viewpoints.hpp"
 #include "commands.hpp"
@@ -41,6 +43,12 @@ struct SlOptions {
     sim::StructuredLightRigConfig rig;
     sim::Viewpoint view{.azimuth_deg = 30.0, .elevation_deg = 35.0, .distance_m = 1.0};
     long long render_seed = 1;
+};
+
+struct DistanceOptions {
+    std::string cloud, mesh;
+    double tolerance_mm = 0.3;
+    double max_mm = 10.0;
 };
 
 sim::RayCaster make_caster(const sim::Scene& scene) {
@@ -121,6 +129,30 @@ void run_sl(const SlOptions& o) {
         100.0 * lit / (rig.cam1.width_px * rig.cam1.height_px));
 }
 
+// Distance of every point of a cloud to a ground-truth mesh in the same frame.
+void run_distance(const DistanceOptions& o) {
+    auto cloud = io::read_ply(o.cloud);
+    if (!cloud) fail_command(cloud.error());
+    auto mesh = io::read_ply(o.mesh);
+    if (!mesh) fail_command(mesh.error());
+    if (mesh->triangles.empty()) throw CommandFailed(o.mesh + ": no triangles, not a mesh");
+    auto caster =
+        sim::RayCaster::create(Mesh{.vertices = mesh->cloud, .triangles = mesh->triangles});
+    if (!caster) fail_command(caster.error());
+    const auto s = sim::summarize_distances(
+        sim::surface_distances(cloud->cloud, Pose::Identity(), *caster, 1e-3 * o.max_mm),
+        1e-3 * o.tolerance_mm, 1e-3 * o.max_mm);
+    const double within = s.within_fraction * double(s.points);
+    const std::size_t near = s.points - s.beyond_max;
+    std::printf(
+        "%s: %zu points, %.2f %% within %.2f mm of %s, median %.3f mm, RMS %.3f mm (points "
+        "beyond %.1f mm count as %.1f mm: %zu), RMS of the closest 95 %% %.3f mm; of the %zu "
+        "points within %.1f mm (on the mesh's surface), %.2f %% within %.2f mm\n",
+        o.cloud.c_str(), s.points, 100.0 * s.within_fraction, o.tolerance_mm, o.mesh.c_str(),
+        1e3 * s.median_m, 1e3 * s.rms_m, o.max_mm, o.max_mm, s.beyond_max, 1e3 * s.rms_best95_m,
+        near, o.max_mm, 100.0 * within / double(std::max<std::size_t>(near, 1)), o.tolerance_mm);
+}
+
 void add_scene_options(CLI::App* cmd, SceneChoice& s, const char* out_help) {
     cmd->add_option("name", s.name, "Scene name (anascan sim list-scenes)")->required();
     cmd->add_option("--out", s.out, out_help)->required();
@@ -160,6 +192,17 @@ void add_sim_scanner_commands(CLI::App& sim) {
     s->add_option("--camera-height", sl->rig.camera_height_px, "Camera height, px (default 1200)");
     s->add_option("--seed", sl->render_seed, "Image noise seed")->check(CLI::NonNegativeNumber);
     s->callback([sl] { run_sl(*sl); });
+
+    auto dist = std::make_shared<DistanceOptions>();
+    auto* d = sim.add_subcommand(
+        "surface-distance", "Distance of a cloud's points to a ground-truth mesh (same frame)");
+    d->add_option("cloud", dist->cloud, "Point cloud (.ply)")->required();
+    d->add_option("--mesh", dist->mesh, "Ground-truth mesh (.ply with faces)")->required();
+    d->add_option("--tolerance-mm", dist->tolerance_mm, "Share of points within this, mm (0.3)")
+        ->check(CLI::PositiveNumber);
+    d->add_option("--max-mm", dist->max_mm, "Farther points count as this, mm (default 10)")
+        ->check(CLI::PositiveNumber);
+    d->callback([dist] { run_distance(*dist); });
 }
 
 }  // namespace anascan::cli

@@ -11,6 +11,15 @@ int gray_code_bits(int n) {
     return bits;
 }
 
+drivers::sl::PatternSequence decoder_sequence(const PatternSequenceConfig& config) {
+    drivers::sl::PatternSequence sequence{
+        .gray = {.projector_width_px = config.width_px, .projector_height_px = config.height_px}};
+    if (config.phase_steps > 0)
+        sequence.phase = drivers::sl::PhaseShiftLayout{.period_px = config.phase_period_px,
+                                                       .steps = config.phase_steps};
+    return sequence;
+}
+
 std::vector<Pattern> pattern_sequence(const PatternSequenceConfig& config) {
     std::vector<Pattern> sequence;
     for (const bool columns : {true, false}) {
@@ -24,7 +33,6 @@ std::vector<Pattern> pattern_sequence(const PatternSequenceConfig& config) {
     sequence.push_back({.kind = PatternKind::kWhite});
     sequence.push_back({.kind = PatternKind::kBlack});
     for (const bool columns : {true, false}) {
-        if (!columns && !config.row_phase) continue;
         for (int step = 0; step < config.phase_steps; ++step)
             sequence.push_back({.kind = PatternKind::kPhase, .columns = columns, .step = step});
     }
@@ -45,7 +53,7 @@ double pattern_level(const PatternSequenceConfig& config, const Pattern& pattern
         }
         case PatternKind::kPhase: {
             const double phase = 2.0 * std::numbers::pi *
-                                 (index / config.phase_period_px -
+                                 (index / static_cast<double>(config.phase_period_px) -
                                   static_cast<double>(pattern.step) / config.phase_steps);
             return 0.5 + 0.5 * std::cos(phase);
         }

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "closest_point_triangle.hpp"
+
 namespace anascan::sim {
 
 struct RayCaster::Impl {
@@ -14,6 +16,8 @@ struct RayCaster::Impl {
     RTCScene scene = nullptr;
     std::vector<Eigen::Vector3d> triangle_normals;
     std::vector<double> triangle_offsets_m;  ///< n . v0 of each triangle's plane.
+    std::vector<Eigen::Vector3d> vertices;   ///< Double copies, for exact nearest points.
+    std::vector<Eigen::Vector3i> triangles;
 
     ~Impl() {
         if (scene) rtcReleaseScene(scene);
@@ -75,6 +79,27 @@ std::vector<Eigen::Vector3d> triangle_normals(const Mesh& mesh) {
     return normals;
 }
 
+// State of one nearest-point query (Embree calls `closer` for each candidate triangle).
+struct NearestQuery {
+    const std::vector<Eigen::Vector3d>* vertices = nullptr;
+    const std::vector<Eigen::Vector3i>* triangles = nullptr;
+    Eigen::Vector3d point;
+    SurfacePoint best;
+};
+
+bool closer(RTCPointQueryFunctionArguments* args) {
+    auto* q = static_cast<NearestQuery*>(args->userPtr);
+    const Eigen::Vector3i& tri = (*q->triangles)[args->primID];
+    const std::vector<Eigen::Vector3d>& v = *q->vertices;
+    const Eigen::Vector3d c =
+        detail::closest_point_on_triangle(q->point, v[tri[0]], v[tri[1]], v[tri[2]]);
+    const double d = (c - q->point).norm();
+    if (d >= q->best.distance_m) return false;
+    q->best = SurfacePoint{.distance_m = d, .triangle = int(args->primID), .point = c};
+    args->query->radius = float(d) * (1.0f + 1e-6f) + 1e-7f;  // Float BVH bounds: keep a margin.
+    return true;
+}
+
 RTCRay make_ray(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double t_min_m,
                 double t_max_m) {
     RTCRay ray{};
@@ -110,6 +135,10 @@ Expected<RayCaster> RayCaster::create(const Mesh& mesh) {
         impl->triangle_offsets_m[t] =
             impl->triangle_normals[t].dot(mesh.vertices.world_position(mesh.triangles[t][0]));
     }
+    impl->vertices.resize(mesh.vertices.size());
+    for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
+        impl->vertices[v] = mesh.vertices.world_position(v);
+    impl->triangles = mesh.triangles;
     return RayCaster(std::move(impl));
 }
 
@@ -139,6 +168,24 @@ std::optional<RayHit> RayCaster::cast(const Eigen::Vector3d& origin,
     if (std::abs(n_dot_d) > 1e-6)
         distance_m = (impl_->triangle_offsets_m[triangle] - n.dot(origin)) / n_dot_d;
     return RayHit{.distance_m = distance_m, .triangle = triangle, .normal = n};
+}
+
+std::optional<SurfacePoint> RayCaster::closest_point(const Eigen::Vector3d& point,
+                                                     double max_distance_m) const {
+    NearestQuery q{.vertices = &impl_->vertices,
+                   .triangles = &impl_->triangles,
+                   .point = point,
+                   .best = {.distance_m = max_distance_m}};
+    RTCPointQuery query{};
+    query.x = float(point.x());
+    query.y = float(point.y());
+    query.z = float(point.z());
+    query.radius = float(max_distance_m) * (1.0f + 1e-6f) + 1e-7f;
+    RTCPointQueryContext context;
+    rtcInitPointQueryContext(&context);
+    rtcPointQuery(impl_->scene, &query, &context, closer, &q);
+    if (q.best.triangle < 0) return std::nullopt;
+    return q.best;
 }
 
 bool RayCaster::occluded(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <opencv2/imgproc.hpp>
+#include <string>
 
 #include "hash_random.hpp"
 
@@ -103,15 +104,20 @@ SurfaceImage trace_surface(const Scenery& s, const PinholeModel& cam) {
 
 // A pattern along one projector axis, constant over each projector pixel
 // [c - 0.5, c + 0.5) and zero outside, with its running integral for O(1) box filtering.
+// The levels are the projector image's (drivers::sl::make_patterns: what the decoder
+// expects), read along its first row (column patterns) or column (row patterns).
 struct PatternProfile {
     std::vector<float> levels;
     std::vector<double> integral;  ///< integral[c] = sum of levels[0..c).
 
-    PatternProfile(const PatternSequenceConfig& config, const Pattern& pattern)
-        : levels(static_cast<std::size_t>(pattern.columns ? config.width_px : config.height_px)),
+    PatternProfile(const cv::Mat& projector_image, bool columns)
+        : levels(static_cast<std::size_t>(columns ? projector_image.cols : projector_image.rows)),
           integral(levels.size() + 1, 0.0) {
         for (std::size_t c = 0; c < levels.size(); ++c) {
-            levels[c] = static_cast<float>(pattern_level(config, pattern, static_cast<int>(c)));
+            const int i = static_cast<int>(c);
+            const std::uint8_t v = columns ? projector_image.at<std::uint8_t>(0, i)
+                                           : projector_image.at<std::uint8_t>(i, 0);
+            levels[c] = static_cast<float>(v) / 255.0f;
             integral[c + 1] = integral[c] + levels[c];
         }
     }
@@ -131,8 +137,9 @@ struct PatternProfile {
 };
 
 cv::Mat render_pattern(const SurfaceImage& surface, const StructuredLightRenderConfig& config,
-                       const Pattern& pattern, std::uint64_t noise_seed) {
-    const PatternProfile profile(config.patterns, pattern);
+                       const Pattern& pattern, const cv::Mat& projector_image,
+                       std::uint64_t noise_seed) {
+    const PatternProfile profile(projector_image, pattern.columns);
     const int axis = pattern.columns ? 0 : 1;
     const double blur_var = 12.0 * config.projector_blur_sigma_px * config.projector_blur_sigma_px;
     cv::Mat radiance(surface.albedo.size(), CV_32F);
@@ -169,12 +176,13 @@ cv::Mat render_pattern(const SurfaceImage& surface, const StructuredLightRenderC
 }
 
 std::vector<cv::Mat> render_camera(const Scenery& s, const PinholeModel& cam,
-                                   const std::vector<Pattern>& patterns, int camera_index,
+                                   const std::vector<Pattern>& patterns,
+                                   const std::vector<cv::Mat>& projector_images, int camera_index,
                                    CameraTruth& truth) {
     SurfaceImage surface = trace_surface(s, cam);
     std::vector<cv::Mat> images(patterns.size());
     tbb::parallel_for(std::size_t{0}, patterns.size(), [&](std::size_t i) {
-        images[i] = render_pattern(surface, s.config, patterns[i],
+        images[i] = render_pattern(surface, s.config, patterns[i], projector_images[i],
                                    detail::hash3(s.config.seed, std::uint64_t(camera_index), i));
     });
     truth = surface.truth;
@@ -190,13 +198,26 @@ Expected<StructuredLightCapture> render_structured_light(
         rig.projector.height_px != config.patterns.height_px)
         return fail(ErrorCode::kInvalidArgument,
                     "sim:structured-light: the projector resolution differs from the patterns'");
+    if (config.patterns.phase_steps != 0 &&
+        (config.patterns.phase_steps < 3 || config.patterns.phase_period_px < 2))
+        return fail(ErrorCode::kInvalidArgument,
+                    "sim:structured-light: phase shifting needs >= 3 steps and a period >= 2 px");
     if (rig.cam1.width_px <= 0 || rig.cam1.height_px <= 0 || rig.cam2.width_px <= 0 ||
         rig.cam2.height_px <= 0)
         return fail(ErrorCode::kInvalidArgument, "sim:structured-light: empty camera image size");
     const Scenery scenery{caster, albedo_of_triangle, rig.projector, config};
     StructuredLightCapture capture{.rig = rig, .patterns = pattern_sequence(config.patterns)};
-    capture.cam1 = render_camera(scenery, rig.cam1, capture.patterns, 1, capture.truth1);
-    capture.cam2 = render_camera(scenery, rig.cam2, capture.patterns, 2, capture.truth2);
+    const std::vector<cv::Mat> projector_images =
+        drivers::sl::make_patterns(decoder_sequence(config.patterns));
+    if (projector_images.size() != capture.patterns.size())
+        return fail(ErrorCode::kInvalidArgument,
+                    "sim:structured-light: the decoder's pattern sequence has " +
+                        std::to_string(projector_images.size()) + " images, the sim's " +
+                        std::to_string(capture.patterns.size()));
+    capture.cam1 =
+        render_camera(scenery, rig.cam1, capture.patterns, projector_images, 1, capture.truth1);
+    capture.cam2 =
+        render_camera(scenery, rig.cam2, capture.patterns, projector_images, 2, capture.truth2);
     return capture;
 }
 

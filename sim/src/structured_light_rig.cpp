@@ -68,6 +68,17 @@ StructuredLightRig make_structured_light_rig(const StructuredLightRigConfig& c,
                                               c.camera_focal_px, camera_pose(0.5 * c.baseline_m))};
 }
 
+drivers::sl::StereoCalibration stereo_calibration(const StructuredLightRig& rig) {
+    auto camera = [](const PinholeModel& m) {
+        drivers::sl::CameraIntrinsics c{.width_px = m.width_px, .height_px = m.height_px};
+        c.K << m.fx_px, 0, m.cx_px, 0, m.fy_px, m.cy_px, 0, 0, 1;
+        return c;
+    };
+    return {.cam1 = camera(rig.cam1),
+            .cam2 = camera(rig.cam2),
+            .T_cam1_cam2 = rig.cam1.T_world_device.inverse() * rig.cam2.T_world_device};
+}
+
 Expected<void> write_stereo_calibration(const std::filesystem::path& path,
                                         const StructuredLightRig& rig) {
     const Pose T_cam2_cam1 = rig.cam2.T_world_device.inverse() * rig.cam1.T_world_device;

@@ -22,16 +22,8 @@ StructuredLightRigConfig narrow_rig() {
     return StructuredLightRigConfig{.camera_width_px = 240, .camera_height_px = 180};
 }
 
-class StructuredLightTest : public ::testing::Test {
+class StructuredLightTest : public testing::SmallSceneSuite {
 protected:
-    static void SetUpTestSuite() {
-        scene_ = new Scene(testing::small_scene(0.002));
-        caster_ = new RayCaster(testing::caster_of(scene_->mesh));
-    }
-    static void TearDownTestSuite() {
-        delete caster_;
-        delete scene_;
-    }
     static StructuredLightRig rig(const StructuredLightRigConfig& config, const Viewpoint& view) {
         const Eigen::Vector3d target = scene_->T_world_block.translation() +
                                        Eigen::Vector3d(0, 0, 0.5 * scene_->block_size_m.z());
@@ -41,9 +33,6 @@ protected:
                                          const StructuredLightRenderConfig& config = {}) {
         return render_structured_light(*caster_, triangle_albedos(*scene_), r, config).value();
     }
-
-    static inline Scene* scene_ = nullptr;
-    static inline RayCaster* caster_ = nullptr;
 };
 
 // What the ray geometry says camera pixel (x, y) sees: the projector pixel coordinates of

@@ -91,15 +91,17 @@ bool derivative(const ProjectorMap& m, int x, int y, int dx, int dy, Eigen::Vect
 }
 
 /// Newton steps q <- q + J^-1 (target - code(q)) over cam2's pixel grid.
+/// `det_out`: |det J| at the last step (projector px^2 per cam2 px^2).
 bool invert(const ProjectorMap& cam2, Eigen::Vector2f target, cv::Point2i q,
-            const StereoMatchConfig& config, cv::Point2f& out) {
+            const StereoMatchConfig& config, cv::Point2f& out, float& det_out) {
     for (int it = 0; it < config.max_iterations; ++it) {
         Eigen::Matrix2f J;
         Eigen::Vector2f dx, dy;
         if (!derivative(cam2, q.x, q.y, 1, 0, dx) || !derivative(cam2, q.x, q.y, 0, 1, dy))
             return false;
         J << dx, dy;
-        if (std::abs(J.determinant()) < config.min_jacobian_det) return false;
+        det_out = std::abs(J.determinant());
+        if (det_out < config.min_jacobian_det) return false;
         const Eigen::Vector2f step = J.inverse() * (target - code_at(cam2, q.x, q.y));
         if (std::abs(step.x()) <= 0.5f && std::abs(step.y()) <= 0.5f) {
             out = {float(q.x) + step.x(), float(q.y) + step.y()};
@@ -111,6 +113,31 @@ bool invert(const ProjectorMap& cam2, Eigen::Vector2f target, cv::Point2i q,
     return false;
 }
 
+/// |det| of the cam1 code's Jacobian at (x, y), or NaN.
+float jacobian_det(const ProjectorMap& m, int x, int y) {
+    Eigen::Vector2f dx, dy;
+    if (!derivative(m, x, y, 1, 0, dx) || !derivative(m, x, y, 0, 1, dy))
+        return std::numeric_limits<float>::quiet_NaN();
+    return std::abs(dx.x() * dy.y() - dx.y() * dy.x());
+}
+
+/// Both cameras see the surface with similar foreshortening (see StereoMatchConfig).
+bool similar_footprints(float det1, float det2, float max_ratio) {
+    if (max_ratio <= 0.0f) return true;
+    return det2 <= max_ratio * det1 && det1 <= max_ratio * det2;  // False for NaN.
+}
+
+/// The sub-pixel cam2 position matching cam1's pixel (x, y), or false.
+bool match_pixel(const ProjectorMap& cam1, const ProjectorMap& cam2, const ProjectorIndex& index,
+                 int x, int y, const StereoMatchConfig& config, cv::Point2f& q) {
+    const Eigen::Vector2f target = code_at(cam1, x, y);
+    cv::Point2i start;
+    float det2 = 0.0f;
+    if (!index.find(target.x(), target.y(), start) || !invert(cam2, target, start, config, q, det2))
+        return false;
+    return similar_footprints(jacobian_det(cam1, x, y), det2, config.max_foreshortening_ratio);
+}
+
 }  // namespace
 
 StereoMatches match_projector_maps(const ProjectorMap& cam1, const ProjectorMap& cam2,
@@ -119,20 +146,16 @@ StereoMatches match_projector_maps(const ProjectorMap& cam1, const ProjectorMap&
     const ProjectorIndex index(cam2, projector);
     constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
     cv::Mat found(cam1.column_px.size(), CV_32FC2, cv::Scalar(kNaN, kNaN));
-    tbb::parallel_for(tbb::blocked_range<int>(0, cam1.column_px.rows, 16),
-                      [&](const tbb::blocked_range<int>& r) {
-                          for (int y = r.begin(); y < r.end(); ++y) {
-                              for (int x = 0; x < cam1.column_px.cols; ++x) {
-                                  if (!cam1.valid(x, y)) continue;
-                                  const Eigen::Vector2f target = code_at(cam1, x, y);
-                                  cv::Point2i start;
-                                  cv::Point2f q;
-                                  if (index.find(target.x(), target.y(), start) &&
-                                      invert(cam2, target, start, config, q))
-                                      found.at<cv::Point2f>(y, x) = q;
-                              }
-                          }
-                      });
+    tbb::parallel_for(
+        tbb::blocked_range<int>(0, cam1.column_px.rows, 16), [&](const tbb::blocked_range<int>& r) {
+            for (int y = r.begin(); y < r.end(); ++y) {
+                for (int x = 0; x < cam1.column_px.cols; ++x) {
+                    cv::Point2f q;
+                    if (cam1.valid(x, y) && match_pixel(cam1, cam2, index, x, y, config, q))
+                        found.at<cv::Point2f>(y, x) = q;
+                }
+            }
+        });
     StereoMatches matches;
     matches.cam1_valid = cam1.valid_count;
     for (int y = 0; y < found.rows; ++y) {

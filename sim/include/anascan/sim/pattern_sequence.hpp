@@ -8,15 +8,20 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
+#include "anascan/drivers/structured_light/stereo_decoder.hpp"
+
 namespace anascan::sim {
 
 struct PatternSequenceConfig {
     int width_px = 1280;  ///< Projector resolution.
     int height_px = 800;
-    int phase_steps = 4;         ///< Shifts per axis (0: no phase patterns).
-    double phase_period_px = 8;  ///< Sinusoid period in projector pixels.
-    bool row_phase = true;       ///< Also shift a sinusoid along the rows.
+    int phase_steps = 4;      ///< Shifts per axis, columns then rows (0: no phase patterns).
+    int phase_period_px = 8;  ///< Sinusoid period in projector pixels.
 };
+
+/// The same sequence as the structured-light decoder describes it (drivers::sl): what
+/// `decode_stereo` must be told to read a capture rendered with `config`.
+drivers::sl::PatternSequence decoder_sequence(const PatternSequenceConfig& config);
 
 enum class PatternKind { kGrayCode, kWhite, kBlack, kPhase };
 
@@ -41,6 +46,8 @@ std::vector<Pattern> pattern_sequence(const PatternSequenceConfig& config);
 double pattern_level(const PatternSequenceConfig& config, const Pattern& pattern, int index);
 
 /// The pattern as an 8-bit projector image (height x width), e.g. for a projector window.
+/// The renderer projects drivers::sl::make_patterns(decoder_sequence(config)) (the same
+/// images, phase levels rounded to 8 bits), so the decoder reads exactly what it expects.
 cv::Mat projector_image(const PatternSequenceConfig& config, const Pattern& pattern);
 
 }  // namespace anascan::sim

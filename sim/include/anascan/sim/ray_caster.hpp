@@ -21,9 +21,16 @@ struct RayHit {
     Eigen::Vector3d normal = Eigen::Vector3d::Zero();
 };
 
+/// The point of the mesh nearest to a query point.
+struct SurfacePoint {
+    double distance_m = 0.0;  ///< From the query point.
+    int triangle = -1;        ///< Index into the mesh's triangles.
+    Eigen::Vector3d point = Eigen::Vector3d::Zero();
+};
+
 /// A ray caster over one mesh, in the mesh's frame (metres). Coordinates are stored as
 /// float: keep the mesh within a few kilometres of its origin for sub-micrometre hits.
-/// Thread-safe: `cast` and `occluded` may be called concurrently once created.
+/// Thread-safe: `cast`, `occluded` and `closest_point` may be called concurrently once created.
 class RayCaster {
 public:
     /// Builds the BVH. Fails (kEmpty) on a mesh without triangles, (kInvalidArgument) on a
@@ -42,6 +49,11 @@ public:
     /// True when any triangle lies on the ray for t in [t_min_m, t_max_m] (shadow test).
     bool occluded(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double t_min_m,
                   double t_max_m) const;
+
+    /// The nearest point of the mesh within `max_distance_m` of `point` (exact, in double;
+    /// Embree's BVH point query), or nothing when no triangle is that close.
+    std::optional<SurfacePoint> closest_point(const Eigen::Vector3d& point,
+                                              double max_distance_m) const;
 
     std::size_t triangle_count() const;
 

@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <filesystem>
 
+#include "anascan/drivers/structured_light/stereo_calibration.hpp"
 #include "anascan/processing/expected.hpp"
 #include "anascan/processing/pose.hpp"
 
@@ -50,6 +51,9 @@ StructuredLightRig make_structured_light_rig(const StructuredLightRigConfig& con
 /// A device pose at `eye` looking at `target` (+z), with +y (image down) toward -up.
 Pose look_at(const Eigen::Vector3d& eye, const Eigen::Vector3d& target,
              const Eigen::Vector3d& up = Eigen::Vector3d::UnitZ());
+
+/// The rig's exact stereo calibration as the decoder takes it (metres, cam1 = rig.cam1).
+drivers::sl::StereoCalibration stereo_calibration(const StructuredLightRig& rig);
 
 /// Writes the stereo calibration as OpenCV FileStorage YAML: cam1_intrinsics,
 /// cam1_distorsion (zeros), cam1_size, cam2_*, R, T (millimetres) with

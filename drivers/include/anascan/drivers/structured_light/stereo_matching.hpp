@@ -13,6 +13,11 @@ namespace anascan::drivers::sl {
 struct StereoMatchConfig {
     int max_iterations = 4;          ///< Newton steps when inverting cam2's projector map.
     float min_jacobian_det = 0.02f;  ///< |det d(projector)/d(cam2 pixel)|, px^2/px^2.
+    /// Largest ratio (either way) between the projector areas one cam2 and one cam1 pixel
+    /// cover: a surface one camera sees at a grazing angle (typically a hole wall next to
+    /// a projector shadow) is matched unreliably there and its points leave the surface
+    /// by millimetres with small ray gaps. 0 disables the check.
+    float max_foreshortening_ratio = 4.0f;
 };
 
 /// Matched pixel pairs, in cam1 row-major order (deterministic for any thread count).
