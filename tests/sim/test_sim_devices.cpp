@@ -1,0 +1,136 @@
+// The simulated scanners as devices: metadata and true pose, stations, cancel, timeout,
+// and the sim: backend of the registry.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "anascan/drivers/settings.hpp"
+#include "anascan/sim/sim_backend.hpp"
+#include "sim_devices_fixture.hpp"
+
+namespace anascan::sim::test {
+namespace {
+
+using drivers::CaptureControl;
+using drivers::CaptureProgress;
+
+TEST(SimTofDevice, ScanCarriesItsTruePoseAndSettings) {
+    SimTofScannerConfig config = small_tof_config();
+    config.scanner.range_noise_sigma_m = 0.0;  // exact ranges: each point must be on the mesh
+    config.scanner.mixed_pixel_probability = 0.0;
+    auto device = SimTofScanner::open(config);
+    ASSERT_TRUE(device->configure({.angular_step_deg = 3.0, .max_range_m = 50.0}));
+    const Pose T_world_station = device->station_pose();
+    auto scan = device->capture_scan({});
+    ASSERT_TRUE(scan) << scan.error().message;
+    ASSERT_GT(scan->cloud.size(), 1000u);
+    EXPECT_EQ(scan->meta.device_id, "sim:tof/small-block");
+    EXPECT_EQ(scan->meta.device_kind, DeviceKind::kTimeOfFlight);
+    ASSERT_TRUE(scan->meta.sensor_origin_scan_m);
+    EXPECT_EQ(*scan->meta.sensor_origin_scan_m, Eigen::Vector3d::Zero());
+    ASSERT_TRUE(scan->meta.T_world_scan);
+    EXPECT_TRUE(scan->meta.T_world_scan->isApprox(T_world_station));
+    auto settings = drivers::settings_from_json(scan->meta.settings_json, "scan");
+    ASSERT_TRUE(settings) << settings.error().message;
+    EXPECT_EQ(*settings, device->settings());
+    EXPECT_EQ(settings->angular_step_deg, 3.0);
+    // Oracle: a ray from the true sensor position through each point (world frame) meets
+    // the scene's mesh at the point's range.
+    auto world = device->world();
+    ASSERT_TRUE(world);
+    std::size_t off = 0;
+    for (std::size_t i = 0; i < scan->cloud.size(); i += 7) {
+        const Eigen::Vector3d p = scan->cloud.positions[i].cast<double>();
+        const Eigen::Vector3d dir = T_world_station.linear() * p.normalized();
+        const auto hit = (*world)->caster.cast(T_world_station.translation(), dir);
+        if (!hit || std::abs(hit->distance_m - p.norm()) > 1e-4) ++off;
+    }
+    EXPECT_EQ(off, 0u);
+}
+
+TEST(SimTofDevice, EachCaptureIsTheNextStationAndTheBlockCanBeTurnedOver) {
+    auto device = SimTofScanner::open(small_tof_config());
+    auto first = device->capture_scan({});
+    auto second = device->capture_scan({});
+    ASSERT_TRUE(first && second);
+    EXPECT_EQ(second->meta.sequence, first->meta.sequence + 1);
+    EXPECT_NE(first->meta.id, second->meta.id);
+    // 90 degrees further around the block, same height and distance.
+    const Eigen::Vector3d a = first->meta.T_world_scan->translation();
+    const Eigen::Vector3d b = second->meta.T_world_scan->translation();
+    EXPECT_NEAR(a.z(), b.z(), 1e-9);
+    const Eigen::Vector3d centre = (*device->world())->scene.T_world_block.translation();
+    const Eigen::Vector2d da = (a - centre).head<2>(), db = (b - centre).head<2>();
+    EXPECT_NEAR(da.norm(), 3.5, 1e-9);
+    EXPECT_NEAR(std::atan2(da.x() * db.y() - da.y() * db.x(), da.dot(db)) * 180.0 / M_PI, 90.0,
+                1e-6);
+    device->move_to({.azimuth_deg = 45.0, .distance_m = 3.0, .height_m = 1.2});
+    device->place_block({.resting_face = BlockFace::kPosZ});
+    auto turned = device->capture_scan({});
+    ASSERT_TRUE(turned) << turned.error().message;
+    EXPECT_NEAR(turned->meta.T_world_scan->translation().z(), 1.2, 1e-9);
+    auto world = device->world();
+    ASSERT_TRUE(world);
+    EXPECT_FALSE(world->get()->scene.T_world_block.isApprox(
+        block_pose({}, world->get()->scene.block_size_m)));
+    EXPECT_TRUE(world->get()->scene.T_world_block.isApprox(
+        block_pose({.resting_face = BlockFace::kPosZ}, world->get()->scene.block_size_m)));
+}
+
+TEST(SimTofDevice, CancelInTheMiddleStopsTheSweepAndTheDeviceStaysUsable) {
+    auto device = SimTofScanner::open(small_tof_config());
+    std::stop_source stop;
+    std::vector<double> fractions;
+    auto cancelled = device->capture_scan({.on_progress =
+                                               [&](const CaptureProgress& p) {
+                                                   fractions.push_back(p.fraction);
+                                                   if (p.fraction > 0.3) stop.request_stop();
+                                               },
+                                           .stop = stop.get_token()});
+    ASSERT_FALSE(cancelled);
+    EXPECT_EQ(cancelled.error().code, ErrorCode::kCancelled) << cancelled.error().message;
+    ASSERT_FALSE(fractions.empty());
+    EXPECT_LT(fractions.back(), 0.5);  // it did not sweep on
+    fractions.clear();
+    auto scan = device->capture_scan(
+        {.on_progress = [&](const CaptureProgress& p) { fractions.push_back(p.fraction); }});
+    ASSERT_TRUE(scan) << scan.error().message;
+    EXPECT_TRUE(std::is_sorted(fractions.begin(), fractions.end()));
+    EXPECT_EQ(fractions.back(), 1.0);
+}
+
+TEST(SimTofDevice, ATooShortTimeoutIsATimeoutNamingTheDevice) {
+    auto device = SimTofScanner::open(small_tof_config());
+    auto none = device->capture_scan({.timeout = std::chrono::milliseconds(0)});
+    ASSERT_FALSE(none);
+    EXPECT_EQ(none.error().code, ErrorCode::kTimeout);
+    EXPECT_NE(none.error().message.find("sim:tof/small-block"), std::string::npos);
+}
+
+TEST(SimBackend, EnumeratesTheSimulatedScannersAndOpensByUri) {
+    drivers::DeviceRegistry registry;
+    ASSERT_TRUE(registry.add(make_sim_backend()));
+    const auto devices = registry.enumerate();
+    ASSERT_GE(devices.size(), 1u);
+    EXPECT_EQ(devices[0].uri, "sim:tof");
+    EXPECT_TRUE(devices[0].is_scanner);
+    for (const char* uri : {"sim:tof", "sim:tof/small-block-turned"}) {
+        auto device = registry.open(uri);
+        ASSERT_TRUE(device) << uri << ": " << device.error().message;
+        EXPECT_EQ((*device)->info().uri, uri);
+        EXPECT_TRUE((*device)->capabilities().angular_step_deg);
+        EXPECT_NE((*device)->as_scanner(), nullptr);
+    }
+    auto model = registry.open("sim:lidar");
+    ASSERT_FALSE(model);
+    EXPECT_EQ(model.error().code, ErrorCode::kUnsupported);
+    EXPECT_NE(model.error().message.find("sim:lidar"), std::string::npos);
+    auto scene = registry.open("sim:tof/no-such-scene");
+    ASSERT_FALSE(scene);
+    EXPECT_EQ(scene.error().code, ErrorCode::kInvalidArgument);
+    EXPECT_NE(scene.error().message.find("octagon-block"), std::string::npos)
+        << scene.error().message;  // lists the known scenes
+}
+
+}  // namespace
+}  // namespace anascan::sim::test
