@@ -1,5 +1,6 @@
 #include "anascan/sim/sim_backend.hpp"
 
+#include "anascan/sim/sim_structured_light_scanner.hpp"
 #include "anascan/sim/sim_tof_scanner.hpp"
 
 namespace anascan::sim {
@@ -22,13 +23,16 @@ Expected<std::unique_ptr<drivers::Device>> open_sim_device(
     const drivers::DeviceUri& uri, const std::shared_ptr<SimWorldCache>& worlds) {
     const std::string text = drivers::to_string(uri);
     const SimTarget target = split_target(uri.target);
-    if (target.model != "tof")
+    if (target.model != "tof" && target.model != "structured-light")
         return fail(ErrorCode::kUnsupported,
                     text + ": no such simulated device (known: sim:tof, sim:structured-light)");
     auto scene = named_scene(target.scene);
     if (!scene) return fail(scene.error().code, text + ": " + scene.error().message);
+    if (target.model == "tof")
+        return std::unique_ptr<drivers::Device>(
+            SimTofScanner::open({.uri = text, .scene = *scene, .worlds = worlds}));
     return std::unique_ptr<drivers::Device>(
-        SimTofScanner::open({.uri = text, .scene = *scene, .worlds = worlds}));
+        SimStructuredLightScanner::open({.uri = text, .scene = *scene, .worlds = worlds}));
 }
 
 drivers::Backend make_sim_backend() {
@@ -39,14 +43,13 @@ drivers::Backend make_sim_backend() {
             "simulated scanners looking at a stone block: sim:tof, "
             "sim:structured-light, sim:tof/SCENE (anascan sim list-scenes)",
         .enumerate =
-            [] {
-                return std::vector<drivers::DeviceInfo>{
-                    {.uri = "sim:tof",
-                     .model = "simulated Riegl LMS-Z420i (scene octagon-block)",
-                     .serial = "sim-tof",
-                     .kind = DeviceKind::kTimeOfFlight,
-                     .is_scanner = true},
-                };
+            [worlds] {
+                // Opening is cheap (the scene is built at the first capture).
+                std::vector<drivers::DeviceInfo> devices;
+                for (const char* uri : {"sim:tof", "sim:structured-light"})
+                    devices.push_back(
+                        (*open_sim_device(*drivers::parse_device_uri(uri), worlds))->info());
+                return devices;
             },
         .open = [worlds](const drivers::DeviceUri& uri) { return open_sim_device(uri, worlds); }};
 }

@@ -22,8 +22,20 @@ public:
         return true;
     }
 
-private:
+protected:
     std::shared_ptr<sim::SimDeviceFaults> faults_ = std::make_shared<sim::SimDeviceFaults>();
+};
+
+class SimStructuredLightHarness : public SimTofHarness {
+public:
+    Expected<std::unique_ptr<Device>> open() override {
+        return std::unique_ptr<Device>(
+            sim::SimStructuredLightScanner::open(sim::test::small_sl_config(faults_)));
+    }
+    DeviceSettings valid_settings() const override {
+        return {.exposure_us = 12000.0, .min_range_m = 0.6, .max_range_m = 2.0};
+    }
+    DeviceSettings invalid_settings() const override { return {.angular_step_deg = 0.5}; }
 };
 
 }  // namespace
@@ -31,6 +43,8 @@ private:
 std::vector<HarnessEntry> conformance_harnesses() {
     return {
         {"sim_tof", [] { return std::make_unique<SimTofHarness>(); }, false},
+        {"sim_structured_light", [] { return std::make_unique<SimStructuredLightHarness>(); },
+         false},
     };
 }
 

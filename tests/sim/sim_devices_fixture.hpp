@@ -1,9 +1,10 @@
 #pragma once
-// A small simulated sim:tof for tests: small-block meshed at 10 mm (built once per
+// Small simulated devices for tests: small-block meshed at 10 mm (built once per
 // process and kept), a 2-degree sweep (41 x 180 rays), injected faults.
 
 #include <memory>
 
+#include "anascan/sim/sim_structured_light_scanner.hpp"
 #include "anascan/sim/sim_tof_scanner.hpp"
 
 namespace anascan::sim::test {
@@ -25,6 +26,20 @@ inline SimTofScannerConfig small_tof_config(std::shared_ptr<SimDeviceFaults> fau
     return {.uri = "sim:tof/small-block",
             .scene = test_scene(),
             .scanner = {.angular_step_deg = 2.0},
+            .worlds = test_worlds(),
+            .faults = std::move(faults)};
+}
+
+/// The rig scaled by 0.1: 160 x 120 cameras (3.7 mm per pixel at 1 m), 128 x 80 projector.
+inline SimStructuredLightConfig small_sl_config(std::shared_ptr<SimDeviceFaults> faults = {}) {
+    return {.uri = "sim:structured-light/small-block",
+            .scene = test_scene(),
+            .rig = {.camera_width_px = 160,
+                    .camera_height_px = 120,
+                    .camera_focal_px = 270.0,
+                    .projector_width_px = 128,
+                    .projector_height_px = 80,
+                    .projector_focal_px = 170.0},
             .worlds = test_worlds(),
             .faults = std::move(faults)};
 }

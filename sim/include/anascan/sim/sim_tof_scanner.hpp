@@ -7,10 +7,7 @@
 #include <memory>
 #include <string>
 
-#include "anascan/drivers/scanner.hpp"
-#include "anascan/sim/scene.hpp"
-#include "anascan/sim/sim_device_faults.hpp"
-#include "anascan/sim/sim_world.hpp"
+#include "anascan/sim/sim_scanner.hpp"
 #include "anascan/sim/tof_scanner.hpp"
 
 namespace anascan::sim {
@@ -34,44 +31,29 @@ struct SimTofScannerConfig {
     std::shared_ptr<SimDeviceFaults> faults;  ///< Injected unplug/stall; may be empty.
 };
 
-/// The device. Not thread-safe (see drivers::Scanner); the world is shared read-only.
-class SimTofScanner final : public drivers::Scanner {
+/// The device. Settings: angular_step_deg [0.02, 5], min/max_range_m within [2, 800].
+/// Not thread-safe (see drivers::Scanner); the scene is shared read-only.
+class SimTofScanner final : public SimScanner {
 public:
     /// Opens at once; the scene is built (or taken from the cache) at the first capture:
     /// about a second for octagon-block.
     static std::unique_ptr<SimTofScanner> open(SimTofScannerConfig config);
 
-    const drivers::DeviceInfo& info() const override { return info_; }
-    const drivers::Capabilities& capabilities() const override { return caps_; }
-    drivers::DeviceSettings settings() const override { return settings_; }
-    Expected<void> configure(const drivers::DeviceSettings& requested) override;
     std::string calibration_json() const override;
-    void close() override;
+    /// A full sweep, in 20 blocks of rows: a stop or the timeout ends it within one.
     Expected<Scan> capture_scan(const drivers::CaptureControl& control) override;
 
     /// Sim-only: the station of the next capture.
     void move_to(const SimStation& station) { station_ = station; }
     const SimStation& station() const { return station_; }
-    /// Sim-only: lays the block differently (e.g. resting_face kPosZ = turned over); the
-    /// scene is rebuilt at the next capture.
-    void place_block(const BlockPlacement& placement);
     /// True pose of the next capture (world frame).
     Pose station_pose() const;
-    /// The scene it looks at, built on first use.
-    Expected<std::shared_ptr<const SimWorld>> world();
 
 private:
     explicit SimTofScanner(SimTofScannerConfig config);
 
     SimTofScannerConfig config_;
-    std::shared_ptr<const SimWorld> world_;
-    drivers::DeviceInfo info_;
-    drivers::Capabilities caps_;
-    drivers::DeviceSettings settings_;
     SimStation station_;
-    std::int64_t sequence_ = 0;
-    bool closed_ = false;
-    bool unplugged_ = false;
 };
 
 }  // namespace anascan::sim
