@@ -4,6 +4,7 @@
 
 #include "anascan/drivers/structured_light/stereo_decoder.hpp"
 #include "sim_capture_run.hpp"
+#include "sim_scanner_parts.hpp"
 
 namespace anascan::sim {
 namespace {
@@ -49,21 +50,6 @@ drivers::sl::StereoDecodeConfig decode_config(const StructuredLightRenderConfig&
     return c;
 }
 
-SimScannerParts sl_parts(const SimStructuredLightConfig& c) {
-    SimScannerParts parts;
-    parts.info.uri = c.uri;
-    parts.info.model = "simulated PT-M 1024 structured light (scene " + c.scene.name + ")";
-    parts.info.serial = "sim-structured-light";
-    parts.info.kind = DeviceKind::kStructuredLight;
-    parts.info.is_scanner = true;
-    parts.caps = sl_capabilities();
-    parts.settings = {.exposure_us = kReferenceExposureUs, .min_range_m = 0.5, .max_range_m = 3.0};
-    parts.scene = c.scene;
-    parts.worlds = c.worlds;
-    parts.faults = c.faults;
-    return parts;
-}
-
 }  // namespace
 
 std::unique_ptr<SimStructuredLightScanner> SimStructuredLightScanner::open(
@@ -75,7 +61,12 @@ std::unique_ptr<SimStructuredLightScanner> SimStructuredLightScanner::open(
 }
 
 SimStructuredLightScanner::SimStructuredLightScanner(SimStructuredLightConfig config)
-    : SimScanner(sl_parts(config)), config_(std::move(config)), station_(config_.station) {}
+    : SimScanner(detail::scanner_parts(
+          config, "simulated PT-M 1024 structured light", DeviceKind::kStructuredLight,
+          sl_capabilities(),
+          {.exposure_us = kReferenceExposureUs, .min_range_m = 0.5, .max_range_m = 3.0})),
+      config_(std::move(config)),
+      station_(config_.station) {}
 
 std::string SimStructuredLightScanner::calibration_json() const {
     const StructuredLightRig r = rig();

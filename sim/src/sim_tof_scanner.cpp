@@ -4,6 +4,7 @@
 
 #include "anascan/sim/viewpoints.hpp"
 #include "sim_capture_run.hpp"
+#include "sim_scanner_parts.hpp"
 
 namespace anascan::sim {
 namespace {
@@ -18,23 +19,6 @@ drivers::Capabilities tof_capabilities() {
     return caps;
 }
 
-SimScannerParts tof_parts(const SimTofScannerConfig& c) {
-    SimScannerParts parts;
-    parts.info.uri = c.uri;
-    parts.info.model = "simulated Riegl LMS-Z420i (scene " + c.scene.name + ")";
-    parts.info.serial = "sim-tof";
-    parts.info.kind = DeviceKind::kTimeOfFlight;
-    parts.info.is_scanner = true;
-    parts.caps = tof_capabilities();
-    parts.settings = {.angular_step_deg = c.scanner.angular_step_deg,
-                      .min_range_m = c.scanner.min_range_m,
-                      .max_range_m = c.scanner.max_range_m};
-    parts.scene = c.scene;
-    parts.worlds = c.worlds;
-    parts.faults = c.faults;
-    return parts;
-}
-
 }  // namespace
 
 std::unique_ptr<SimTofScanner> SimTofScanner::open(SimTofScannerConfig config) {
@@ -42,7 +26,13 @@ std::unique_ptr<SimTofScanner> SimTofScanner::open(SimTofScannerConfig config) {
 }
 
 SimTofScanner::SimTofScanner(SimTofScannerConfig config)
-    : SimScanner(tof_parts(config)), config_(std::move(config)), station_(config_.station) {}
+    : SimScanner(detail::scanner_parts(config, "simulated Riegl LMS-Z420i",
+                                       DeviceKind::kTimeOfFlight, tof_capabilities(),
+                                       {.angular_step_deg = config.scanner.angular_step_deg,
+                                        .min_range_m = config.scanner.min_range_m,
+                                        .max_range_m = config.scanner.max_range_m})),
+      config_(std::move(config)),
+      station_(config_.station) {}
 
 std::string SimTofScanner::calibration_json() const {
     char json[256];
