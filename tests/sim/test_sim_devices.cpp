@@ -6,9 +6,11 @@
 #include <cmath>
 #include <cstdio>
 
+#include "anascan/drivers/recording.hpp"
 #include "anascan/drivers/settings.hpp"
 #include "anascan/sim/sim_backend.hpp"
 #include "sim_devices_fixture.hpp"
+#include "temp_folder.hpp"
 
 namespace anascan::sim::test {
 namespace {
@@ -77,6 +79,32 @@ TEST(SimTofDevice, EachCaptureIsTheNextStationAndTheBlockCanBeTurnedOver) {
         block_pose({}, world->get()->scene.block_size_m)));
     EXPECT_TRUE(world->get()->scene.T_world_block.isApprox(
         block_pose({.resting_face = BlockFace::kPosZ}, world->get()->scene.block_size_m)));
+}
+
+// A capture session: the recording decorator around the simulated scanner keeps each
+// station's true pose, and playback gives the stations back in order.
+TEST(SimTofDevice, RecordedStationsPlayBackWithTheirTruePoses) {
+    const drivers::test::TempFolder folder;
+    auto recorder = drivers::record_scanner(SimTofScanner::open(small_tof_config()),
+                                            {.folder = folder.path() / "rec"});
+    ASSERT_TRUE(recorder) << recorder.error().message;
+    std::vector<Pose> poses;
+    for (int i = 0; i < 3; ++i) {
+        auto scan = (*recorder)->capture_scan({});
+        ASSERT_TRUE(scan) << scan.error().message;
+        poses.push_back(*scan->meta.T_world_scan);
+    }
+    (*recorder)->close();
+    auto playback = drivers::open_playback_device({.folder = folder.path() / "rec"});
+    ASSERT_TRUE(playback) << playback.error().message;
+    for (const Pose& pose : poses) {
+        auto scan = (*playback)->as_scanner()->capture_scan({});
+        ASSERT_TRUE(scan) << scan.error().message;
+        EXPECT_EQ(scan->meta.device_id, "sim:tof/small-block");
+        ASSERT_TRUE(scan->meta.T_world_scan);
+        EXPECT_TRUE(scan->meta.T_world_scan->isApprox(pose, 1e-9));
+    }
+    EXPECT_FALSE(poses[0].isApprox(poses[1]));
 }
 
 TEST(SimTofDevice, CancelInTheMiddleStopsTheSweepAndTheDeviceStaysUsable) {
