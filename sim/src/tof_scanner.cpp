@@ -2,6 +2,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <numbers>
@@ -55,22 +56,31 @@ struct RangeImage {
     std::vector<float> intensity;
 };
 
-RangeImage cast_sweep(const RayCaster& caster, const std::vector<float>& albedo_of_triangle,
-                      const Pose& T_world_scanner, const SweepGrid& grid) {
+Expected<RangeImage> cast_sweep(const RayCaster& caster,
+                                const std::vector<float>& albedo_of_triangle,
+                                const Pose& T_world_scanner, const SweepGrid& grid,
+                                const TofSweepControl& control) {
     RangeImage image{std::vector<double>(std::size_t(grid.rows) * grid.cols, NAN),
                      std::vector<float>(std::size_t(grid.rows) * grid.cols, 0.0f)};
-    tbb::parallel_for(0, grid.rows, [&](int row) {
-        for (int col = 0; col < grid.cols; ++col) {
-            const Eigen::Vector3d dir = T_world_scanner.linear() * grid.ray(row, col);
-            const auto hit = caster.cast(T_world_scanner.translation(), dir);
-            if (!hit) continue;
-            const std::size_t i = std::size_t(row) * grid.cols + col;
-            const double albedo =
-                albedo_of_triangle.empty() ? 0.5 : albedo_of_triangle[hit->triangle];
-            image.range_m[i] = hit->distance_m;
-            image.intensity[i] = static_cast<float>(albedo * std::abs(hit->normal.dot(dir)));
-        }
-    });
+    // Blocks of rows, so that a caller can follow and stop the sweep between them.
+    const int rows_per_block = std::max(1, grid.rows / 20);
+    for (int first = 0; first < grid.rows; first += rows_per_block) {
+        if (control.keep_going && !control.keep_going(double(first) / grid.rows))
+            return fail(ErrorCode::kCancelled, "sim:tof: sweep stopped");
+        const int last = std::min(grid.rows, first + rows_per_block);
+        tbb::parallel_for(first, last, [&](int row) {
+            for (int col = 0; col < grid.cols; ++col) {
+                const Eigen::Vector3d dir = T_world_scanner.linear() * grid.ray(row, col);
+                const auto hit = caster.cast(T_world_scanner.translation(), dir);
+                if (!hit) continue;
+                const std::size_t i = std::size_t(row) * grid.cols + col;
+                const double albedo =
+                    albedo_of_triangle.empty() ? 0.5 : albedo_of_triangle[hit->triangle];
+                image.range_m[i] = hit->distance_m;
+                image.intensity[i] = static_cast<float>(albedo * std::abs(hit->normal.dot(dir)));
+            }
+        });
+    }
     return image;
 }
 
@@ -135,10 +145,13 @@ ScanMetadata tof_metadata(const TofScannerConfig& c, const Pose& T_world_scanner
 Expected<TofScanResult> simulate_tof_scan(const RayCaster& caster,
                                           const std::vector<float>& albedo_of_triangle,
                                           const Pose& T_world_scanner,
-                                          const TofScannerConfig& config) {
+                                          const TofScannerConfig& config,
+                                          const TofSweepControl& control) {
     auto grid = make_grid(config);
     if (!grid) return fail(grid.error());
-    const RangeImage image = cast_sweep(caster, albedo_of_triangle, T_world_scanner, *grid);
+    auto swept = cast_sweep(caster, albedo_of_triangle, T_world_scanner, *grid, control);
+    if (!swept) return fail(swept.error());
+    const RangeImage& image = *swept;
     TofScanResult result;
     result.scan.meta = tof_metadata(config, T_world_scanner);
     result.grid = RangeGrid{

@@ -1,7 +1,8 @@
 // Driver conformance: the same behaviour from every backend that can run here (mocked
-// V4L2 and USB under umockdev, the ToF depth scanner, playback, PTX stations; sim/ adds
-// its devices in conformance_harnesses.cpp): open → configure → capture → close, unplug in
-// the middle of a capture, timeouts, invalid settings, no leaked descriptors.
+// V4L2 and USB under umockdev, the ToF depth scanner, playback, PTX stations; sim/'s
+// devices in anascan_sim_device_tests, see tests/sim/sim_conformance_harnesses.cpp):
+// open → configure → capture → close, unplug in the middle of a capture, timeouts, invalid
+// settings, no leaked descriptors.
 #include <gtest/gtest.h>
 
 #include <filesystem>

@@ -50,13 +50,17 @@ TEST_F(DevicesCommand, ListsCamerasWithCapabilitiesAsJson) {
     ASSERT_EQ(run.exit_code, 0) << run.out;
     const auto j = nlohmann::json::parse(run.out, nullptr, false);
     ASSERT_TRUE(j.is_array()) << run.out;
-    ASSERT_EQ(j.size(), 2u) << run.out;
+    ASSERT_EQ(j.size(), 4u) << run.out;  // the two mocked devices, then the simulated ones
     EXPECT_EQ(j[0]["uri"], "v4l2:/dev/video2");
     EXPECT_EQ(j[0]["model"], "anascan mock depth camera");
     EXPECT_EQ(j[0]["capabilities"]["streams"].size(), 8u);  // 4 formats x 2 rates
     EXPECT_EQ(j[0]["capabilities"]["exposure_us"][1], 100000.0);
     EXPECT_EQ(j[1]["uri"], "usb:1209:0001");
     EXPECT_EQ(j[1]["kind"], "time-of-flight");
+    EXPECT_EQ(j[2]["uri"], "sim:tof");
+    EXPECT_EQ(j[2]["capabilities"]["angular_step_deg"][0], 0.02);
+    EXPECT_EQ(j[3]["uri"], "sim:structured-light");
+    EXPECT_EQ(j[3]["kind"], "structured-light");
 }
 
 TEST_F(DevicesCommand, PrintsUnitsAndReportsDevicesThatCannotOpen) {
@@ -65,21 +69,25 @@ TEST_F(DevicesCommand, PrintsUnitsAndReportsDevicesThatCannotOpen) {
     EXPECT_NE(run.out.find("v4l2:/dev/video2"), std::string::npos) << run.out;
     EXPECT_NE(run.out.find("stream: 16 x 12 px z16 at 30 Hz"), std::string::npos) << run.out;
     EXPECT_NE(run.out.find("exposure: 100 to 100000 us"), std::string::npos) << run.out;
+    EXPECT_NE(run.out.find("angular step: 0.02 to 5 deg"), std::string::npos) << run.out;
     v4l2_->unplug_now();
     const CliRun gone = run_cli("devices v4l2:/dev/video2");
     EXPECT_EQ(gone.exit_code, 1) << gone.out;
     EXPECT_NE(gone.out.find("/dev/video2"), std::string::npos) << gone.out;
 }
 
-// The camera is unplugged once both arrivals are printed; the watch lasts long enough for
-// the removal to be seen on a loaded machine (polled every 0.2 s).
+// The camera is unplugged once both mocked arrivals are printed (the simulated devices
+// arrive too, and stay); the watch lasts long enough for the removal to be seen on a
+// loaded machine (polled every 0.2 s).
 TEST_F(DevicesCommand, WatchPrintsArrivalsAndRemovals) {
     FILE* pipe = ::popen((std::string(ANASCAN_CLI) + " devices --watch 4 --json").c_str(), "r");
     ASSERT_NE(pipe, nullptr);
     std::vector<nlohmann::json> events;
     std::array<char, 4096> line{};
     while (std::fgets(line.data(), line.size(), pipe) != nullptr) {
-        events.push_back(nlohmann::json::parse(line.data(), nullptr, false));
+        const auto event = nlohmann::json::parse(line.data(), nullptr, false);
+        if (event.is_object() && event.value("uri", "").starts_with("sim:")) continue;
+        events.push_back(event);
         if (events.size() == 2) v4l2_->unplug_now();
     }
     ASSERT_EQ(::pclose(pipe), 0);

@@ -5,6 +5,7 @@
 /// noise and mixed pixels at depth edges, delivered as a gridded scan with its true pose.
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -44,6 +45,13 @@ struct TofScanResult {
     std::vector<std::uint8_t> mixed;  ///< Per point: 1 for a mixed pixel.
 };
 
+/// Progress and abort of a sweep (for the sim:tof device): `keep_going(fraction_done)` is
+/// called on the calling thread between blocks of rows; returning false ends the sweep with
+/// kCancelled. Empty: the sweep runs to the end.
+struct TofSweepControl {
+    std::function<bool(double fraction_done)> keep_going;
+};
+
 /// Sweeps the scanner at T_world_scanner through the scene of `caster` (world frame).
 /// `albedo_of_triangle` gives each triangle's reflectance (empty: 0.5 everywhere).
 /// Fails (kInvalidArgument) on a non-positive step, an empty angular window or a grid
@@ -51,6 +59,7 @@ struct TofScanResult {
 Expected<TofScanResult> simulate_tof_scan(const RayCaster& caster,
                                           const std::vector<float>& albedo_of_triangle,
                                           const Pose& T_world_scanner,
-                                          const TofScannerConfig& config = {});
+                                          const TofScannerConfig& config = {},
+                                          const TofSweepControl& control = {});
 
 }  // namespace anascan::sim
