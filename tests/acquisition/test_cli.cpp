@@ -6,7 +6,6 @@
 #include <string>
 
 #include "anascan/processing/io/ply.hpp"
-
 #include "cli_runner.hpp"
 
 namespace {

@@ -89,7 +89,7 @@ struct ScanOutcome {
     std::string reason;   ///< Why it is not placed (empty when placed).
     /// Something to check although it is placed (e.g. the same points as another scan).
     std::string warning;
-    int group = -1;       ///< Connected component (0 = largest); -1 when not loaded.
+    int group = -1;  ///< Connected component (0 = largest); -1 when not loaded.
     /// Maps scan points into the world frame (placed) or into the frame of its group's
     /// first scan (other groups). Identity and meaningless when group is -1.
     Pose T_world_scan = Pose::Identity();
