@@ -30,16 +30,6 @@ std::string input_problem(const PointCloud& source, const PointCloud& target) {
     return {};
 }
 
-InvariantRadii choose_radii(const PointCloud& source, const PointCloud& target,
-                            const GlobalRegistrationConfig& config) {
-    const bool automatic = std::all_of(config.radii_m.begin(), config.radii_m.end(),
-                                       [](double r) { return r == 0.0; });
-    if (!automatic) return config.radii_m;
-    const double size_m =
-        std::max(local_bounds(source).extent().norm(), local_bounds(target).extent().norm());
-    return radii_for_object_size_m(size_m);
-}
-
 bool all_finite(const PointCloud& cloud) {
     return std::all_of(cloud.positions.begin(), cloud.positions.end(),
                        [](const Eigen::Vector3f& p) { return p.allFinite(); });
@@ -229,6 +219,18 @@ std::string_view to_string(GlobalRegistrationStatus status) {
     return "unknown";
 }
 
+InvariantRadii registration_radii_m(std::span<const PointCloud* const> clouds,
+                                    const GlobalRegistrationConfig& config) {
+    const bool automatic = std::all_of(config.radii_m.begin(), config.radii_m.end(),
+                                       [](double r) { return r == 0.0; });
+    if (!automatic) return config.radii_m;
+    double size_m = 0.0;
+    for (const PointCloud* cloud : clouds) {
+        size_m = std::max(size_m, static_cast<double>(local_bounds(*cloud).extent().norm()));
+    }
+    return radii_for_object_size_m(size_m);
+}
+
 IntegralInvariantResult describe_scan(const PointCloud& cloud, const InvariantRadii& radii_m,
                                       const GlobalRegistrationConfig& config) {
     IntegralInvariantConfig invariant_config = config.invariants;
@@ -279,7 +281,8 @@ GlobalRegistrationResult register_global(const PointCloud& source, const PointCl
         result.message = problem;
         return result;
     }
-    const InvariantRadii radii_m = choose_radii(source, target, config);
+    const PointCloud* const both[] = {&source, &target};
+    const InvariantRadii radii_m = registration_radii_m(both, config);
     std::vector<IntegralInvariantResult> invariants(2);
     tbb::parallel_invoke([&] { invariants[0] = describe_scan(source, radii_m, config); },
                          [&] { invariants[1] = describe_scan(target, radii_m, config); });

@@ -34,23 +34,12 @@ double pair_weight(const GlobalRegistrationResult& global) {
     return global.overlap_fraction / (1.0 + global.rms_m / spacing);
 }
 
-/// Radii shared by all scans: from the largest usable scan's diagonal, unless configured.
-InvariantRadii shared_radii(const std::vector<PointCloud>& clouds,
-                            const GlobalRegistrationConfig& config) {
-    const bool automatic = std::all_of(config.radii_m.begin(), config.radii_m.end(),
-                                       [](double r) { return r == 0.0; });
-    if (!automatic) return config.radii_m;
-    double size_m = 0.0;
-    for (const PointCloud& cloud : clouds) {
-        size_m = std::max(size_m, static_cast<double>(local_bounds(cloud).extent().norm()));
-    }
-    return radii_for_object_size_m(size_m);
-}
-
 /// Descriptors and patches of every usable scan (unusable ones get invalid features).
 void describe_all(detail::PreparedScans& scans, const GlobalRegistrationConfig& config,
                   const RegistrationProgress& progress) {
-    const InvariantRadii radii_m = shared_radii(scans.clouds, config);
+    std::vector<const PointCloud*> clouds;
+    for (const PointCloud& cloud : scans.clouds) clouds.push_back(&cloud);
+    const InvariantRadii radii_m = registration_radii_m(clouds, config);
     std::vector<IntegralInvariantResult> invariants(scans.clouds.size());
     for (std::size_t i = 0; i < scans.clouds.size(); ++i) {
         if (scans.clouds[i].empty()) continue;

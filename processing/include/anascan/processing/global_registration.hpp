@@ -159,6 +159,12 @@ struct ScanFeatures {
     double spacing_m = 0.0;  ///< Median sample spacing (verification scale as a target).
 };
 
+/// The descriptor radii for registering `clouds` together: config.radii_m unless all zero,
+/// else `radii_for_object_size_m` of the largest cloud diagonal (shared by all scans, so
+/// their descriptors compare).
+InvariantRadii registration_radii_m(std::span<const PointCloud* const> clouds,
+                                    const GlobalRegistrationConfig& config);
+
 /// Descriptors of one scan at `radii_m` (config.invariants with its radii replaced).
 IntegralInvariantResult describe_scan(const PointCloud& cloud, const InvariantRadii& radii_m,
                                       const GlobalRegistrationConfig& config);
