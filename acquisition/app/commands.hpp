@@ -29,6 +29,10 @@ void add_align_command(CLI::App& app);
 void add_sl_command(CLI::App& app);
 /// `devices`: connected and named devices with their capabilities (text or --json).
 void add_devices_command(CLI::App& app);
+/// `capture`: a scanning session (simulated operator with sim: devices).
+void add_capture_command(CLI::App& app);
+/// `coverage DIR`: the stone's observed fraction and holes from a session.
+void add_coverage_command(CLI::App& app);
 /// Hidden `sim move-scans`: randomly moved copies of the scans of a .conf (for tests).
 void add_sim_command(CLI::App& app);
 /// `sim list-scenes`, `sim export-scene` (registered by add_sim_command on its group).

@@ -35,6 +35,10 @@ public:
     /// Sim-only: lays the block differently (e.g. resting_face kPosZ = turned over); the
     /// scene is rebuilt at the next capture.
     void place_block(const BlockPlacement& placement);
+    /// Sim-only: faults to inject from now on (unplug, stall); shared with the caller.
+    void set_faults(std::shared_ptr<SimDeviceFaults> faults) { faults_ = std::move(faults); }
+    /// The scene it looks at now (with the block's current placement).
+    const SceneConfig& scene_config() const { return scene_; }
     /// The scene it looks at, built on first use.
     Expected<std::shared_ptr<const SimWorld>> world();
 

@@ -1,0 +1,64 @@
+#include "capture_summary.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+
+#include "anascan/acquisition/session_truth.hpp"
+
+namespace anascan::cli {
+namespace {
+
+/// Nearest-rank percentile of sorted values.
+double percentile(const std::vector<double>& sorted, double p) {
+    if (sorted.empty()) return 0.0;
+    const std::size_t rank = static_cast<std::size_t>(std::ceil(p / 100.0 * sorted.size()));
+    return sorted[std::clamp<std::size_t>(rank, 1, sorted.size()) - 1];
+}
+
+}  // namespace
+
+void print_capture_summary(const acquisition::SessionStore& store) {
+    auto scans = store.scans();
+    if (!scans) {
+        std::printf("cannot read the session's scans: %s\n", scans.error().message.c_str());
+        return;
+    }
+    std::map<std::string, int> by_state;
+    std::set<int> groups;
+    std::vector<double> latencies;
+    for (const acquisition::ScanRecord& s : *scans) {
+        ++by_state[std::string(acquisition::to_string(s.state))];
+        if (s.state == acquisition::ScanState::kRegistered) groups.insert(s.group);
+        if (s.latency_s) latencies.push_back(*s.latency_s);
+    }
+    std::sort(latencies.begin(), latencies.end());
+    std::printf("session %s: %zu scans:", store.dir().c_str(), scans->size());
+    for (const auto& [state, count] : by_state) std::printf(" %d %s", count, state.c_str());
+    std::printf("; %zu groups\n", groups.size());
+    if (!latencies.empty())
+        std::printf(
+            "latency, saved to registered: median %.2f s, 95th percentile %.2f s (%zu scans)\n",
+            percentile(latencies, 50), percentile(latencies, 95), latencies.size());
+    auto truth = acquisition::evaluate_session_truth(store);
+    if (truth && *truth)
+        std::printf(
+            "against the simulated truth: %zu of %zu scans placed in the main group, worst "
+            "rotation %.4f°, worst translation %.3f mm (at the scan centroids, frame of scan "
+            "%s)\n",
+            (*truth)->placed, (*truth)->scans.size(), (*truth)->max_rotation_deg,
+            (*truth)->max_translation_m * 1e3, (*truth)->reference.c_str());
+    auto coverage = store.value("coverage");
+    if (coverage && *coverage) {
+        const auto j = nlohmann::json::parse(**coverage, nullptr, false);
+        if (j.is_object() && j.contains("fraction"))
+            std::printf("coverage %.1f %% of the stone's surface, %zu holes\n",
+                        j["fraction"].get<double>() * 100.0,
+                        j.contains("holes") ? j["holes"].size() : std::size_t{0});
+    }
+}
+
+}  // namespace anascan::cli

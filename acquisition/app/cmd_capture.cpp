@@ -1,0 +1,202 @@
+// anascan capture --device DEV --session DIR: a scanning session. With a simulated scanner
+// the simulated operator walks around the block (N views, turned over after K); with a
+// real scanner each view waits for the operator (Enter). Prints each acknowledged scan
+// and its registration as they happen.
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <iostream>
+#include <mutex>
+#include <thread>
+
+#include "anascan/acquisition/capture_session.hpp"
+#include "anascan/drivers/device_registry.hpp"
+#include "anascan/sim/scanning_tour.hpp"
+#include "anascan/sim/sim_scanner.hpp"
+#include "capture_summary.hpp"
+#include "commands.hpp"
+#include "device_registry_setup.hpp"
+
+namespace anascan::cli {
+namespace {
+
+using acquisition::CaptureSession;
+
+struct CaptureOptions {
+    std::string device;
+    std::string session;
+    std::string scene;
+    int views = 24;
+    int flip_after = -1;  ///< -1: half the views.
+    std::uint64_t tour_seed = 1;
+    double distance_m = 1.1;
+    bool no_register = false;
+    bool no_coverage = false;
+    int sim_unplug_after = -1;
+    drivers::DeviceSettings settings;  ///< Only the fields given on the command line.
+    double reconnect_timeout_s = 10.0;
+};
+
+/// `sim:structured-light` + `--scene small-block` → `sim:structured-light/small-block`.
+std::string device_uri(const CaptureOptions& o) {
+    if (o.scene.empty()) return o.device;
+    if (o.device.rfind("sim:", 0) != 0)
+        throw CommandFailed("--scene " + o.scene +
+                            ": only simulated devices (sim:...) look at a scene");
+    if (o.device.find('/') != std::string::npos)
+        throw CommandFailed("--scene " + o.scene + ": the device " + o.device +
+                            " already names a scene");
+    return o.device + "/" + o.scene;
+}
+
+acquisition::ScannerOpener make_opener(std::string uri, int unplug_after,
+                                       drivers::DeviceSettings settings) {
+    auto registry = std::make_shared<drivers::DeviceRegistry>(make_cli_registry());
+    auto first = std::make_shared<bool>(true);
+    return [registry, uri, unplug_after, first]() -> Expected<std::unique_ptr<drivers::Scanner>> {
+        auto device = registry->open(uri);
+        if (!device) return fail(device.error());
+        drivers::Scanner* scanner = (*device)->as_scanner();
+        if (scanner == nullptr)
+            return fail(ErrorCode::kUnsupported,
+                        uri + ": not a scanner (a camera?); capture needs a scanner");
+        device->release();
+        std::unique_ptr<drivers::Scanner> owned(scanner);
+        if (settings != drivers::DeviceSettings{})
+            if (auto ok = owned->configure(settings); !ok) return fail(ok.error());
+        auto* sim = dynamic_cast<sim::SimScanner*>(owned.get());
+        if (sim != nullptr && unplug_after >= 0 && *first) {
+            auto faults = std::make_shared<sim::SimDeviceFaults>();
+            faults->unplug_after_captures = unplug_after;
+            sim->set_faults(faults);
+        }
+        *first = false;
+        return owned;
+    };
+}
+
+/// Prints the session's events, one line each, as they arrive (stdout is a log here).
+acquisition::SessionEventSink printing_sink() {
+    auto mutex = std::make_shared<std::mutex>();
+    return [mutex](const acquisition::SessionEvent& event) {
+        std::lock_guard lock(*mutex);
+        using K = acquisition::SessionEventKind;
+        if (event.kind == K::kDeviceError || event.kind == K::kSaveFailed ||
+            event.kind == K::kRegistrationFailed)
+            spdlog::error("{}", event.message);
+        std::printf("%s\n", event.message.c_str());
+        std::fflush(stdout);
+    };
+}
+
+/// A real scanner: the operator places it and presses Enter (q or end of input stops).
+bool operator_ready(int view, int views) {
+    std::printf("place the scanner for view %d of %d and press Enter (q to stop) ", view + 1,
+                views);
+    std::fflush(stdout);
+    std::string line;
+    if (!std::getline(std::cin, line)) return false;
+    return line != "q";
+}
+
+/// Captures one view, retrying while the device is away (unplugged, silent) for at most
+/// the reconnect timeout. Returns the error that ends the session, if any.
+std::optional<Error> capture_view(CaptureSession& session,
+                                  const acquisition::CaptureRequest& request,
+                                  double reconnect_timeout_s) {
+    const auto deadline =
+        std::chrono::steady_clock::now() + std::chrono::duration<double>(reconnect_timeout_s);
+    for (;;) {
+        auto acknowledged = session.capture(request).get();
+        if (acknowledged) return std::nullopt;
+        const ErrorCode code = acknowledged.error().code;
+        const bool device_away = code == ErrorCode::kDisconnected || code == ErrorCode::kTimeout;
+        if (!device_away || std::chrono::steady_clock::now() > deadline)
+            return acknowledged.error();
+        spdlog::warn("waiting for the device to come back (up to {:.0f} s)", reconnect_timeout_s);
+        std::this_thread::sleep_for(std::chrono::seconds(1));
+    }
+}
+
+void run_capture(const CaptureOptions& o) {
+    const std::string uri = device_uri(o);
+    auto store =
+        acquisition::SessionStore::open(o.session, acquisition::SessionOpenMode::kCreateOrOpen);
+    if (!store) fail_command(store.error());
+    auto existing = (*store)->scans();
+    if (!existing) fail_command(existing.error());
+    const int already = static_cast<int>(existing->size());
+
+    sim::ScanningTourConfig tour{.views = o.views,
+                                 .flip_after = o.flip_after < 0 ? o.views / 2 : o.flip_after,
+                                 .distance_m = o.distance_m,
+                                 .seed = o.tour_seed};
+    const std::vector<sim::TourStep> steps = sim::plan_scanning_tour(tour);
+    acquisition::CaptureSessionConfig config{.register_live = !o.no_register,
+                                             .coverage_live = !o.no_coverage};
+    auto session = CaptureSession::start(std::move(*store), config, printing_sink());
+    if (!session) fail_command(session.error());
+    if (auto ok = (*session)->attach_scanner(uri, make_opener(uri, o.sim_unplug_after, o.settings));
+        !ok)
+        fail_command(ok.error());
+    if (already > 0)
+        std::printf("session %s has %d scans: resuming at view %d of %d\n", o.session.c_str(),
+                    already, std::min(already, o.views) + 1, o.views);
+    std::optional<Error> stopped;
+    const bool simulated = uri.rfind("sim:", 0) == 0;
+    for (int i = already; i < o.views && !stopped; ++i) {
+        const sim::TourStep step = steps[static_cast<std::size_t>(i)];
+        if (!simulated && !operator_ready(i, o.views)) break;
+        if (step.turn_now) std::printf("the stone is turned over before view %d\n", i + 1);
+        acquisition::CaptureRequest request{
+            .before = [tour,
+                       step](drivers::Scanner& s) { return sim::apply_tour_step(s, tour, step); },
+            .turned_over = step.turn_now};
+        stopped = capture_view(**session, request, o.reconnect_timeout_s);
+    }
+    spdlog::info("capture done; waiting for registration to catch up");
+    (*session)->wait_until_idle();
+    print_capture_summary((*session)->store());
+    if (stopped) throw CommandFailed("capture stopped: " + stopped->message);
+}
+
+}  // namespace
+
+void add_capture_command(CLI::App& app) {
+    auto opts = std::make_shared<CaptureOptions>();
+    auto* cmd = app.add_subcommand(
+        "capture", "Run a scanning session: capture, save, register live, track coverage");
+    cmd->add_option("--device", opts->device,
+                    "Scanner URI (sim:structured-light, sim:tof, ...; see anascan devices)")
+        ->required();
+    cmd->add_option("--session", opts->session, "Session folder (created, or resumed)")->required();
+    cmd->add_option("--scene", opts->scene,
+                    "Scene of a simulated device (anascan sim list-scenes)");
+    cmd->add_option("--views", opts->views, "Views in the whole session (default 24)")
+        ->check(CLI::Range(1, 10000));
+    cmd->add_option("--flip-after", opts->flip_after,
+                    "Simulated operator turns the stone over after this many views "
+                    "(default: half; 0: never)")
+        ->check(CLI::Range(0, 10000));
+    cmd->add_option("--distance-m", opts->distance_m,
+                    "Simulated structured-light head to the block, m (default 1.1)")
+        ->check(CLI::Range(0.5, 3.0));
+    cmd->add_option("--tour-seed", opts->tour_seed, "Seed of the simulated operator's jitter");
+    cmd->add_option("--exposure-us", opts->settings.exposure_us, "Device exposure, microseconds");
+    cmd->add_option("--angular-step-deg", opts->settings.angular_step_deg,
+                    "Terrestrial scanner angular step, degrees");
+    cmd->add_option("--max-range-m", opts->settings.max_range_m, "Farthest depth kept, m");
+    cmd->add_flag("--no-register", opts->no_register, "Only capture and save (register later)");
+    cmd->add_flag("--no-coverage", opts->no_coverage, "No live coverage");
+    cmd->add_option("--reconnect-timeout-s", opts->reconnect_timeout_s,
+                    "How long to wait for a device that went away, s (default 10)")
+        ->check(CLI::Range(0.0, 3600.0));
+    cmd->add_option("--sim-unplug-after", opts->sim_unplug_after,
+                    "Fault injection: the simulated device is unplugged during the capture "
+                    "after this many")
+        ->check(CLI::Range(0, 10000));
+    cmd->callback([opts] { run_capture(*opts); });
+}
+
+}  // namespace anascan::cli

@@ -1,0 +1,72 @@
+// anascan coverage DIR [--json] [--out COVERAGE.ply]: how much of the stone the session's
+// registered scans cover, and where the holes are.
+#include <spdlog/spdlog.h>
+
+#include <cstdio>
+#include <nlohmann/json.hpp>
+
+#include "anascan/acquisition/session_coverage.hpp"
+#include "anascan/processing/io/ply.hpp"
+#include "commands.hpp"
+
+namespace anascan::cli {
+namespace {
+
+struct CoverageOptions {
+    std::string session;
+    bool json_output = false;
+    std::string out;
+    double voxel_mm = 1.0;
+};
+
+void print_report(const CoverageReport& r) {
+    std::printf("coverage %.1f %% of the stone's surface (%.3f m² of %.3f m² observed well)\n",
+                r.fraction * 100.0, r.covered_area_m2, r.surface_area_m2);
+    std::printf("%zu holes%s\n", r.holes.size(), r.holes.empty() ? "" : " (largest first):");
+    for (const CoverageHole& h : r.holes)
+        std::printf("  %8.1f cm² at (%.0f, %.0f, %.0f) mm facing (%.2f, %.2f, %.2f)\n",
+                    h.area_m2 * 1e4, h.centre_m.x() * 1e3, h.centre_m.y() * 1e3,
+                    h.centre_m.z() * 1e3, h.normal.x(), h.normal.y(), h.normal.z());
+}
+
+void run_coverage(const CoverageOptions& o) {
+    auto store =
+        acquisition::SessionStore::open(o.session, acquisition::SessionOpenMode::kOpenExisting);
+    if (!store) fail_command(store.error());
+    auto report = acquisition::session_coverage(
+        **store, {.voxel_size_m = o.voxel_mm * 1e-3}, [](std::size_t done, std::size_t total) {
+            spdlog::info("coverage: scan {}/{} loaded", done, total);
+        });
+    if (!report) fail_command(report.error());
+    const nlohmann::json j = acquisition::coverage_json(*report);
+    if (auto stored = (*store)->set_value("coverage", j.dump()); !stored)
+        spdlog::warn("coverage not stored in the session: {}", stored.error().message);
+    if (!o.out.empty()) {
+        if (auto ok = io::write_ply(o.out, report->samples); !ok) fail_command(ok.error());
+        spdlog::info("coverage samples (green observed, red holes) written to {}", o.out);
+    }
+    if (o.json_output)
+        std::printf("%s\n", j.dump(2).c_str());
+    else
+        print_report(*report);
+}
+
+}  // namespace
+
+void add_coverage_command(CLI::App& app) {
+    auto opts = std::make_shared<CoverageOptions>();
+    auto* cmd = app.add_subcommand(
+        "coverage", "Fraction of the stone's surface observed well, and the holes left");
+    cmd->add_option("session", opts->session, "Session folder")
+        ->required()
+        ->check(CLI::ExistingDirectory);
+    cmd->add_flag("--json", opts->json_output, "JSON on stdout");
+    cmd->add_option("--out", opts->out,
+                    "Coloured surface samples (.ply): green observed, red holes");
+    cmd->add_option("--voxel-mm", opts->voxel_mm,
+                    "Scans down-sampled to this voxel first, mm (default 1)")
+        ->check(CLI::Range(0.1, 50.0));
+    cmd->callback([opts] { run_coverage(*opts); });
+}
+
+}  // namespace anascan::cli

@@ -1,0 +1,141 @@
+// The registration worker of a capture session: places each saved scan live, then, when
+// it has caught up, refines the poses in the background and recomputes the coverage.
+#include <cstdio>
+
+#include "capture_session_impl.hpp"
+#include "live_registration_json.hpp"
+
+namespace anascan::acquisition {
+namespace {
+
+double seconds_since(std::chrono::system_clock::time_point then) {
+    return std::chrono::duration<double>(std::chrono::system_clock::now() - then).count();
+}
+
+std::string decision_message(const LiveDecision& decision, double latency_s) {
+    char text[512];
+    if (decision.registered)
+        std::snprintf(text, sizeof(text),
+                      "registered scan %lld: group %d by %s, RMS %.3f mm, overlap %.0f %%, "
+                      "%.2f s after saving",
+                      static_cast<long long>(decision.seq), decision.group, decision.method.c_str(),
+                      decision.rms_m * 1e3, decision.overlap_fraction * 100.0, latency_s);
+    else
+        std::snprintf(text, sizeof(text),
+                      "scan %lld NOT registered: %s — check that the stone is in view and "
+                      "overlaps earlier scans; exclude it or scan this side again",
+                      static_cast<long long>(decision.seq), decision.message.c_str());
+    return text;
+}
+
+}  // namespace
+
+void CaptureSession::Impl::requeue_session_scans() {
+    auto records = store->scans();
+    if (!records) return;
+    for (const ScanRecord& record : *records) {
+        if (record.excluded) continue;
+        begin_work();
+        SavedScan saved{.seq = record.seq,
+                        .turned_over = record.turned_over_before,
+                        .acknowledged_at = record.acknowledged_at,
+                        .resumed = true};
+        saved.previous_latency_s = record.latency_s;
+        to_register.push(std::move(saved));
+    }
+}
+
+void CaptureSession::Impl::registration_loop() {
+    while (auto item = to_register.pop()) {
+        if (item->exclude_change != 0) {
+            registrar.exclude(item->seq, item->exclude_change > 0);
+            refine_due = coverage_due = true;
+        } else {
+            register_one(*item);
+            if (item->scan) --registration_items_with_points;
+        }
+        if (to_register.size() == 0) {
+            refine_in_background();
+            update_coverage();
+        }
+        end_work();
+    }
+}
+
+void CaptureSession::Impl::register_one(const SavedScan& saved) {
+    std::shared_ptr<const Scan> scan = saved.scan;
+    if (!scan) {
+        auto loaded = store->load_scan(saved.seq);
+        if (!loaded) {
+            const std::string message = "cannot register: " + loaded.error().message;
+            (void)store->record_registration(
+                saved.seq, {.state = ScanState::kFailed, .quality_json = reason_json(message)});
+            emit({.kind = SessionEventKind::kRegistrationFailed,
+                  .seq = saved.seq,
+                  .message = message});
+            return;
+        }
+        scan = std::make_shared<const Scan>(std::move(*loaded));
+    }
+    LiveDecision decision = registrar.add({.seq = saved.seq,
+                                           .cloud = scan->cloud,
+                                           .sensor_origin_scan_m = scan->meta.sensor_origin_scan_m,
+                                           .turned_over_before = saved.turned_over});
+    const double latency_s = seconds_since(saved.acknowledged_at);
+    const std::optional<double> recorded_latency =
+        saved.resumed ? saved.previous_latency_s : std::optional<double>(latency_s);
+    RegistrationUpdate update{
+        .state = decision.registered ? ScanState::kRegistered : ScanState::kFailed,
+        .group = decision.registered ? decision.group : -1,
+        .quality_json = decision_json(decision),
+        .latency_s = decision.registered ? recorded_latency : std::nullopt};
+    if (decision.registered) update.pose = decision.T_group_scan;
+    if (auto ok = store->record_registration(saved.seq, update); !ok)
+        emit({.kind = SessionEventKind::kSaveFailed,
+              .seq = saved.seq,
+              .message = ok.error().message});
+    if (!decision.registered)
+        (void)store->add_event("registration-failed", "", decision_message(decision, latency_s));
+    emit({.kind = decision.registered ? SessionEventKind::kRegistered
+                                      : SessionEventKind::kRegistrationFailed,
+          .seq = saved.seq,
+          .message = decision_message(decision, latency_s),
+          .group = decision.group,
+          .method = decision.method,
+          .rms_m = decision.rms_m,
+          .overlap_fraction = decision.overlap_fraction,
+          .latency_s = latency_s});
+    refine_due = coverage_due = true;
+}
+
+void CaptureSession::Impl::refine_in_background() {
+    if (!refine_due) return;
+    refine_due = false;
+    const std::vector<PoseUpdate> updates = registrar.refine();
+    if (updates.empty()) return;
+    if (auto ok = store->update_poses(updates); !ok) {
+        emit({.kind = SessionEventKind::kSaveFailed, .message = ok.error().message});
+        return;
+    }
+    char message[128];
+    std::snprintf(message, sizeof(message), "refined: %zu poses updated", updates.size());
+    emit({.kind = SessionEventKind::kPosesRefined, .message = message, .count = updates.size()});
+}
+
+void CaptureSession::Impl::update_coverage() {
+    if (!config.coverage_live || !coverage_due) return;
+    coverage_due = false;
+    const std::vector<CoverageScanView> views = registrar.coverage_views();
+    if (views.empty()) return;
+    const CoverageReport report = compute_coverage(views, config.coverage);
+    (void)store->set_value("coverage", coverage_json(report).dump());
+    char message[160];
+    std::snprintf(message, sizeof(message), "coverage %.1f %% of %.3f m², %zu holes",
+                  report.fraction * 100.0, report.surface_area_m2, report.holes.size());
+    emit({.kind = SessionEventKind::kCoverage,
+          .message = message,
+          .coverage_fraction = report.fraction,
+          .count = report.holes.size()});
+}
+
+}  // namespace anascan::acquisition

@@ -1,0 +1,62 @@
+#pragma once
+/// \file
+/// The simulated operator of a capture session: where the scanner stands for each view
+/// around the block, and when the stone is turned over. Applied to a simulated scanner
+/// before each capture; a real scanner is moved by hand and ignores it.
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "anascan/drivers/scanner.hpp"
+#include "anascan/processing/pose.hpp"
+#include "anascan/sim/scene.hpp"
+#include "anascan/sim/viewpoints.hpp"
+
+namespace anascan::sim {
+
+/// A walk around the block: the views of each side spread evenly in azimuth with
+/// alternating elevation and a little jitter (a person, not a turntable).
+struct ScanningTourConfig {
+    int views = 24;                    ///< Captures in the whole tour.
+    int flip_after = 12;               ///< Turned over after this many views; 0: never.
+    double distance_m = 1.1;           ///< Structured-light head to the block's upper half.
+    double elevation_low_deg = 30.0;   ///< Even views.
+    double elevation_high_deg = 50.0;  ///< Odd views.
+    double start_azimuth_deg = 15.0;
+    double jitter_deg = 3.0;  ///< Uniform ± on azimuth and elevation.
+    /// Terrestrial scanner stations (sim:tof): tripod distance and height.
+    double tripod_distance_m = 3.0;
+    double tripod_height_m = 1.5;
+    /// Once turned over the block rests on the face opposite its first resting face,
+    /// turned about the vertical by this much more and moved by this much (people do not
+    /// put a stone back exactly where it lay).
+    double turned_yaw_deg = 20.0;
+    Eigen::Vector2d turned_offset_m{0.03, -0.02};
+    std::uint64_t seed = 1;
+};
+
+/// One view of the tour.
+struct TourStep {
+    int index = 0;          ///< 0-based.
+    Viewpoint view;         ///< Structured-light head around the target (world azimuth).
+    bool turned = false;    ///< The block lies turned over for this view.
+    bool turn_now = false;  ///< First view after turning over: the operator marks it.
+};
+
+/// The views of a tour; deterministic for a config.
+std::vector<TourStep> plan_scanning_tour(const ScanningTourConfig& config);
+
+/// Where the block lies for a step, given the scene's first placement.
+BlockPlacement tour_placement(const ScanningTourConfig& config, const BlockPlacement& first,
+                              const TourStep& step);
+
+/// Moves a simulated scanner (sim:structured-light or sim:tof) to the step's view and lays
+/// the block as the step says. Returns the transform from the simulator's world frame of
+/// that step to the world frame of the first placement (so that true poses of all views
+/// are in one frame that moves with the stone), or nothing for a device that is not
+/// simulated (a real scanner is moved by the operator).
+std::optional<Pose> apply_tour_step(drivers::Scanner& scanner, const ScanningTourConfig& config,
+                                    const TourStep& step);
+
+}  // namespace anascan::sim

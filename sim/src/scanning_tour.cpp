@@ -1,0 +1,91 @@
+#include "anascan/sim/scanning_tour.hpp"
+
+#include <algorithm>
+#include <random>
+
+#include "anascan/sim/sim_structured_light_scanner.hpp"
+#include "anascan/sim/sim_tof_scanner.hpp"
+
+namespace anascan::sim {
+namespace {
+
+BlockFace opposite(BlockFace face) {
+    switch (face) {
+        case BlockFace::kPosX:
+            return BlockFace::kNegX;
+        case BlockFace::kNegX:
+            return BlockFace::kPosX;
+        case BlockFace::kPosY:
+            return BlockFace::kNegY;
+        case BlockFace::kNegY:
+            return BlockFace::kPosY;
+        case BlockFace::kPosZ:
+            return BlockFace::kNegZ;
+        case BlockFace::kNegZ:
+            return BlockFace::kPosZ;
+    }
+    return BlockFace::kPosZ;
+}
+
+/// Views of one side of the block: `count` azimuths evenly around, elevations alternating.
+void add_side(const ScanningTourConfig& config, int count, bool turned, std::mt19937_64& rng,
+              std::vector<TourStep>& steps) {
+    std::uniform_real_distribution<double> jitter(-config.jitter_deg, config.jitter_deg);
+    const double step_deg = 360.0 / std::max(count, 1);
+    for (int i = 0; i < count; ++i) {
+        TourStep step;
+        step.index = static_cast<int>(steps.size());
+        step.turned = turned;
+        step.turn_now = turned && i == 0;
+        step.view.distance_m = config.distance_m;
+        step.view.azimuth_deg = config.start_azimuth_deg + i * step_deg + jitter(rng);
+        step.view.elevation_deg =
+            (i % 2 == 0 ? config.elevation_low_deg : config.elevation_high_deg) + jitter(rng);
+        steps.push_back(step);
+    }
+}
+
+}  // namespace
+
+std::vector<TourStep> plan_scanning_tour(const ScanningTourConfig& config) {
+    std::vector<TourStep> steps;
+    std::mt19937_64 rng(config.seed);
+    const int views = std::max(config.views, 0);
+    const int first_side = config.flip_after > 0 ? std::min(config.flip_after, views) : views;
+    add_side(config, first_side, false, rng, steps);
+    add_side(config, views - first_side, true, rng, steps);
+    return steps;
+}
+
+BlockPlacement tour_placement(const ScanningTourConfig& config, const BlockPlacement& first,
+                              const TourStep& step) {
+    if (!step.turned) return first;
+    BlockPlacement turned = first;
+    turned.resting_face = opposite(first.resting_face);
+    turned.yaw_deg += config.turned_yaw_deg;
+    turned.position_m += config.turned_offset_m;
+    return turned;
+}
+
+std::optional<Pose> apply_tour_step(drivers::Scanner& scanner, const ScanningTourConfig& config,
+                                    const TourStep& step) {
+    auto* sim = dynamic_cast<SimScanner*>(&scanner);
+    if (sim == nullptr) return std::nullopt;
+    // The first placement is the named scene's; the scanner's scene holds the current one.
+    auto first = named_scene(sim->scene_config().name);
+    const BlockPlacement start = first ? first->placement : sim->scene_config().placement;
+    const BlockPlacement now = tour_placement(config, start, step);
+    const Eigen::Vector3d size = sim->scene_config().block.size_m;
+    const bool moved = now.resting_face != sim->scene_config().placement.resting_face ||
+                       now.yaw_deg != sim->scene_config().placement.yaw_deg ||
+                       now.position_m != sim->scene_config().placement.position_m;
+    if (moved) sim->place_block(now);
+    if (auto* sl = dynamic_cast<SimStructuredLightScanner*>(sim)) sl->move_to(step.view);
+    if (auto* tof = dynamic_cast<SimTofScanner*>(sim))
+        tof->move_to({.azimuth_deg = step.view.azimuth_deg,
+                      .distance_m = config.tripod_distance_m,
+                      .height_m = config.tripod_height_m});
+    return block_pose(start, size) * block_pose(now, size).inverse();
+}
+
+}  // namespace anascan::sim
