@@ -39,5 +39,7 @@ void add_sim_command(CLI::App& app);
 void add_sim_scene_commands(CLI::App& sim);
 /// `sim tof-scan`, `sim sl-capture`: simulated scanners on the named scenes.
 void add_sim_scanner_commands(CLI::App& sim);
+/// `session info|check|export|exclude|note|turned-over`: a capture session folder.
+void add_session_command(CLI::App& app);
 
 }  // namespace anascan::cli

@@ -75,20 +75,29 @@ Expected<AssemblyReport> assemble_from_conf(const std::filesystem::path& conf_pa
         return fail(ErrorCode::kEmpty,
                     conf_path.string() + ": no 'bmesh' lines, nothing to assemble");
     }
+    return assemble_entries(conf_path.parent_path(), conf->entries, config, progress);
+}
+
+Expected<AssemblyReport> assemble_entries(const std::filesystem::path& folder,
+                                          std::span<const io::ConfEntry> entries,
+                                          const AssemblyConfig& config,
+                                          const ProgressFn& progress) {
     AssemblyReport report;
     std::vector<PlacedScan> scans;
-    for (const io::ConfEntry& entry : conf->entries) {
+    for (const io::ConfEntry& entry : entries) {
         AssembledScan info;
-        auto placed = load_placed(conf_path.parent_path(), entry, info);
+        auto placed = load_placed(folder, entry, info);
         if (!placed) return fail(placed.error());
         if (progress)
             progress("loaded " + entry.file + " (" + std::to_string(info.points) + " points)");
         report.scans.push_back(info);
         scans.push_back(std::move(*placed));
     }
-    if (progress) progress("measuring agreement of " + std::to_string(scans.size()) + " scans");
-    measure_pairs(scans, config, report);
-    summarise_pairs(report);
+    if (config.measure_pairs) {
+        if (progress) progress("measuring agreement of " + std::to_string(scans.size()) + " scans");
+        measure_pairs(scans, config, report);
+        summarise_pairs(report);
+    }
     for (const PlacedScan& s : scans) append(report.model, s.cloud);
     if (config.model_voxel_m > 0.0) {
         report.model = voxel_downsample(report.model, {.voxel_size_m = config.model_voxel_m});

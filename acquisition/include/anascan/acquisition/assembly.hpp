@@ -8,11 +8,13 @@
 #include <cstddef>
 #include <filesystem>
 #include <functional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "anascan/processing/expected.hpp"
+#include "anascan/processing/io/stanford_conf.hpp"
 #include "anascan/processing/point_cloud.hpp"
 #include "anascan/processing/scan_agreement.hpp"
 
@@ -21,6 +23,7 @@ namespace anascan::acquisition {
 struct AssemblyConfig {
     double model_voxel_m = 0.0;     ///< Down-sample the merged model (0 keeps every point).
     double min_pair_overlap = 0.1;  ///< Pairs overlapping less than this are not reported.
+    bool measure_pairs = true;      ///< False only merges (e.g. `session export`).
     AgreementConfig agreement;
 };
 
@@ -51,6 +54,12 @@ using ProgressFn = std::function<void(std::string_view message)>;
 Expected<AssemblyReport> assemble_from_conf(const std::filesystem::path& conf_path,
                                             const AssemblyConfig& config,
                                             const ProgressFn& progress = {});
+
+/// The same for entries given directly (files relative to `folder`).
+Expected<AssemblyReport> assemble_entries(const std::filesystem::path& folder,
+                                          std::span<const io::ConfEntry> entries,
+                                          const AssemblyConfig& config,
+                                          const ProgressFn& progress = {});
 
 /// The report as JSON text (units in the key names), without the model points.
 std::string report_to_json(const AssemblyReport& report);

@@ -1,0 +1,129 @@
+// anascan session export DIR --out MODEL.ply: the registered scans merged in their group's
+// frame, optionally with their poses as a Stanford .conf.
+#include <spdlog/spdlog.h>
+
+#include <cstdio>
+#include <map>
+
+#include "anascan/acquisition/assembly.hpp"
+#include "anascan/processing/io/ply.hpp"
+#include "anascan/processing/io/stanford_conf.hpp"
+#include "commands.hpp"
+#include "session_cli.hpp"
+
+namespace anascan::cli {
+namespace {
+
+namespace fs = std::filesystem;
+using acquisition::ScanRecord;
+using acquisition::ScanState;
+
+struct ExportOptions {
+    std::string dir;
+    std::string out;
+    std::string poses;
+    double voxel_mm = 0.0;
+    bool include_failed = false;
+    std::optional<int> group;
+};
+
+// The group with the most registered, non-excluded scans (lowest id on a tie).
+int largest_group(const std::vector<ScanRecord>& scans) {
+    std::map<int, int> counts;
+    for (const ScanRecord& r : scans) {
+        if (r.state == ScanState::kRegistered && r.pose) ++counts[r.group];
+    }
+    int best = -1, best_count = 0;
+    for (const auto& [group, count] : counts) {
+        if (count > best_count) best = group, best_count = count;
+    }
+    return best;
+}
+
+std::optional<Pose> export_pose(const ScanRecord& r, int group, bool include_failed) {
+    if (r.excluded) return std::nullopt;
+    if (r.state == ScanState::kRegistered) {
+        return r.group == group ? r.pose : std::nullopt;
+    }
+    if (r.state != ScanState::kFailed || !include_failed) return std::nullopt;
+    if (r.pose && r.group == group) return r.pose;
+    return r.pose_prior;  // The device's own pose, if it gave one.
+}
+
+std::vector<io::ConfEntry> select_scans(const std::vector<ScanRecord>& scans, int group,
+                                        bool include_failed) {
+    std::vector<io::ConfEntry> entries;
+    for (const ScanRecord& r : scans) {
+        if (auto pose = export_pose(r, group, include_failed)) {
+            entries.push_back({r.file, *pose});
+        } else if (r.state == ScanState::kFailed && include_failed && !r.excluded) {
+            spdlog::warn("scan {} failed and has no pose: left out", r.seq);
+        }
+    }
+    return entries;
+}
+
+void write_poses(const fs::path& conf_path, const fs::path& dir,
+                 const std::vector<io::ConfEntry>& entries) {
+    const fs::path conf_dir = fs::absolute(conf_path).parent_path();
+    io::StanfordConf conf;
+    for (const io::ConfEntry& e : entries) {
+        const fs::path file = fs::absolute(dir / e.file).lexically_normal();
+        const std::string name = file.lexically_relative(conf_dir).generic_string();
+        if (name.find_first_of(" \t") != std::string::npos) {
+            throw CommandFailed(conf_path.string() + ": a .conf cannot name '" + name +
+                                "' (it has a space): write the .conf where the path to the "
+                                "scans has no space");
+        }
+        conf.entries.push_back({name, e.T_world_scan});
+    }
+    if (auto ok = io::write_conf(conf_path, conf); !ok) fail_command(ok.error());
+    std::printf("poses: %s (%zu scans)\n", conf_path.c_str(), conf.entries.size());
+}
+
+void run_export(const ExportOptions& o) {
+    auto store = open_session(o.dir, acquisition::SessionOpenMode::kReadOnly);
+    auto scans = store->scans();
+    if (!scans) fail_command(scans.error());
+    const int group = o.group.value_or(largest_group(*scans));
+    const auto entries = select_scans(*scans, group, o.include_failed);
+    if (entries.empty()) {
+        throw CommandFailed(o.dir + ": no registered scan" +
+                            (o.group ? " in group " + std::to_string(group) : "") +
+                            " to export (see `anascan session info " + o.dir + "`)");
+    }
+    for (const ScanRecord& r : *scans) {
+        if (r.state == ScanState::kRegistered && !r.excluded && r.group != group)
+            spdlog::warn("scan {} is in group {}, not exported (use --group)", r.seq, r.group);
+    }
+    acquisition::AssemblyConfig config{.model_voxel_m = o.voxel_mm * 1e-3, .measure_pairs = false};
+    auto report = acquisition::assemble_entries(o.dir, entries, config,
+                                                [](std::string_view m) { spdlog::debug("{}", m); });
+    if (!report) fail_command(report.error());
+    if (auto ok = io::write_ply(o.out, report->model); !ok) fail_command(ok.error());
+    std::printf("model: %s (%zu points from %zu scans of group %d)\n", o.out.c_str(),
+                report->model.size(), entries.size(), group);
+    if (!o.poses.empty()) write_poses(o.poses, o.dir, entries);
+}
+
+}  // namespace
+
+void add_session_export_command(CLI::App& session) {
+    auto o = std::make_shared<ExportOptions>();
+    auto* cmd = session.add_subcommand(
+        "export",
+        "Merge the registered, non-excluded scans of a session (placed by their poses, in the "
+        "frame of their group) into one model");
+    cmd->add_option("dir", o->dir, "Session folder")->required();
+    cmd->add_option("--out", o->out, "Merged model (.ply)")->required();
+    cmd->add_option("--poses", o->poses,
+                    "Also write the poses as a Stanford .conf (scan files named relative to it)");
+    cmd->add_option("--voxel-mm", o->voxel_mm, "Down-sample the model to this voxel size, mm")
+        ->check(CLI::NonNegativeNumber);
+    cmd->add_option("--group", o->group, "Export this registration group (default: the largest)");
+    cmd->add_flag("--include-failed", o->include_failed,
+                  "Also place failed scans that have a pose (registered or from the device)");
+    cmd->callback([o] { run_export(*o); });
+}
+
+}  // namespace anascan::cli

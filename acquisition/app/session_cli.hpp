@@ -1,0 +1,20 @@
+#pragma once
+// Shared by the `anascan session ...` commands.
+#include <CLI/CLI.hpp>
+#include <filesystem>
+#include <memory>
+
+#include "anascan/acquisition/session_store.hpp"
+
+namespace anascan::cli {
+
+/// Opens the session or throws CommandFailed with the store's message.
+std::unique_ptr<acquisition::SessionStore> open_session(const std::filesystem::path& dir,
+                                                        acquisition::SessionOpenMode mode);
+
+/// `session info`, `session check` (registered on the `session` group).
+void add_session_info_commands(CLI::App& session);
+/// `session export`.
+void add_session_export_command(CLI::App& session);
+
+}  // namespace anascan::cli
