@@ -1,12 +1,13 @@
 // LiveRegistrar: the hypotheses for a new scan (motion prior, previous pose, global) and the
 // group model they are verified against.
 #include <algorithm>
-#include <limits>
+#include <map>
 #include <set>
 #include <string>
 
 #include "anascan/processing/kdtree.hpp"
 #include "live_registration_state.hpp"
+#include "live_registration_votes.hpp"
 
 namespace anascan::acquisition {
 namespace {
@@ -111,27 +112,18 @@ live::Verified LiveRegistrar::State::verify_hypothesis(const ScanEntry& entry, i
     return v;
 }
 
-double LiveRegistrar::State::global_rms_gate() const {
-    if (accepted_rms_m.size() < 3) return std::numeric_limits<double>::infinity();
-    std::vector<double> rms = accepted_rms_m;
-    std::nth_element(rms.begin(), rms.begin() + rms.size() / 2, rms.end());
-    return std::max(config.global_rms_floor_m,
-                    config.global_rms_median_factor * rms[rms.size() / 2]);
-}
-
-std::optional<live::Verified> LiveRegistrar::State::try_cheap(const ScanEntry& entry, int& group,
-                                                              std::string& method,
-                                                              LiveDecision& decision) const {
-    if (awaiting_turn) return std::nullopt;
+std::vector<std::pair<std::string, Pose>> LiveRegistrar::State::priors(std::int64_t seq,
+                                                                       int& group) const {
+    std::vector<std::pair<std::string, Pose>> hypotheses;
+    if (awaiting_turn) return hypotheses;
     // The latest registered scan's group is where the operator is working.
     std::optional<std::size_t> latest;
     for (std::size_t i = 0; i < scans.size(); ++i) {
-        if (scans[i].registered && !scans[i].excluded && scans[i].seq != entry.seq) latest = i;
+        if (scans[i].registered && !scans[i].excluded && scans[i].seq != seq) latest = i;
     }
-    if (!latest) return std::nullopt;
+    if (!latest) return hypotheses;
     group = scans[*latest].group;
     const std::vector<std::size_t> recent = members(group);
-    std::vector<std::pair<std::string, Pose>> hypotheses;
     // Walking around the stone moves the sensor by a rotation about the stone's vertical
     // axis (world frame): repeat the last step (constant velocity), or the last double step
     // applied to the scan before last (elevations alternating between two heights).
@@ -148,10 +140,17 @@ std::optional<live::Verified> LiveRegistrar::State::try_cheap(const ScanEntry& e
         if (last_prior == "motion-prior-2") std::swap(hypotheses[0], hypotheses[1]);
     }
     hypotheses.emplace_back("previous-pose", pose_of(0));
-    for (auto& [name, T] : hypotheses) {
+    return hypotheses;
+}
+
+std::optional<live::Verified> LiveRegistrar::State::try_cheap(const ScanEntry& entry, int& group,
+                                                              std::string& method,
+                                                              LiveDecision& decision) const {
+    const auto hypotheses = priors(entry.seq, group);
+    for (const auto& [name, T] : hypotheses) {
         Verified v = verify_hypothesis(entry, group, T);
         if (v.rejection.empty()) v.rejection = correction_problem(entry, T, v.fine, config);
-        decision.attempts.push_back(attempt_of(name, v, scans[recent[0]].seq, group));
+        decision.attempts.push_back(attempt_of(name, v, scans[members(group)[0]].seq, group));
         if (v.rejection.empty()) {
             method = name == "previous-pose" ? name : "motion-prior";
             last_prior = name;
@@ -161,44 +160,69 @@ std::optional<live::Verified> LiveRegistrar::State::try_cheap(const ScanEntry& e
     return std::nullopt;
 }
 
-std::optional<live::Verified> LiveRegistrar::State::try_global(std::size_t entry_index, int& group,
-                                                               LiveDecision& decision) {
+std::optional<Pose> LiveRegistrar::State::global_pose(std::size_t entry_index, int& group,
+                                                      LiveDecision& decision) {
     std::vector<std::size_t> targets;
     for (std::size_t i = scans.size(); i-- > 0;) {
         if (i != entry_index && scans[i].registered && !scans[i].excluded) targets.push_back(i);
     }
     if (targets.size() > config.max_global_targets) targets.resize(config.max_global_targets);
+    int prior_group = -1;
+    const auto hypotheses = priors(scans[entry_index].seq, prior_group);
     const ScanFeatures& source_f = features(entry_index);
     const ScanEntry& entry = scans[entry_index];
+    std::map<int, live::PoseVotes> votes;
     for (std::size_t t : targets) {
         const Clock::time_point start = Clock::now();
         const GlobalRegistrationResult g =
             register_global(entry.cloud, source_f, scans[t].cloud, features(t), config.global);
-        LiveAttempt attempt{.method = "global",
-                            .status = std::string(to_string(g.status)),
-                            .target_seq = scans[t].seq,
-                            .target_group = scans[t].group,
-                            .rms_m = g.rms_m,
-                            .overlap_fraction = g.overlap_fraction,
-                            .time_s = seconds_since(start)};
-        decision.attempts.push_back(attempt);
-        if (g.status != GlobalRegistrationStatus::kSuccess) continue;
-        if (const double gate = global_rms_gate(); g.rms_m > gate) {
-            decision.attempts.back().status = "rms above the session's gate";
-            continue;
+        decision.attempts.push_back({.method = "global",
+                                     .status = std::string(to_string(g.status)),
+                                     .target_seq = scans[t].seq,
+                                     .target_group = scans[t].group,
+                                     .rms_m = g.rms_m,
+                                     .overlap_fraction = g.overlap_fraction,
+                                     .time_s = seconds_since(start)});
+        const int g_id = scans[t].group;
+        auto& box = votes.try_emplace(g_id, config.vote_rotation_deg, config.vote_displacement_m)
+                        .first->second;
+        for (const HypothesisOutcome& h : g.hypotheses) {
+            if (!h.verified) continue;
+            const Pose T = scans[t].T_group_scan * h.fine.T_target_source;
+            // A verified pose near the operator's predicted one settles the ambiguity.
+            for (const auto& [name, T_prior] : hypotheses) {
+                if (g_id == prior_group &&
+                    live::poses_agree(T_prior, T, entry.centroid_m, config.max_global_prior_deg,
+                                      config.max_global_prior_m)) {
+                    group = g_id;
+                    decision.attempts.back().status = "verified near the " + name;
+                    return T;
+                }
+            }
+            box.add(T, t, entry.centroid_m);
         }
-        group = scans[t].group;
-        accepted_rms_m.push_back(g.rms_m);
-        // Refine against the group's model for the same figures as the cheap path.
-        Verified v = verify_hypothesis(entry, group, scans[t].T_group_scan * g.T_target_source);
-        decision.attempts.push_back(attempt_of("global-model", v, scans[t].seq, group));
-        if (v.rejection.empty()) return v;
-        v.fine = g.hypotheses[g.best_hypothesis].fine;
-        v.fine.T_target_source = scans[t].T_group_scan * g.T_target_source;
-        v.rejection.clear();
-        return v;
+        if (g.status == GlobalRegistrationStatus::kSuccess && targets.size() == 1) {
+            group = g_id;
+            return scans[t].T_group_scan * g.T_target_source;
+        }
+        if (const std::optional<Pose> T = box.winner(config.min_votes, config.vote_ratio)) {
+            group = g_id;
+            decision.attempts.back().status = "verified by votes";
+            return T;
+        }
     }
     return std::nullopt;
+}
+
+std::optional<live::Verified> LiveRegistrar::State::try_global(std::size_t entry_index, int& group,
+                                                               LiveDecision& decision) {
+    const std::optional<Pose> T = global_pose(entry_index, group, decision);
+    if (!T) return std::nullopt;
+    // Refine against the group's model for the same figures as the cheap path.
+    Verified v = verify_hypothesis(scans[entry_index], group, *T);
+    decision.attempts.push_back(attempt_of("global-model", v, -1, group));
+    if (!v.rejection.empty()) return std::nullopt;
+    return v;
 }
 
 }  // namespace anascan::acquisition

@@ -5,6 +5,7 @@
 
 #include "anascan/processing/kdtree.hpp"
 #include "live_registration_state.hpp"
+#include "live_registration_votes.hpp"
 
 namespace anascan::acquisition {
 namespace {
@@ -66,7 +67,6 @@ std::size_t LiveRegistrar::State::make_links() {
             FineRegistrationResult fine = register_fine(scans[s].cloud, scans[t].cloud, tree_of(t),
                                                         initial, config.link_fine);
             if (!usable_link(fine, config)) continue;
-            accepted_rms_m.push_back(fine.rms_m);
             links.push_back(
                 {.target = t, .source = s, .correspondences = std::move(fine.correspondences)});
             ++added;
@@ -131,6 +131,10 @@ std::vector<PoseUpdate> LiveRegistrar::State::merge_groups() {
     std::size_t attempts = 0;
     for (std::size_t b = 1; b < ids.size(); ++b) {
         for (std::size_t a = 0; a < b; ++a) {
+            live::PoseVotes& box = merge_votes
+                                       .try_emplace({ids[a], ids[b]}, config.vote_rotation_deg,
+                                                    config.vote_displacement_m)
+                                       .first->second;
             for (std::size_t j : members(ids[b])) {
                 for (std::size_t i : members(ids[a])) {
                     if (attempts >= config.max_merge_attempts) return {};
@@ -138,12 +142,16 @@ std::vector<PoseUpdate> LiveRegistrar::State::merge_groups() {
                     ++attempts;
                     const GlobalRegistrationResult g = register_global(
                         scans[j].cloud, features(j), scans[i].cloud, features(i), config.global);
-                    if (g.status != GlobalRegistrationStatus::kSuccess) continue;
-                    const Pose T_a_j = scans[i].T_group_scan * g.T_target_source;
-                    const live::Verified v = verify_hypothesis(scans[j], ids[a], T_a_j);
-                    if (!v.rejection.empty()) continue;
-                    const Pose T_a_b = v.fine.T_target_source * scans[j].T_group_scan.inverse();
-                    return merge(ids[a], ids[b], T_a_b);
+                    for (const HypothesisOutcome& h : g.hypotheses) {
+                        if (!h.verified) continue;
+                        const Pose T_a_b = scans[i].T_group_scan * h.fine.T_target_source *
+                                           scans[j].T_group_scan.inverse();
+                        box.add(T_a_b, i * scans.size() + j,
+                                scans[j].T_group_scan * scans[j].centroid_m);
+                    }
+                    if (const auto T = box.winner(config.min_votes, config.vote_ratio)) {
+                        return merge(ids[a], ids[b], *T);
+                    }
                 }
             }
         }

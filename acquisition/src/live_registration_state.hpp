@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "anascan/acquisition/live_registration.hpp"
+#include "live_registration_votes.hpp"
 
 namespace anascan::acquisition {
 namespace live {
@@ -70,10 +71,9 @@ struct LiveRegistrar::State {
     std::set<std::pair<std::size_t, std::size_t>> merge_tried;  ///< Global pairs tried (a, b).
     std::set<std::pair<std::size_t, std::size_t>> link_tried;   ///< Link pairs tried (t, s).
     LiveRefineReport report;
-    mutable std::string last_prior;      ///< The motion prior that verified last.
-    std::vector<double> accepted_rms_m;  ///< Pairwise RMS: accepted globals, links.
-    /// Largest RMS a global result may have: a multiple of the median accepted one.
-    double global_rms_gate() const;
+    mutable std::string last_prior;  ///< The motion prior that verified last.
+    /// Votes for the transform between two groups (lower id first), across refine() calls.
+    std::map<std::pair<int, int>, live::PoseVotes> merge_votes;
 
     /// Registered, not excluded entries of `group`, most recent first.
     std::vector<std::size_t> members(int group) const;
@@ -88,6 +88,12 @@ struct LiveRegistrar::State {
     /// The cheap hypotheses (motion prior, previous pose), in order; appends attempts.
     std::optional<live::Verified> try_cheap(const live::ScanEntry& entry, int& group,
                                             std::string& method, LiveDecision& decision) const;
+    /// The operator's predicted poses of a new scan (motion priors, previous pose) in the
+    /// group of the latest registered scan (set in `group`); none after a turn-over.
+    std::vector<std::pair<std::string, Pose>> priors(std::int64_t seq, int& group) const;
+    /// A globally registered pose: a verified pose near a prior, else one that several
+    /// target scans vote for (or the only target's success).
+    std::optional<Pose> global_pose(std::size_t entry_index, int& group, LiveDecision& decision);
     /// Global registration against registered scans of every group, most recent first.
     std::optional<live::Verified> try_global(std::size_t entry_index, int& group,
                                              LiveDecision& decision);

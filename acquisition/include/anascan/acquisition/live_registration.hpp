@@ -63,7 +63,7 @@ struct LiveRegistrationConfig {
     std::size_t min_scan_points = 500;  ///< Fewer stone points: the scan is not usable.
     /// Fine registration of a hypothesis against the model; the first gate must cover the
     /// error of a motion prior (a few centimetres when the operator's steps vary).
-    FineRegistrationConfig fine{.max_correspondence_distance_m = 0.03,
+    FineRegistrationConfig fine{.max_correspondence_distance_m = 0.06,
                                 .min_correspondence_distance_m = 0.003,
                                 .max_iterations = 40,
                                 .overlap_distance_m = 0.003};
@@ -81,12 +81,17 @@ struct LiveRegistrationConfig {
     GlobalRegistrationConfig global{};
     /// Descriptor radii for the session; all zero = from the first usable scan's diagonal.
     InvariantRadii radii_m{};
-    /// Once three global results were accepted, another needs an RMS (pairwise, metres)
-    /// within this multiple of their median, or this floor: a near-symmetric stone (a box
-    /// with fine relief) matches itself turned by 90° or 180° with a few times the RMS.
-    double global_rms_median_factor = 2.5;
-    double global_rms_floor_m = 0.0002;
-    std::size_t max_global_targets = 8;  ///< Registered scans tried per global attempt.
+    std::size_t max_global_targets = 8;
+    /// A verified global pose (any hypothesis, also of an ambiguous result) within these of
+    /// a motion prior or the previous pose is taken: the prior resolves the look-alikes.
+    double max_global_prior_deg = 30.0;
+    double max_global_prior_m = 0.3;
+    /// Without a prior, a global pose needs verified votes from at least `min_votes` target
+    /// scans, `vote_ratio` times more than any other pose's; votes agree within these.
+    std::size_t min_votes = 2;
+    double vote_ratio = 2.0;
+    double vote_rotation_deg = 3.0;
+    double vote_displacement_m = 0.01;  ///< Registered scans tried per global attempt.
     /// Links for multi-view refinement: pairs of one group whose predicted overlap (feature
     /// sites) reaches this fraction are fine registered from their current poses.
     double min_link_overlap_fraction = 0.15;
