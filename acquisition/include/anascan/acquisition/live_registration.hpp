@@ -1,0 +1,203 @@
+#pragma once
+/// \file
+/// On-site, acquisition-aware registration (DESIGN.md "On-site registration", issue 5 item
+/// 3): scans arrive one at a time in capture order and are placed as they come.
+///
+/// For each new scan `add` keeps a reduced copy (non-finite points dropped, voxel
+/// down-sampled, normals oriented toward the sensor, the ground plane removed: stone only)
+/// and tries, cheapest first:
+///  1. the constant-velocity motion prior (the operator walks around the stone in steps:
+///     the step between the last two registered scans of the group, applied once more);
+///  2. the previous scan's pose;
+/// each refined by fine registration against the group's model (the registered scans whose
+/// sensors stood nearest the hypothesis, merged) and verified as in issue 3 (converged,
+/// overlap, normals agree, RMS within the sample spacing, not degenerate). If neither
+/// verifies: global registration from integral-invariant features against the registered
+/// scans, most recent first, of every group (stone only, so a stone turned over still
+/// matches itself); if that fails too the scan opens a new group. After the operator marks
+/// the stone turned over, the cheap hypotheses are skipped until a scan is placed.
+///
+/// `refine` (background work) computes missing features, fine-registers every new pair of
+/// overlapping scans of a group keeping the correspondences (multi-view links), solves each
+/// group's poses at once (`refine_multiview`, paper eq. 4) and merges groups whose
+/// stone-only scans register globally; it returns the poses that changed.
+///
+/// Frames: group g's frame is the frame of its first scan; group 0 is the first scan's.
+/// When groups merge, the lower id survives and the other's poses are re-expressed in it.
+///
+/// Thread safety: not thread-safe; one thread (the registration worker) owns the object.
+/// No I/O, no threads of its own (processing's TBB loops run inside).
+
+#include <Eigen/Core>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "anascan/processing/fine_registration.hpp"
+#include "anascan/processing/global_registration.hpp"
+#include "anascan/processing/multiview_refinement.hpp"
+#include "anascan/processing/normals.hpp"
+#include "anascan/processing/plane_removal.hpp"
+#include "anascan/processing/point_cloud.hpp"
+#include "anascan/processing/pose.hpp"
+
+namespace anascan::acquisition {
+
+/// Settings of a live registration session. Callers use designated initialisers.
+struct LiveRegistrationConfig {
+    /// Reduced copies are voxel down-sampled to this edge (metres): ~1.5-2 mm keeps a
+    /// structured-light scan of ~300k points at ~30k points.
+    double voxel_size_m = 0.002;
+    NormalEstimationConfig normals{};  ///< On the reduced cloud.
+    /// The ground: the dominant plane with the other points on the sensor's side of it.
+    PlaneFitConfig ground{.distance_threshold_m = 0.003, .min_inlier_fraction = 0.05};
+    /// Points within this distance (metres) of the ground plane, or below it, are dropped.
+    double ground_band_m = 0.004;
+    /// A plane is the ground when at least this fraction of the points off it lie on the
+    /// sensor's side (a stone face seen from the front has the others behind it).
+    double ground_sensor_side_fraction = 0.9;
+    int ground_attempts = 3;            ///< Planes tried (each rejected one is set aside).
+    std::size_t min_scan_points = 500;  ///< Fewer stone points: the scan is not usable.
+    /// Fine registration of a hypothesis against the model; the first gate must cover the
+    /// error of a motion prior (a few centimetres when the operator's steps vary).
+    FineRegistrationConfig fine{.max_correspondence_distance_m = 0.06,
+                                .min_correspondence_distance_m = 0.003,
+                                .max_iterations = 40,
+                                .overlap_distance_m = 0.003};
+    /// A cheap hypothesis is a prediction: its refined pose may differ from it by at most
+    /// this rotation (degrees) and this displacement of the scan's centroid (metres), else
+    /// the fine registration is taken for a wrong local minimum.
+    double max_prior_correction_deg = 15.0;
+    double max_prior_correction_m = 0.15;
+    std::size_t model_scans = 5;  ///< Registered scans merged into the model of a hypothesis.
+    /// Verification (issue 3): RMS at most this many voxel sizes ...
+    double max_rms_voxel_factor = 0.75;
+    double min_overlap_fraction = 0.3;       ///< ... overlap of the new scan at least this ...
+    double max_normal_deviation_deg = 20.0;  ///< ... and mean normal angle at most this.
+    /// Global registration (features at radii fixed for the session, see `radii_m`).
+    GlobalRegistrationConfig global{};
+    /// Descriptor radii for the session; all zero = from the first usable scan's diagonal.
+    InvariantRadii radii_m{};
+    std::size_t max_global_targets = 8;
+    /// A verified global pose (any hypothesis, also of an ambiguous result) within these of
+    /// a motion prior or the previous pose is taken: the prior resolves the look-alikes.
+    double max_global_prior_deg = 30.0;
+    double max_global_prior_m = 0.3;
+    /// Without a prior, a global pose needs verified votes from at least `min_votes` target
+    /// scans, `vote_ratio` times more than any other pose's; votes agree within these.
+    std::size_t min_votes = 2;
+    double vote_ratio = 2.0;
+    double vote_rotation_deg = 3.0;
+    double vote_displacement_m = 0.01;  ///< Registered scans tried per global attempt.
+    /// Links for multi-view refinement: pairs of one group whose predicted overlap (feature
+    /// sites) reaches this fraction are fine registered from their current poses.
+    double min_link_overlap_fraction = 0.15;
+    FineRegistrationConfig link_fine{.max_correspondence_distance_m = 0.006,
+                                     .min_correspondence_distance_m = 0.002,
+                                     .max_iterations = 30,
+                                     .overlap_distance_m = 0.003,
+                                     .keep_correspondences = true};
+    /// A link needs an RMS within this many voxel sizes (looser than the verification:
+    /// its correspondences reach farther).
+    double max_link_rms_voxel_factor = 1.0;
+    MultiviewRefinementConfig multiview{};  ///< fixed_scan_index is set per group.
+    std::size_t max_merge_attempts = 4;     ///< Global pair attempts per refine() for merges.
+    /// Scans whose features (for a later global registration) refine() computes per call.
+    std::size_t max_features_per_refine = 2;
+};
+
+/// One scan handed to the registrar.
+struct LiveScanInput {
+    std::int64_t seq = 0;  ///< Sequence number (capture order), unique.
+    PointCloud cloud;      ///< In the scan frame, metres (normals optional: recomputed).
+    /// Sensor position in the scan frame; orients normals and tells the ground's side.
+    /// Absent: (0, 0, 0) (structured-light and ToF scans are in the sensor's frame).
+    std::optional<Eigen::Vector3d> sensor_origin_scan_m;
+    bool turned_over_before = false;  ///< The operator marked the stone turned over.
+};
+
+/// One hypothesis tried for a scan.
+struct LiveAttempt {
+    std::string method;  ///< "motion-prior", "previous-pose", "global".
+    std::string status;  ///< "verified", or why not ("rms too large", "no_consensus", ...).
+    std::int64_t target_seq = -1;  ///< Global: the target scan; else the latest model scan.
+    int target_group = -1;
+    double rms_m = 0.0;
+    double overlap_fraction = 0.0;
+    double time_s = 0.0;
+};
+
+/// What `add` decided for one scan, with its figures.
+struct LiveDecision {
+    std::int64_t seq = 0;
+    bool registered = false;  ///< False: the scan is unusable (see message); no group.
+    int group = -1;
+    Pose T_group_scan = Pose::Identity();  ///< Scan frame into its group's frame.
+    /// "first", "motion-prior", "previous-pose", "global", "new-group", "unusable".
+    std::string method;
+    double rms_m = 0.0;  ///< Of the accepted fine registration (0 for first/new-group).
+    double overlap_fraction = 0.0;
+    double normal_deviation_deg = 0.0;
+    double degeneracy = 0.0;            ///< Smallest / largest eigenvalue ratio (1 = isotropic).
+    double time_s = 0.0;                ///< Wall-clock time of add(), seconds.
+    std::size_t reduced_points = 0;     ///< Stone points kept.
+    std::vector<LiveAttempt> attempts;  ///< In the order tried.
+    std::string message;                ///< Human-readable summary.
+};
+
+/// A pose that changed (refinement or group merge).
+struct PoseUpdate {
+    std::int64_t seq = 0;
+    int group = -1;
+    Pose T_group_scan = Pose::Identity();
+};
+
+/// What `refine` did.
+struct LiveRefineReport {
+    std::size_t new_links = 0;
+    std::size_t groups_refined = 0;
+    std::size_t merges = 0;
+    double time_s = 0.0;
+};
+
+/// One registered scan of the model (for coverage): its reduced stone-only cloud.
+struct LiveModelScan {
+    std::int64_t seq = 0;
+    int group = -1;
+    const PointCloud* cloud = nullptr;  ///< Scan frame; valid until the next add/refine.
+    Pose T_group_scan = Pose::Identity();
+    Eigen::Vector3d sensor_origin_scan_m = Eigen::Vector3d::Zero();
+};
+
+/// The registrar: a single-threaded state machine (see the file comment).
+class LiveRegistrar {
+public:
+    explicit LiveRegistrar(LiveRegistrationConfig config = {});
+    ~LiveRegistrar();
+    LiveRegistrar(LiveRegistrar&&) noexcept;
+    LiveRegistrar& operator=(LiveRegistrar&&) noexcept;
+
+    /// Registers one new scan; keeps its reduced copy, never the full cloud.
+    LiveDecision add(LiveScanInput scan);
+    /// Background work: links, multi-view refinement, group merges. Returns the changed
+    /// poses (`last_refine_report` has the figures).
+    std::vector<PoseUpdate> refine();
+    /// Takes a scan out of the model (excluded = true) or back in; unknown seqs are ignored.
+    void exclude(std::int64_t seq, bool excluded);
+
+    /// The registered, not excluded scans.
+    std::vector<LiveModelScan> model() const;
+    /// Current pose and group of a scan (group -1 and nothing when unknown or unusable).
+    std::optional<PoseUpdate> pose(std::int64_t seq) const;
+    std::size_t group_count() const;  ///< Groups with at least one scan.
+    const LiveRefineReport& last_refine_report() const;
+
+private:
+    struct State;
+    std::unique_ptr<State> state_;
+};
+
+}  // namespace anascan::acquisition

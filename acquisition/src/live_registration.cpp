@@ -1,0 +1,124 @@
+// LiveRegistrar: add() as named steps (prepare → cheap hypotheses → global → new group).
+#include "anascan/acquisition/live_registration.hpp"
+
+#include <cstdio>
+#include <string>
+#include <utility>
+
+#include "live_registration_state.hpp"
+
+namespace anascan::acquisition {
+namespace {
+
+using live::seconds_since;
+using Clock = std::chrono::steady_clock;
+
+void copy_figures(const FineRegistrationResult& fine, LiveDecision& decision) {
+    decision.T_group_scan = fine.T_target_source;
+    decision.rms_m = fine.rms_m;
+    decision.overlap_fraction = fine.overlap_fraction;
+    decision.normal_deviation_deg = fine.normal_deviation_deg.value_or(0.0);
+    decision.degeneracy = fine.degeneracy.eigenvalue_ratio;
+}
+
+std::string summary(const LiveDecision& d) {
+    char text[200];
+    std::snprintf(text, sizeof(text),
+                  "scan %lld: %s, group %d, rms %.3f mm, overlap %.1f %%, %zu attempts, %.3f s",
+                  static_cast<long long>(d.seq), d.method.c_str(), d.group, d.rms_m * 1e3,
+                  d.overlap_fraction * 100.0, d.attempts.size(), d.time_s);
+    return text;
+}
+
+}  // namespace
+
+LiveRegistrar::LiveRegistrar(LiveRegistrationConfig config) : state_(std::make_unique<State>()) {
+    state_->config = std::move(config);
+}
+
+LiveRegistrar::~LiveRegistrar() = default;
+LiveRegistrar::LiveRegistrar(LiveRegistrar&&) noexcept = default;
+LiveRegistrar& LiveRegistrar::operator=(LiveRegistrar&&) noexcept = default;
+
+LiveDecision LiveRegistrar::add(LiveScanInput scan) {
+    const Clock::time_point start = Clock::now();
+    State& s = *state_;
+    LiveDecision decision{.seq = scan.seq};
+    if (s.index_of_seq.contains(scan.seq)) {
+        decision.method = "unusable";
+        decision.message = "scan " + std::to_string(scan.seq) + " was already added";
+        return decision;
+    }
+    const bool turned = scan.turned_over_before;
+    live::Prepared prepared = live::prepare_scan(std::move(scan), s.config);
+    decision.reduced_points = prepared.entry.cloud.size();
+    if (!prepared.problem.empty()) {
+        decision.method = "unusable";
+        decision.message = "scan " + std::to_string(decision.seq) + ": " + prepared.problem;
+        decision.time_s = seconds_since(start);
+        return decision;
+    }
+    if (turned) s.awaiting_turn = true;
+    const bool first = s.groups().empty();
+    const std::size_t index = s.scans.size();
+    s.index_of_seq[decision.seq] = index;
+    s.scans.push_back(std::move(prepared.entry));
+
+    std::optional<live::Verified> accepted;
+    int group = -1;
+    if (!first) {
+        accepted = s.try_cheap(s.scans[index], group, decision.method, decision);
+        if (!accepted) {
+            accepted = s.try_global(index, group, decision);
+            decision.method = "global";
+        }
+    }
+    live::ScanEntry& entry = s.scans[index];
+    entry.registered = true;
+    if (accepted) {
+        copy_figures(accepted->fine, decision);
+        decision.group = group;
+    } else {
+        decision.method = first ? "first" : "new-group";
+        decision.group = s.next_group++;
+    }
+    s.awaiting_turn = false;
+    entry.group = decision.group;
+    entry.T_group_scan = decision.T_group_scan;
+    decision.registered = true;
+    decision.time_s = seconds_since(start);
+    decision.message = summary(decision);
+    return decision;
+}
+
+void LiveRegistrar::exclude(std::int64_t seq, bool excluded) {
+    const auto it = state_->index_of_seq.find(seq);
+    if (it != state_->index_of_seq.end()) state_->scans[it->second].excluded = excluded;
+}
+
+std::vector<LiveModelScan> LiveRegistrar::model() const {
+    std::vector<LiveModelScan> out;
+    for (const live::ScanEntry& e : state_->scans) {
+        if (!e.registered || e.excluded) continue;
+        out.push_back({.seq = e.seq,
+                       .group = e.group,
+                       .cloud = &e.cloud,
+                       .T_group_scan = e.T_group_scan,
+                       .sensor_origin_scan_m = e.sensor_origin_m});
+    }
+    return out;
+}
+
+std::optional<PoseUpdate> LiveRegistrar::pose(std::int64_t seq) const {
+    const auto it = state_->index_of_seq.find(seq);
+    if (it == state_->index_of_seq.end()) return std::nullopt;
+    const live::ScanEntry& e = state_->scans[it->second];
+    if (!e.registered) return std::nullopt;
+    return PoseUpdate{.seq = e.seq, .group = e.group, .T_group_scan = e.T_group_scan};
+}
+
+std::size_t LiveRegistrar::group_count() const { return state_->groups().size(); }
+
+const LiveRefineReport& LiveRegistrar::last_refine_report() const { return state_->report; }
+
+}  // namespace anascan::acquisition

@@ -1,0 +1,228 @@
+// LiveRegistrar: the hypotheses for a new scan (motion prior, previous pose, global) and the
+// group model they are verified against.
+#include <algorithm>
+#include <map>
+#include <set>
+#include <string>
+
+#include "anascan/processing/kdtree.hpp"
+#include "live_registration_state.hpp"
+#include "live_registration_votes.hpp"
+
+namespace anascan::acquisition {
+namespace {
+
+using live::ScanEntry;
+using live::seconds_since;
+using live::Verified;
+using Clock = std::chrono::steady_clock;
+
+/// Sensor position of `entry` in its group's frame under `T_group_scan`.
+Eigen::Vector3d sensor_in_group(const ScanEntry& entry, const Pose& T_group_scan) {
+    return T_group_scan * entry.sensor_origin_m;
+}
+
+LiveAttempt attempt_of(std::string method, const Verified& v, std::int64_t target_seq, int group) {
+    return {.method = std::move(method),
+            .status = v.rejection.empty() ? "verified" : v.rejection,
+            .target_seq = target_seq,
+            .target_group = group,
+            .rms_m = v.fine.rms_m,
+            .overlap_fraction = v.fine.overlap_fraction,
+            .time_s = v.fine.time_s};
+}
+
+/// Why the refined pose cannot come from the hypothesis `T_prior` (too far from it).
+std::string correction_problem(const ScanEntry& entry, const Pose& T_prior,
+                               const FineRegistrationResult& fine,
+                               const LiveRegistrationConfig& config) {
+    const double rotation_deg = rotation_angle_deg(T_prior.inverse() * fine.T_target_source);
+    const double moved_m =
+        (T_prior * entry.centroid_m - fine.T_target_source * entry.centroid_m).norm();
+    if (rotation_deg > config.max_prior_correction_deg || moved_m > config.max_prior_correction_m) {
+        return "moved too far from the hypothesis";
+    }
+    return {};
+}
+
+}  // namespace
+
+std::vector<std::size_t> LiveRegistrar::State::members(int group) const {
+    std::vector<std::size_t> out;
+    for (std::size_t i = scans.size(); i-- > 0;) {
+        const ScanEntry& e = scans[i];
+        if (e.registered && !e.excluded && e.group == group) out.push_back(i);
+    }
+    return out;
+}
+
+std::vector<int> LiveRegistrar::State::groups() const {
+    std::set<int> ids;
+    for (const ScanEntry& e : scans) {
+        if (e.registered && !e.excluded) ids.insert(e.group);
+    }
+    return {ids.begin(), ids.end()};
+}
+
+const ScanFeatures& LiveRegistrar::State::features(std::size_t i) {
+    ScanEntry& entry = scans[i];
+    if (entry.features) return *entry.features;
+    if (!radii_m) {
+        const bool automatic = std::all_of(config.radii_m.begin(), config.radii_m.end(),
+                                           [](double r) { return r == 0.0; });
+        radii_m = automatic ? radii_for_object_size_m(local_bounds(entry.cloud).extent().norm())
+                            : config.radii_m;
+    }
+    IntegralInvariantResult invariants = describe_scan(entry.cloud, *radii_m, config.global);
+    if (!levels && invariants.status == IntegralInvariantStatus::kOk) {
+        const IntegralInvariantResult* const first[] = {&invariants};
+        levels = saliency_levels(first, config.global.patches);
+    }
+    ScanFeatures f;
+    if (levels && invariants.status == IntegralInvariantStatus::kOk) {
+        f.patches = extract_feature_patches(invariants, *levels, config.global.patches);
+    }
+    f.invariants = std::move(invariants);
+    f.spacing_m = median_sample_spacing_m(entry.cloud);
+    entry.features = std::move(f);
+    return *entry.features;
+}
+
+live::Verified LiveRegistrar::State::verify_hypothesis(const ScanEntry& entry, int group,
+                                                       const Pose& T_group_scan) const {
+    // The model: the group's scans whose sensors stood nearest the hypothesis's sensor.
+    std::vector<std::size_t> candidates = members(group);
+    const Eigen::Vector3d sensor = sensor_in_group(entry, T_group_scan);
+    std::stable_sort(candidates.begin(), candidates.end(), [&](std::size_t a, std::size_t b) {
+        return (sensor_in_group(scans[a], scans[a].T_group_scan) - sensor).squaredNorm() <
+               (sensor_in_group(scans[b], scans[b].T_group_scan) - sensor).squaredNorm();
+    });
+    if (candidates.size() > config.model_scans) candidates.resize(config.model_scans);
+    PointCloud model;
+    for (std::size_t i : candidates)
+        append(model, transformed(scans[i].cloud, scans[i].T_group_scan));
+    Verified v;
+    if (model.empty()) {
+        v.rejection = "empty model";
+        return v;
+    }
+    const KdTree tree(model.positions);
+    v.fine = register_fine(entry.cloud, model, tree, T_group_scan, config.fine);
+    v.rejection = live::rejection(v.fine, config);
+    return v;
+}
+
+std::vector<std::pair<std::string, Pose>> LiveRegistrar::State::priors(std::int64_t seq,
+                                                                       int& group) const {
+    std::vector<std::pair<std::string, Pose>> hypotheses;
+    if (awaiting_turn) return hypotheses;
+    // The latest registered scan's group is where the operator is working.
+    std::optional<std::size_t> latest;
+    for (std::size_t i = 0; i < scans.size(); ++i) {
+        if (scans[i].registered && !scans[i].excluded && scans[i].seq != seq) latest = i;
+    }
+    if (!latest) return hypotheses;
+    group = scans[*latest].group;
+    const std::vector<std::size_t> recent = members(group);
+    // Walking around the stone moves the sensor by a rotation about the stone's vertical
+    // axis (world frame): repeat the last step (constant velocity), or the last double step
+    // applied to the scan before last (elevations alternating between two heights).
+    const auto pose_of = [&](std::size_t k) -> const Pose& {
+        return scans[recent[k]].T_group_scan;
+    };
+    if (recent.size() >= 2) {
+        hypotheses.emplace_back("motion-prior",
+                                orthonormalized(pose_of(0) * pose_of(1).inverse() * pose_of(0)));
+    }
+    if (recent.size() >= 3) {
+        hypotheses.emplace_back("motion-prior-2",
+                                orthonormalized(pose_of(0) * pose_of(2).inverse() * pose_of(1)));
+        if (last_prior == "motion-prior-2") std::swap(hypotheses[0], hypotheses[1]);
+    }
+    hypotheses.emplace_back("previous-pose", pose_of(0));
+    return hypotheses;
+}
+
+std::optional<live::Verified> LiveRegistrar::State::try_cheap(const ScanEntry& entry, int& group,
+                                                              std::string& method,
+                                                              LiveDecision& decision) const {
+    const auto hypotheses = priors(entry.seq, group);
+    for (const auto& [name, T] : hypotheses) {
+        Verified v = verify_hypothesis(entry, group, T);
+        if (v.rejection.empty()) v.rejection = correction_problem(entry, T, v.fine, config);
+        decision.attempts.push_back(attempt_of(name, v, scans[members(group)[0]].seq, group));
+        if (v.rejection.empty()) {
+            method = name == "previous-pose" ? name : "motion-prior";
+            last_prior = name;
+            return v;
+        }
+    }
+    return std::nullopt;
+}
+
+std::optional<Pose> LiveRegistrar::State::global_pose(std::size_t entry_index, int& group,
+                                                      LiveDecision& decision) {
+    std::vector<std::size_t> targets;
+    for (std::size_t i = scans.size(); i-- > 0;) {
+        if (i != entry_index && scans[i].registered && !scans[i].excluded) targets.push_back(i);
+    }
+    if (targets.size() > config.max_global_targets) targets.resize(config.max_global_targets);
+    int prior_group = -1;
+    const auto hypotheses = priors(scans[entry_index].seq, prior_group);
+    const ScanFeatures& source_f = features(entry_index);
+    const ScanEntry& entry = scans[entry_index];
+    std::map<int, live::PoseVotes> votes;
+    for (std::size_t t : targets) {
+        const Clock::time_point start = Clock::now();
+        const GlobalRegistrationResult g =
+            register_global(entry.cloud, source_f, scans[t].cloud, features(t), config.global);
+        decision.attempts.push_back({.method = "global",
+                                     .status = std::string(to_string(g.status)),
+                                     .target_seq = scans[t].seq,
+                                     .target_group = scans[t].group,
+                                     .rms_m = g.rms_m,
+                                     .overlap_fraction = g.overlap_fraction,
+                                     .time_s = seconds_since(start)});
+        const int g_id = scans[t].group;
+        auto& box = votes.try_emplace(g_id, config.vote_rotation_deg, config.vote_displacement_m)
+                        .first->second;
+        for (const HypothesisOutcome& h : g.hypotheses) {
+            if (!h.verified) continue;
+            const Pose T = scans[t].T_group_scan * h.fine.T_target_source;
+            // A verified pose near the operator's predicted one settles the ambiguity.
+            for (const auto& [name, T_prior] : hypotheses) {
+                if (g_id == prior_group &&
+                    live::poses_agree(T_prior, T, entry.centroid_m, config.max_global_prior_deg,
+                                      config.max_global_prior_m)) {
+                    group = g_id;
+                    decision.attempts.back().status = "verified near the " + name;
+                    return T;
+                }
+            }
+            box.add(T, t, entry.centroid_m);
+        }
+        if (g.status == GlobalRegistrationStatus::kSuccess && targets.size() == 1) {
+            group = g_id;
+            return scans[t].T_group_scan * g.T_target_source;
+        }
+        if (const std::optional<Pose> T = box.winner(config.min_votes, config.vote_ratio)) {
+            group = g_id;
+            decision.attempts.back().status = "verified by votes";
+            return T;
+        }
+    }
+    return std::nullopt;
+}
+
+std::optional<live::Verified> LiveRegistrar::State::try_global(std::size_t entry_index, int& group,
+                                                               LiveDecision& decision) {
+    const std::optional<Pose> T = global_pose(entry_index, group, decision);
+    if (!T) return std::nullopt;
+    // Refine against the group's model for the same figures as the cheap path.
+    Verified v = verify_hypothesis(scans[entry_index], group, *T);
+    decision.attempts.push_back(attempt_of("global-model", v, -1, group));
+    if (!v.rejection.empty()) return std::nullopt;
+    return v;
+}
+
+}  // namespace anascan::acquisition

@@ -1,0 +1,183 @@
+// LiveRegistrar::refine: features ahead of need, group merges by global registration of
+// stone-only scans, multi-view links between overlapping scans, multi-view refinement.
+#include <algorithm>
+#include <map>
+
+#include "anascan/processing/kdtree.hpp"
+#include "live_registration_state.hpp"
+#include "live_registration_votes.hpp"
+
+namespace anascan::acquisition {
+namespace {
+
+using live::ScanEntry;
+using Clock = std::chrono::steady_clock;
+
+/// Fraction of (about `samples`) source points that land within `distance_m` of the target
+/// under `T_target_source`: a cheap forecast of a pair's overlap.
+double forecast_overlap(const ScanEntry& source, const ScanEntry& target, const KdTree& tree,
+                        const Pose& T_target_source, double distance_m) {
+    const std::size_t step = std::max<std::size_t>(1, source.cloud.size() / 200);
+    const Eigen::Isometry3f T_local =
+        (Eigen::Translation3d(-target.cloud.origin_m) * T_target_source *
+         Eigen::Translation3d(source.cloud.origin_m))
+            .cast<float>();
+    const float distance_sq = static_cast<float>(distance_m * distance_m);
+    std::size_t near = 0, tried = 0;
+    Neighbor nearest;
+    for (std::size_t i = 0; i < source.cloud.size(); i += step, ++tried) {
+        near += tree.nearest(T_local * source.cloud.positions[i], nearest) &&
+                nearest.distance_sq_m2 <= distance_sq;
+    }
+    return tried == 0 ? 0.0 : static_cast<double>(near) / static_cast<double>(tried);
+}
+
+bool usable_link(const FineRegistrationResult& fine, const LiveRegistrationConfig& config) {
+    return (fine.status == FineRegistrationStatus::kConverged ||
+            fine.status == FineRegistrationStatus::kMaxIterations) &&
+           fine.overlap_fraction >= config.min_link_overlap_fraction &&
+           fine.degeneracy.eigenvalue_ratio >= config.link_fine.degeneracy_threshold &&
+           fine.normal_deviation_deg.value_or(0.0) <= config.max_normal_deviation_deg &&
+           fine.rms_m <= config.max_link_rms_voxel_factor * config.voxel_size_m;
+}
+
+bool active(const ScanEntry& e) { return e.registered && !e.excluded; }
+
+}  // namespace
+
+std::size_t LiveRegistrar::State::make_links() {
+    std::map<std::size_t, KdTree> trees;
+    const auto tree_of = [&](std::size_t i) -> const KdTree& {
+        auto it = trees.find(i);
+        if (it == trees.end()) it = trees.emplace(i, KdTree(scans[i].cloud.positions)).first;
+        return it->second;
+    };
+    std::size_t added = 0;
+    for (std::size_t s = 0; s < scans.size(); ++s) {
+        for (std::size_t t = 0; t < s; ++t) {
+            if (!active(scans[s]) || !active(scans[t]) || scans[s].group != scans[t].group)
+                continue;
+            if (!link_tried.insert({t, s}).second) continue;
+            const Pose initial = scans[t].T_group_scan.inverse() * scans[s].T_group_scan;
+            if (forecast_overlap(scans[s], scans[t], tree_of(t), initial,
+                                 config.link_fine.overlap_distance_m) <
+                config.min_link_overlap_fraction) {
+                continue;
+            }
+            FineRegistrationResult fine = register_fine(scans[s].cloud, scans[t].cloud, tree_of(t),
+                                                        initial, config.link_fine);
+            if (!usable_link(fine, config)) continue;
+            links.push_back(
+                {.target = t, .source = s, .correspondences = std::move(fine.correspondences)});
+            ++added;
+        }
+    }
+    return added;
+}
+
+std::vector<PoseUpdate> LiveRegistrar::State::refine_groups() {
+    std::vector<PoseUpdate> updates;
+    for (const int g : groups()) {
+        std::vector<std::size_t> group_scans = members(g);
+        std::reverse(group_scans.begin(), group_scans.end());  // Ascending: first scan fixed.
+        std::map<std::size_t, std::size_t> local;
+        std::vector<Pose> poses;
+        for (std::size_t i : group_scans) {
+            local[i] = poses.size();
+            poses.push_back(scans[i].T_group_scan);
+        }
+        std::vector<MultiviewLink> group_links;
+        for (const live::Link& l : links) {
+            if (!local.contains(l.target) || !local.contains(l.source)) continue;
+            group_links.push_back({.target_index = local[l.target],
+                                   .source_index = local[l.source],
+                                   .correspondences = l.correspondences});
+        }
+        if (poses.size() < 2 || group_links.empty()) continue;
+        MultiviewRefinementConfig mv = config.multiview;
+        mv.fixed_scan_index = 0;
+        const MultiviewRefinementResult refined = refine_multiview(poses, group_links, mv);
+        const bool usable = refined.status == MultiviewStatus::kConverged ||
+                            refined.status == MultiviewStatus::kMaxRounds ||
+                            refined.status == MultiviewStatus::kDisconnected;
+        if (!usable) continue;
+        ++report.groups_refined;
+        for (std::size_t m = 0; m < group_scans.size(); ++m) {
+            ScanEntry& e = scans[group_scans[m]];
+            const PoseDifference d = pose_difference(e.T_group_scan, refined.T_world_scan[m]);
+            if (d.rotation_deg < 1e-6 && d.translation_m < 1e-9) continue;
+            e.T_group_scan = refined.T_world_scan[m];
+            updates.push_back({.seq = e.seq, .group = g, .T_group_scan = e.T_group_scan});
+        }
+    }
+    return updates;
+}
+
+std::vector<PoseUpdate> LiveRegistrar::State::merge(int into, int from, const Pose& T_into_from) {
+    std::vector<PoseUpdate> updates;
+    for (ScanEntry& e : scans) {
+        if (e.group != from) continue;
+        e.group = into;
+        e.T_group_scan = orthonormalized(T_into_from * e.T_group_scan);
+        if (active(e))
+            updates.push_back({.seq = e.seq, .group = into, .T_group_scan = e.T_group_scan});
+    }
+    ++report.merges;
+    return updates;
+}
+
+std::vector<PoseUpdate> LiveRegistrar::State::merge_groups() {
+    const std::vector<int> ids = groups();
+    std::size_t attempts = 0;
+    for (std::size_t b = 1; b < ids.size(); ++b) {
+        for (std::size_t a = 0; a < b; ++a) {
+            live::PoseVotes& box = merge_votes
+                                       .try_emplace({ids[a], ids[b]}, config.vote_rotation_deg,
+                                                    config.vote_displacement_m)
+                                       .first->second;
+            for (std::size_t j : members(ids[b])) {
+                for (std::size_t i : members(ids[a])) {
+                    if (attempts >= config.max_merge_attempts) return {};
+                    if (!merge_tried.insert({i, j}).second) continue;
+                    ++attempts;
+                    const GlobalRegistrationResult g = register_global(
+                        scans[j].cloud, features(j), scans[i].cloud, features(i), config.global);
+                    for (const HypothesisOutcome& h : g.hypotheses) {
+                        if (!h.verified) continue;
+                        const Pose T_a_b = scans[i].T_group_scan * h.fine.T_target_source *
+                                           scans[j].T_group_scan.inverse();
+                        box.add(T_a_b, i * scans.size() + j,
+                                scans[j].T_group_scan * scans[j].centroid_m);
+                    }
+                    if (const auto T = box.winner(config.min_votes, config.vote_ratio)) {
+                        return merge(ids[a], ids[b], *T);
+                    }
+                }
+            }
+        }
+    }
+    return {};
+}
+
+std::vector<PoseUpdate> LiveRegistrar::refine() {
+    const Clock::time_point start = Clock::now();
+    State& s = *state_;
+    s.report = {};
+    std::map<std::int64_t, PoseUpdate> changed;
+    for (const PoseUpdate& u : s.merge_groups()) changed[u.seq] = u;
+    std::size_t described = 0;
+    for (std::size_t i = 0; i < s.scans.size() && described < s.config.max_features_per_refine;
+         ++i) {
+        if (!active(s.scans[i]) || s.scans[i].features) continue;
+        s.features(i);
+        ++described;
+    }
+    s.report.new_links = s.make_links();
+    for (const PoseUpdate& u : s.refine_groups()) changed[u.seq] = u;
+    s.report.time_s = live::seconds_since(start);
+    std::vector<PoseUpdate> out;
+    for (const auto& [seq, u] : changed) out.push_back(u);
+    return out;
+}
+
+}  // namespace anascan::acquisition

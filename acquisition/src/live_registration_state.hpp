@@ -1,0 +1,109 @@
+#pragma once
+// Internal state and steps of LiveRegistrar (live_registration*.cpp).
+#include <chrono>
+#include <cstddef>
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "anascan/acquisition/live_registration.hpp"
+#include "live_registration_votes.hpp"
+
+namespace anascan::acquisition {
+namespace live {
+
+/// The reduced copy of one scan and what the session knows of it.
+struct ScanEntry {
+    std::int64_t seq = 0;
+    PointCloud cloud;  ///< Stone only, down-sampled, unit normals toward the sensor.
+    Eigen::Vector3d sensor_origin_m = Eigen::Vector3d::Zero();  ///< Scan frame.
+    Eigen::Vector3d centroid_m = Eigen::Vector3d::Zero();       ///< Scan frame.
+    double radius_m = 0.0;                 ///< Of the bounding sphere around the centroid.
+    std::optional<ScanFeatures> features;  ///< Computed on demand, kept.
+    bool registered = false;
+    bool excluded = false;
+    int group = -1;
+    Pose T_group_scan = Pose::Identity();
+};
+
+/// A multi-view link between two entries (indices into State::scans).
+struct Link {
+    std::size_t target = 0, source = 0;
+    std::vector<FineCorrespondence> correspondences;
+};
+
+/// Outcome of one verified (or not) fine registration.
+struct Verified {
+    FineRegistrationResult fine;
+    std::string rejection;  ///< Empty when verified.
+};
+
+/// The reduced copy of a new scan, or why it cannot be used.
+struct Prepared {
+    ScanEntry entry;
+    std::string problem;
+};
+
+/// Reduces a scan (see LiveRegistrationConfig): the stone-only down-sampled cloud.
+Prepared prepare_scan(LiveScanInput input, const LiveRegistrationConfig& config);
+
+/// Why a fine registration is not acceptable (issue 3's verification); empty when it is.
+std::string rejection(const FineRegistrationResult& fine, const LiveRegistrationConfig& config);
+
+/// Seconds since `start`.
+double seconds_since(std::chrono::steady_clock::time_point start);
+
+}  // namespace live
+
+struct LiveRegistrar::State {
+    LiveRegistrationConfig config;
+    std::vector<live::ScanEntry> scans;  ///< In add order (usable scans only).
+    std::map<std::int64_t, std::size_t> index_of_seq;
+    std::vector<live::Link> links;
+    std::optional<InvariantRadii> radii_m;  ///< Fixed at the first features.
+    std::optional<SaliencyLevels> levels;   ///< Fixed at the first features.
+    int next_group = 0;
+    bool awaiting_turn = false;  ///< Turned over: no cheap hypothesis until one is placed.
+    std::set<std::pair<std::size_t, std::size_t>> merge_tried;  ///< Global pairs tried (a, b).
+    std::set<std::pair<std::size_t, std::size_t>> link_tried;   ///< Link pairs tried (t, s).
+    LiveRefineReport report;
+    mutable std::string last_prior;  ///< The motion prior that verified last.
+    /// Votes for the transform between two groups (lower id first), across refine() calls.
+    std::map<std::pair<int, int>, live::PoseVotes> merge_votes;
+
+    /// Registered, not excluded entries of `group`, most recent first.
+    std::vector<std::size_t> members(int group) const;
+    /// Groups with a registered, not excluded scan, ascending.
+    std::vector<int> groups() const;
+    /// Features of entry i (computed at the session's radii and levels on first use).
+    const ScanFeatures& features(std::size_t i);
+
+    /// Fine registration of `entry` from `T_group_scan` against the group's model.
+    live::Verified verify_hypothesis(const live::ScanEntry& entry, int group,
+                                     const Pose& T_group_scan) const;
+    /// The cheap hypotheses (motion prior, previous pose), in order; appends attempts.
+    std::optional<live::Verified> try_cheap(const live::ScanEntry& entry, int& group,
+                                            std::string& method, LiveDecision& decision) const;
+    /// The operator's predicted poses of a new scan (motion priors, previous pose) in the
+    /// group of the latest registered scan (set in `group`); none after a turn-over.
+    std::vector<std::pair<std::string, Pose>> priors(std::int64_t seq, int& group) const;
+    /// A globally registered pose: a verified pose near a prior, else one that several
+    /// target scans vote for (or the only target's success).
+    std::optional<Pose> global_pose(std::size_t entry_index, int& group, LiveDecision& decision);
+    /// Global registration against registered scans of every group, most recent first.
+    std::optional<live::Verified> try_global(std::size_t entry_index, int& group,
+                                             LiveDecision& decision);
+
+    /// Multi-view refinement machinery (live_registration_refine.cpp).
+    std::size_t make_links();
+    std::vector<PoseUpdate> refine_groups();
+    std::vector<PoseUpdate> merge_groups();
+    /// Moves every scan of group `from` into `into` (T_into_from); returns the updates.
+    std::vector<PoseUpdate> merge(int into, int from, const Pose& T_into_from);
+};
+
+}  // namespace anascan::acquisition

@@ -1,0 +1,241 @@
+// LiveRegistrar on a ray-cast session of the small block (turned over halfway), and on bad
+// input. Poses are checked against the truth in the block frame of the first placement.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+#include <map>
+#include <memory>
+#include <random>
+
+#include "anascan/acquisition/live_registration.hpp"
+#include "live_session_sim.hpp"
+
+namespace anascan::acquisition {
+namespace {
+
+using anascan::testing::PlannedView;
+
+constexpr int kViewsPerSide = 12;
+
+sim::SceneConfig scene_config(const sim::BlockPlacement& placement) {
+    sim::SceneConfig config = sim::named_scene("small-block").value();
+    config.block.grid_step_m = 0.003;
+    config.with_tent = false;
+    config.placement = placement;
+    return config;
+}
+
+struct CapturedScan {
+    PointCloud cloud;
+    Pose T_true = Pose::Identity();  ///< Sensor in the first placement's world frame.
+    bool turned_over_before = false;
+};
+
+/// The session's scans, rendered once per suite.
+std::vector<CapturedScan> capture_session() {
+    const sim::BlockPlacement first = sim::named_scene("small-block").value().placement;
+    const std::vector<PlannedView> plan = anascan::testing::plan_tour(kViewsPerSide, first, 7);
+    std::map<bool, std::pair<sim::Scene, std::unique_ptr<sim::RayCaster>>> worlds;
+    const sim::Scene scene0 = sim::make_scene(scene_config(first));
+    std::vector<CapturedScan> scans;
+    std::uint32_t seed = 1;
+    for (const PlannedView& p : plan) {
+        const bool turned = p.placement.resting_face == sim::BlockFace::kPosZ;
+        if (!worlds.contains(turned)) {
+            sim::Scene scene = sim::make_scene(scene_config(p.placement));
+            auto caster =
+                std::make_unique<sim::RayCaster>(sim::RayCaster::create(scene.mesh).value());
+            worlds.emplace(turned, std::make_pair(std::move(scene), std::move(caster)));
+        }
+        const auto& [scene, caster] = worlds.at(turned);
+        const Pose T_world_sensor =
+            sim::sensor_looking_at(anascan::testing::aim_point(scene), p.view);
+        CapturedScan scan;
+        scan.cloud = anascan::testing::pinhole_scan(*caster, T_world_sensor, {}, seed++);
+        scan.T_true = anascan::testing::true_pose_in_first_placement(
+            scene0.T_world_block, scene.T_world_block, T_world_sensor);
+        scan.turned_over_before = p.turned_over_before;
+        scans.push_back(std::move(scan));
+    }
+    return scans;
+}
+
+class LiveRegistrationSession : public ::testing::Test {
+protected:
+    static void SetUpTestSuite() {
+        scans_ = new std::vector<CapturedScan>(capture_session());
+        registrar_ = new LiveRegistrar();
+        decisions_ = new std::vector<LiveDecision>();
+        for (std::size_t i = 0; i < scans_->size(); ++i) {
+            const CapturedScan& scan = (*scans_)[i];
+            decisions_->push_back(registrar_->add({.seq = static_cast<std::int64_t>(i + 1),
+                                                   .cloud = scan.cloud,
+                                                   .turned_over_before = scan.turned_over_before}));
+            registrar_->refine();
+        }
+        for (int round = 0; round < 3; ++round) registrar_->refine();
+    }
+    static void TearDownTestSuite() {
+        delete decisions_;
+        delete registrar_;
+        delete scans_;
+    }
+
+    static inline std::vector<CapturedScan>* scans_ = nullptr;
+    static inline LiveRegistrar* registrar_ = nullptr;
+    static inline std::vector<LiveDecision>* decisions_ = nullptr;
+};
+
+TEST_F(LiveRegistrationSession, EveryScanEndsInOneGroup) {
+    for (const LiveDecision& d : *decisions_) {
+        EXPECT_TRUE(d.registered) << d.message;
+        const std::optional<PoseUpdate> pose = registrar_->pose(d.seq);
+        ASSERT_TRUE(pose.has_value()) << d.seq;
+        EXPECT_EQ(pose->group, 0) << d.message;
+    }
+    EXPECT_EQ(registrar_->group_count(), 1u);
+    EXPECT_EQ(registrar_->model().size(), scans_->size());
+}
+
+TEST_F(LiveRegistrationSession, PosesMatchTheTruthInTheFirstPlacement) {
+    const Pose& T_true_first = scans_->front().T_true;
+    double worst_rotation_deg = 0.0, worst_translation_m = 0.0;
+    for (std::size_t i = 0; i < scans_->size(); ++i) {
+        const std::optional<PoseUpdate> pose = registrar_->pose(static_cast<std::int64_t>(i + 1));
+        ASSERT_TRUE(pose.has_value());
+        const anascan::testing::PoseError e =
+            anascan::testing::pose_error(pose->T_group_scan, T_true_first, (*scans_)[i].T_true,
+                                         anascan::testing::centroid_of((*scans_)[i].cloud));
+        if (std::getenv("ANASCAN_LIVE_VERBOSE")) {
+            std::printf("%s | error %.4f deg %.4f mm\n", (*decisions_)[i].message.c_str(),
+                        e.rotation_deg, e.translation_m * 1e3);
+            for (const LiveAttempt& a : (*decisions_)[i].attempts) {
+                std::printf("    %s -> %s (target %lld, rms %.3f mm, overlap %.2f, %.3f s)\n",
+                            a.method.c_str(), a.status.c_str(),
+                            static_cast<long long>(a.target_seq), a.rms_m * 1e3, a.overlap_fraction,
+                            a.time_s);
+            }
+        }
+        worst_rotation_deg = std::max(worst_rotation_deg, e.rotation_deg);
+        worst_translation_m = std::max(worst_translation_m, e.translation_m);
+    }
+    RecordProperty("worst_rotation_deg", std::to_string(worst_rotation_deg));
+    RecordProperty("worst_translation_mm", std::to_string(worst_translation_m * 1e3));
+    EXPECT_LT(worst_rotation_deg, 0.1);
+    EXPECT_LT(worst_translation_m, 0.0005);
+}
+
+TEST_F(LiveRegistrationSession, CheapHypothesesCarryTheTourAndGlobalTheFlip) {
+    const std::vector<LiveDecision>& d = *decisions_;
+    EXPECT_EQ(d[0].method, "first");
+    std::size_t cheap = 0;
+    for (std::size_t i = 1; i < d.size(); ++i) {
+        cheap += d[i].method == "motion-prior" || d[i].method == "previous-pose";
+        EXPECT_FALSE(d[i].attempts.empty()) << d[i].message;
+    }
+    EXPECT_GE(cheap, d.size() - 4);
+    // The first scan after the flip tries no motion prior: the stone moved.
+    const LiveDecision& flipped = d[kViewsPerSide];
+    ASSERT_FALSE(flipped.attempts.empty());
+    EXPECT_EQ(flipped.attempts.front().method, "global") << flipped.message;
+}
+
+TEST_F(LiveRegistrationSession, DecisionsCarryTheirFigures) {
+    for (const LiveDecision& d : *decisions_) {
+        if (d.method == "first" || d.method == "new-group") continue;
+        EXPECT_GT(d.overlap_fraction, 0.3) << d.message;
+        EXPECT_GT(d.rms_m, 0.0) << d.message;
+        EXPECT_LT(d.rms_m, 0.002) << d.message;
+        EXPECT_GT(d.degeneracy, 0.0) << d.message;
+        EXPECT_GT(d.time_s, 0.0) << d.message;
+        EXPECT_EQ(d.attempts.back().status.substr(0, 8), "verified") << d.message;
+    }
+}
+
+TEST_F(LiveRegistrationSession, ReducedCloudsAreStoneOnly) {
+    // In the first placement's world frame the ground is z = 0 and the stone above it.
+    for (const LiveModelScan& m : registrar_->model()) {
+        const Pose& T_true = (*scans_)[static_cast<std::size_t>(m.seq - 1)].T_true;
+        std::size_t near_ground = 0;
+        const sim::BlockPlacement first = sim::named_scene("small-block").value().placement;
+        const sim::Scene scene0 = sim::make_scene(scene_config(first));
+        const Pose T_block_scan = scene0.T_world_block.inverse() * T_true;
+        for (std::size_t i = 0; i < m.cloud->size(); ++i) {
+            const Eigen::Vector3d p = T_block_scan * m.cloud->world_position(i);
+            const Eigen::Vector3d outside =
+                (p.cwiseAbs() - 0.5 * scene0.block_size_m).cwiseMax(0.0);
+            near_ground += outside.norm() > 0.02;  // Farther than any relief from the block.
+        }
+        EXPECT_LT(near_ground, m.cloud->size() / 100 + 5) << "scan " << m.seq;
+        break;  // One scan suffices (the scene is rebuilt per check).
+    }
+}
+
+TEST_F(LiveRegistrationSession, ExcludedScansLeaveTheModelAndComeBack) {
+    LiveRegistrar& r = *registrar_;
+    r.exclude(3, true);
+    std::vector<LiveModelScan> model = r.model();
+    EXPECT_EQ(model.size(), scans_->size() - 1);
+    EXPECT_TRUE(std::none_of(model.begin(), model.end(),
+                             [](const LiveModelScan& m) { return m.seq == 3; }));
+    r.exclude(3, false);
+    EXPECT_EQ(r.model().size(), scans_->size());
+}
+
+TEST(LiveRegistration, UnusableScansAreReportedAndNotPlaced) {
+    LiveRegistrar registrar;
+    const LiveDecision empty = registrar.add({.seq = 1});
+    EXPECT_FALSE(empty.registered);
+    EXPECT_EQ(empty.method, "unusable");
+    EXPECT_NE(empty.message.find("empty"), std::string::npos) << empty.message;
+
+    PointCloud nan_cloud;
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    nan_cloud.positions.assign(100, Eigen::Vector3f(nan, 0.0f, 1.0f));
+    const LiveDecision all_nan = registrar.add({.seq = 2, .cloud = nan_cloud});
+    EXPECT_FALSE(all_nan.registered);
+    EXPECT_NE(all_nan.message.find("non-finite"), std::string::npos) << all_nan.message;
+
+    PointCloud few;
+    for (int i = 0; i < 20; ++i) few.positions.emplace_back(0.01f * i, 0.0f, 1.0f);
+    const LiveDecision tiny = registrar.add({.seq = 3, .cloud = few});
+    EXPECT_FALSE(tiny.registered);
+    EXPECT_NE(tiny.message.find("stone points"), std::string::npos) << tiny.message;
+    EXPECT_EQ(registrar.group_count(), 0u);
+    EXPECT_FALSE(registrar.pose(1).has_value());
+}
+
+/// A sphere of radius 0.15 m seen from 1 m (sensor frame): nothing like the block.
+PointCloud sphere_scan() {
+    PointCloud cloud;
+    std::mt19937 rng(3);
+    std::normal_distribution<float> g(0.0f, 1.0f);
+    for (int i = 0; i < 20000; ++i) {
+        Eigen::Vector3f d(g(rng), g(rng), g(rng));
+        d.normalize();
+        if (d.z() > 0.0f) d.z() = -d.z();  // The half facing the sensor.
+        cloud.positions.push_back(Eigen::Vector3f(0, 0, 1.0f) + 0.15f * d);
+    }
+    return cloud;
+}
+
+TEST_F(LiveRegistrationSession, AScanThatMatchesNothingOpensANewGroup) {
+    LiveRegistrar registrar;
+    const LiveDecision first = registrar.add({.seq = 1, .cloud = (*scans_)[0].cloud});
+    EXPECT_EQ(first.method, "first");
+    const LiveDecision other = registrar.add({.seq = 2, .cloud = sphere_scan()});
+    EXPECT_TRUE(other.registered) << other.message;
+    EXPECT_EQ(other.method, "new-group") << other.message;
+    EXPECT_EQ(other.group, 1);
+    EXPECT_FALSE(other.attempts.empty());
+    EXPECT_EQ(registrar.group_count(), 2u);
+    EXPECT_TRUE(registrar.refine().empty());  // Nothing to merge: the sphere stays apart.
+    EXPECT_EQ(registrar.group_count(), 2u);
+}
+
+}  // namespace
+}  // namespace anascan::acquisition
