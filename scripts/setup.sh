@@ -8,6 +8,7 @@ PACKAGES=(
     build-essential cmake pkg-config ninja-build git
     clang libclang-rt-14-dev           # libFuzzer targets
     libeigen3-dev libnanoflann-dev libtbb-dev
+    libqhull-dev                       # processing: convex hull of a stone (coverage)
     libopencv-dev libopencv-contrib-dev
     libembree-dev                      # ray caster of the simulated scanners (sim/)
     libusb-1.0-0-dev libv4l-dev

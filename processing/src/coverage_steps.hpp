@@ -1,0 +1,66 @@
+#pragma once
+// Internal steps of coverage.cpp (not installed).
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "anascan/processing/coverage.hpp"
+#include "anascan/processing/mesh.hpp"
+
+namespace anascan::coverage_detail {
+
+/// Every scan binned into voxels (count kept), in the world frame relative to origin_m.
+struct BinnedPoints {
+    Eigen::Vector3d origin_m = Eigen::Vector3d::Zero();
+    std::vector<Eigen::Vector3f> positions;  ///< Mean of each bin, relative to origin_m.
+    std::vector<float> weights;              ///< Captured points in the bin.
+    std::vector<std::uint32_t> views;        ///< Index of the scan view.
+    /// Per view: sensor position relative to origin_m (NaN when unknown).
+    std::vector<Eigen::Vector3f> sensors;
+    /// Per view: [begin, end) of its bins in the arrays above.
+    std::vector<std::pair<std::size_t, std::size_t>> ranges;
+
+    std::size_t size() const { return positions.size(); }
+};
+
+/// Bins every view; views are processed in parallel, the result is in view order.
+BinnedPoints bin_views(std::span<const CoverageScanView> scans, double bin_size_m);
+
+/// The bins whose index is in `keep` (increasing), ranges recomputed.
+BinnedPoints select_bins(const BinnedPoints& points, std::span<const std::size_t> keep);
+
+/// Indices of the bins that are stone: off each view's ground plane on the sensor's side,
+/// then the connected cluster nearest the median point.
+std::vector<std::size_t> stone_bins(const BinnedPoints& points, const CoverageConfig& config);
+
+/// Of the `candidates` (increasing bin indices), those in the cluster of occupied voxels
+/// (cluster_voxel_m, at least min_cluster_voxel_points each, 26-connected) nearest the
+/// candidates' median point; increasing.
+std::vector<std::size_t> nearest_cluster(const BinnedPoints& points,
+                                         std::span<const std::size_t> candidates,
+                                         const CoverageConfig& config);
+
+/// The convex hull of the points (relative frame), outward triangles; empty on failure.
+Mesh convex_hull(std::span<const Eigen::Vector3f> points);
+
+/// Area-weighted random samples of the mesh's triangles with their triangle normals.
+struct SurfaceSamples {
+    std::vector<Eigen::Vector3f> positions;  ///< Same frame as the mesh's local positions.
+    std::vector<Eigen::Vector3f> normals;
+    double surface_area_m2 = 0.0;
+};
+SurfaceSamples sample_surface(const Mesh& mesh, double spacing_m, std::uint64_t seed);
+
+/// The criterion for every sample (positions in the bins' relative frame).
+std::vector<SampleState> classify_samples(const SurfaceSamples& samples, const BinnedPoints& points,
+                                          const CoverageConfig& config);
+
+/// Connected regions of samples not observed, largest first (positions relative to
+/// origin_m, returned in world coordinates).
+std::vector<CoverageHole> find_holes(const SurfaceSamples& samples,
+                                     std::span<const SampleState> states,
+                                     const Eigen::Vector3d& origin_m, const CoverageConfig& config);
+
+}  // namespace anascan::coverage_detail
