@@ -54,7 +54,7 @@ acquisition::ScannerOpener make_opener(std::string uri, int unplug_after,
                                        drivers::DeviceSettings settings) {
     auto registry = std::make_shared<drivers::DeviceRegistry>(make_cli_registry());
     auto first = std::make_shared<bool>(true);
-    return [registry, uri, unplug_after, first]() -> Expected<std::unique_ptr<drivers::Scanner>> {
+    return [registry, uri, unplug_after, settings, first]() -> Expected<std::unique_ptr<drivers::Scanner>> {
         auto device = registry->open(uri);
         if (!device) return fail(device.error());
         drivers::Scanner* scanner = (*device)->as_scanner();

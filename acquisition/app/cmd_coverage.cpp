@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "anascan/acquisition/session_coverage.hpp"
-#include "anascan/processing/io/ply.hpp"
+#include "anascan/processing/io/coverage_ply.hpp"
 #include "commands.hpp"
 
 namespace anascan::cli {
@@ -16,7 +16,7 @@ struct CoverageOptions {
     std::string session;
     bool json_output = false;
     std::string out;
-    double voxel_mm = 1.0;
+    double voxel_mm = 2.0;
 };
 
 void print_report(const CoverageReport& r) {
@@ -38,15 +38,15 @@ void run_coverage(const CoverageOptions& o) {
             spdlog::info("coverage: scan {}/{} loaded", done, total);
         });
     if (!report) fail_command(report.error());
-    const nlohmann::json j = acquisition::coverage_json(*report);
-    if (auto stored = (*store)->set_value("coverage", j.dump()); !stored)
+    const std::string json = coverage_to_json(*report);
+    if (auto stored = (*store)->set_value("coverage", json); !stored)
         spdlog::warn("coverage not stored in the session: {}", stored.error().message);
     if (!o.out.empty()) {
-        if (auto ok = io::write_ply(o.out, report->samples); !ok) fail_command(ok.error());
+        if (auto ok = io::write_coverage_ply(o.out, *report); !ok) fail_command(ok.error());
         spdlog::info("coverage samples (green observed, red holes) written to {}", o.out);
     }
     if (o.json_output)
-        std::printf("%s\n", j.dump(2).c_str());
+        std::printf("%s\n", nlohmann::json::parse(json).dump(2).c_str());
     else
         print_report(*report);
 }
@@ -64,7 +64,7 @@ void add_coverage_command(CLI::App& app) {
     cmd->add_option("--out", opts->out,
                     "Coloured surface samples (.ply): green observed, red holes");
     cmd->add_option("--voxel-mm", opts->voxel_mm,
-                    "Scans down-sampled to this voxel first, mm (default 1)")
+                    "Scans down-sampled to this voxel first, mm (default 2)")
         ->check(CLI::Range(0.1, 50.0));
     cmd->callback([opts] { run_coverage(*opts); });
 }

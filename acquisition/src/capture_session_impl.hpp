@@ -4,12 +4,14 @@
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <thread>
 
 #include "anascan/acquisition/bounded_queue.hpp"
 #include "anascan/acquisition/capture_session.hpp"
+#include "anascan/acquisition/session_coverage.hpp"
 #include "anascan/drivers/scanner.hpp"
 
 namespace anascan::acquisition {
@@ -80,6 +82,7 @@ struct CaptureSession::Impl {
     LiveRegistrar registrar;    ///< Registration worker only.
     bool refine_due = false;    ///< Registration worker only.
     bool coverage_due = false;  ///< Registration worker only.
+    std::map<std::int64_t, CoverageCopy> coverage_copies;  ///< Registration worker only.
 
     std::mutex work_mutex;
     std::condition_variable work_done;

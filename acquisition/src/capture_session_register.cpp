@@ -2,6 +2,7 @@
 // it has caught up, refines the poses in the background and recomputes the coverage.
 #include <cstdio>
 
+#include "anascan/acquisition/session_coverage.hpp"
 #include "capture_session_impl.hpp"
 #include "live_registration_json.hpp"
 
@@ -77,6 +78,8 @@ void CaptureSession::Impl::register_one(const SavedScan& saved) {
         }
         scan = std::make_shared<const Scan>(std::move(*loaded));
     }
+    if (config.coverage_live)
+        coverage_copies[saved.seq] = make_coverage_copy(*scan, config.coverage_voxel_size_m);
     LiveDecision decision = registrar.add({.seq = saved.seq,
                                            .cloud = scan->cloud,
                                            .sensor_origin_scan_m = scan->meta.sensor_origin_scan_m,
@@ -113,7 +116,11 @@ void CaptureSession::Impl::refine_in_background() {
     refine_due = false;
     const std::vector<PoseUpdate> updates = registrar.refine();
     if (updates.empty()) return;
-    if (auto ok = store->update_poses(updates); !ok) {
+    std::vector<std::pair<std::int64_t, PoseInGroup>> poses;
+    poses.reserve(updates.size());
+    for (const PoseUpdate& u : updates)
+        poses.push_back({u.seq, {.group = u.group, .T_group_scan = u.T_group_scan}});
+    if (auto ok = store->update_poses(poses); !ok) {
         emit({.kind = SessionEventKind::kSaveFailed, .message = ok.error().message});
         return;
     }
@@ -125,10 +132,20 @@ void CaptureSession::Impl::refine_in_background() {
 void CaptureSession::Impl::update_coverage() {
     if (!config.coverage_live || !coverage_due) return;
     coverage_due = false;
-    const std::vector<CoverageScanView> views = registrar.coverage_views();
+    // Coverage sees the whole scans (it removes the ground itself), reduced as
+    // session_coverage reduces them, placed by the registrar's current poses of group 0.
+    std::vector<CoverageScanView> views;
+    for (const LiveModelScan& m : registrar.model()) {
+        const auto copy = coverage_copies.find(m.seq);
+        if (m.group != 0 || copy == coverage_copies.end()) continue;
+        views.push_back({.cloud = &copy->second.cloud,
+                         .T_world_scan = m.T_group_scan,
+                         .sensor_origin_scan_m = copy->second.sensor_origin_scan_m,
+                         .points_per_point = copy->second.points_per_point});
+    }
     if (views.empty()) return;
     const CoverageReport report = compute_coverage(views, config.coverage);
-    (void)store->set_value("coverage", coverage_json(report).dump());
+    (void)store->set_value("coverage", coverage_to_json(report));
     char message[160];
     std::snprintf(message, sizeof(message), "coverage %.1f %% of %.3f m², %zu holes",
                   report.fraction * 100.0, report.surface_area_m2, report.holes.size());

@@ -1,7 +1,6 @@
 #include "anascan/acquisition/session_coverage.hpp"
 
 #include <map>
-#include <nlohmann/json.hpp>
 
 #include "anascan/processing/voxel_grid.hpp"
 
@@ -22,6 +21,16 @@ int largest_group(const std::vector<ScanRecord>& scans) {
 
 }  // namespace
 
+CoverageCopy make_coverage_copy(const Scan& scan, double voxel_size_m) {
+    CoverageCopy copy;
+    copy.cloud = voxel_downsample(scan.cloud, {.voxel_size_m = voxel_size_m});
+    if (!copy.cloud.empty())
+        copy.points_per_point =
+            static_cast<double>(scan.cloud.size()) / static_cast<double>(copy.cloud.size());
+    copy.sensor_origin_scan_m = scan.meta.sensor_origin_scan_m;
+    return copy;
+}
+
 Expected<CoverageReport> session_coverage(
     const SessionStore& store, const SessionCoverageConfig& config,
     const std::function<void(std::size_t, std::size_t)>& progress) {
@@ -30,36 +39,24 @@ Expected<CoverageReport> session_coverage(
     const int group = largest_group(*scans);
     if (group < 0)
         return fail(ErrorCode::kEmpty, store.dir().string() + ": no registered scan to cover");
-    std::vector<PointCloud> clouds;
+    std::vector<CoverageCopy> copies;
     std::vector<CoverageScanView> views;
     std::vector<const ScanRecord*> members;
     for (const ScanRecord& s : *scans)
         if (s.state == ScanState::kRegistered && !s.excluded && s.pose && s.group == group)
             members.push_back(&s);
-    clouds.reserve(members.size());
+    copies.reserve(members.size());
     for (std::size_t i = 0; i < members.size(); ++i) {
         auto scan = store.load_scan(members[i]->seq);
         if (!scan) return fail(scan.error());
-        clouds.push_back(voxel_downsample(scan->cloud, {.voxel_size_m = config.voxel_size_m}));
-        views.push_back({.cloud = &clouds.back(),
+        copies.push_back(make_coverage_copy(*scan, config.voxel_size_m));
+        views.push_back({.cloud = &copies.back().cloud,
                          .T_world_scan = *members[i]->pose,
-                         .sensor_origin_scan_m = scan->meta.sensor_origin_scan_m});
+                         .sensor_origin_scan_m = copies.back().sensor_origin_scan_m,
+                         .points_per_point = copies.back().points_per_point});
         if (progress) progress(i + 1, members.size());
     }
     return compute_coverage(views, config.coverage);
-}
-
-nlohmann::json coverage_json(const CoverageReport& report) {
-    nlohmann::json holes = nlohmann::json::array();
-    for (const CoverageHole& h : report.holes)
-        holes.push_back({{"area_m2", h.area_m2},
-                         {"centre_m", {h.centre_m.x(), h.centre_m.y(), h.centre_m.z()}},
-                         {"normal", {h.normal.x(), h.normal.y(), h.normal.z()}},
-                         {"samples", h.sample_count}});
-    return {{"fraction", report.fraction},
-            {"surface_area_m2", report.surface_area_m2},
-            {"covered_area_m2", report.covered_area_m2},
-            {"holes", holes}};
 }
 
 }  // namespace anascan::acquisition

@@ -136,12 +136,12 @@ Expected<void> SessionStore::add_note(std::optional<std::int64_t> seq, std::stri
     return stmt->run("cannot record a note");
 }
 
-Expected<std::vector<SessionEvent>> SessionStore::events() const {
+Expected<std::vector<EventRecord>> SessionStore::events() const {
     std::lock_guard lock(impl_->mutex);
     auto stmt = db::Statement::prepare(
         impl_->db, "SELECT id, time_ns, kind, device, message FROM events ORDER BY id");
     if (!stmt) return fail(stmt.error());
-    std::vector<SessionEvent> events;
+    std::vector<EventRecord> events;
     for (;;) {
         auto row = stmt->step("cannot read the events");
         if (!row) return fail(row.error());

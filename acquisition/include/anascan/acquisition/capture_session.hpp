@@ -43,6 +43,7 @@ struct CaptureSessionConfig {
     std::chrono::milliseconds capture_timeout{120000};
     LiveRegistrationConfig registration{};
     CoverageConfig coverage{};
+    double coverage_voxel_size_m = 0.002;  ///< Scans reduced for coverage (session_coverage).
 };
 
 /// Opens the scanner (again, after it was unplugged).

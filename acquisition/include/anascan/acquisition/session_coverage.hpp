@@ -1,10 +1,10 @@
 #pragma once
 /// \file
-/// Coverage of a session's stone from its registered scans on disk (the `anascan coverage`
-/// command and the figure stored at the end of a capture), and its JSON form.
+/// Coverage of a session's stone from its registered scans (the `anascan coverage` command,
+/// the live figure of a capture session and the figure stored at its end).
 
 #include <functional>
-#include <nlohmann/json_fwd.hpp>
+#include <optional>
 
 #include "anascan/acquisition/session_store.hpp"
 #include "anascan/processing/coverage.hpp"
@@ -12,20 +12,26 @@
 namespace anascan::acquisition {
 
 struct SessionCoverageConfig {
-    /// Each scan is down-sampled to this voxel edge (metres) before coverage: the criterion
-    /// needs density at the coverage's own scale, not every point.
-    double voxel_size_m = 0.001;
+    /// Each scan is down-sampled to this voxel edge (metres) first; coverage bins points at
+    /// CoverageConfig::bin_size_m anyway, so nothing finer is needed.
+    double voxel_size_m = 0.002;
     CoverageConfig coverage{};
 };
+
+/// A scan reduced for coverage: voxel means, each standing for the captured points of its
+/// voxel on average (density is counted in captured points).
+struct CoverageCopy {
+    PointCloud cloud;
+    double points_per_point = 1.0;
+    std::optional<Eigen::Vector3d> sensor_origin_scan_m;
+};
+
+CoverageCopy make_coverage_copy(const Scan& scan, double voxel_size_m);
 
 /// Coverage from the registered, non-excluded scans of the session's largest group, in that
 /// group's frame. kEmpty when no scan is registered. `progress(done, total)` may be empty.
 Expected<CoverageReport> session_coverage(
     const SessionStore& store, const SessionCoverageConfig& config,
     const std::function<void(std::size_t, std::size_t)>& progress = {});
-
-/// {"fraction", "surface_area_m2", "covered_area_m2", "holes": [{"area_m2", "centre_m",
-/// "normal", "samples"}]}.
-nlohmann::json coverage_json(const CoverageReport& report);
 
 }  // namespace anascan::acquisition

@@ -80,7 +80,7 @@ enum class SessionOpenMode {
     kEdit,
 };
 
-struct SessionEvent {
+struct EventRecord {
     std::int64_t id = 0;
     TimePoint time{};
     std::string kind, device, message;
@@ -138,7 +138,7 @@ public:
     Expected<std::vector<ScanRecord>> scans() const;  ///< In sequence order.
     Expected<ScanRecord> scan(std::int64_t seq) const;
     Expected<Scan> load_scan(std::int64_t seq) const;  ///< Reads the PLY, fills meta.
-    Expected<std::vector<SessionEvent>> events() const;
+    Expected<std::vector<EventRecord>> events() const;
     Expected<std::vector<SessionNote>> notes() const;
     Expected<std::vector<DeviceRecord>> devices() const;
     Expected<void> set_value(std::string_view key, std::string_view json);
