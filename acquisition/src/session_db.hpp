@@ -9,6 +9,8 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 #include "anascan/processing/expected.hpp"
 
@@ -71,6 +73,21 @@ private:
     const Connection* db_;
     sqlite3_stmt* stmt_;
 };
+
+/// Runs `sql` (no parameters) and maps every row with `read(const Statement&)`.
+template <class Read>
+auto collect(const Connection& db, std::string_view sql, std::string_view what, Read read)
+    -> Expected<std::vector<decltype(read(std::declval<const Statement&>()))>> {
+    std::vector<decltype(read(std::declval<const Statement&>()))> rows;
+    auto stmt = Statement::prepare(db, sql);
+    if (!stmt) return fail(stmt.error());
+    for (;;) {
+        auto row = stmt->step(what);
+        if (!row) return fail(row.error());
+        if (!*row) return rows;
+        rows.push_back(read(*stmt));
+    }
+}
 
 /// BEGIN IMMEDIATE ... COMMIT, rolled back when not committed.
 class Transaction {

@@ -138,49 +138,43 @@ Expected<void> SessionStore::add_note(std::optional<std::int64_t> seq, std::stri
 
 Expected<std::vector<EventRecord>> SessionStore::events() const {
     std::lock_guard lock(impl_->mutex);
-    auto stmt = db::Statement::prepare(
-        impl_->db, "SELECT id, time_ns, kind, device, message FROM events ORDER BY id");
-    if (!stmt) return fail(stmt.error());
-    std::vector<EventRecord> events;
-    for (;;) {
-        auto row = stmt->step("cannot read the events");
-        if (!row) return fail(row.error());
-        if (!*row) return events;
-        events.push_back({stmt->int64(0), codec::from_ns(stmt->int64(1)), stmt->text(2),
-                          stmt->text(3), stmt->text(4)});
-    }
+    return db::collect(impl_->db,
+                       "SELECT id, time_ns, kind, device, message FROM events ORDER BY id",
+                       "cannot read the events", [](const db::Statement& row) {
+                           return EventRecord{row.int64(0), codec::from_ns(row.int64(1)),
+                                               row.text(2), row.text(3), row.text(4)};
+                       });
 }
 
 Expected<std::vector<SessionNote>> SessionStore::notes() const {
     std::lock_guard lock(impl_->mutex);
-    auto stmt =
-        db::Statement::prepare(impl_->db, "SELECT id, time_ns, seq, text FROM notes ORDER BY id");
-    if (!stmt) return fail(stmt.error());
-    std::vector<SessionNote> notes;
-    for (;;) {
-        auto row = stmt->step("cannot read the notes");
-        if (!row) return fail(row.error());
-        if (!*row) return notes;
-        SessionNote note{stmt->int64(0), codec::from_ns(stmt->int64(1)), std::nullopt,
-                         stmt->text(3)};
-        if (!stmt->is_null(2)) note.seq = stmt->int64(2);
-        notes.push_back(std::move(note));
-    }
+    return db::collect(
+        impl_->db, "SELECT id, time_ns, seq, text FROM notes ORDER BY id", "cannot read the notes",
+        [](const db::Statement& row) {
+            SessionNote note{row.int64(0), codec::from_ns(row.int64(1)), std::nullopt, row.text(3)};
+            if (!row.is_null(2)) note.seq = row.int64(2);
+            return note;
+        });
 }
 
 Expected<std::vector<DeviceRecord>> SessionStore::devices() const {
     std::lock_guard lock(impl_->mutex);
-    auto stmt = db::Statement::prepare(
-        impl_->db, "SELECT id, kind, first_seen_ns FROM devices ORDER BY first_seen_ns, id");
-    if (!stmt) return fail(stmt.error());
-    std::vector<DeviceRecord> devices;
-    for (;;) {
-        auto row = stmt->step("cannot read the devices");
-        if (!row) return fail(row.error());
-        if (!*row) return devices;
-        devices.push_back({stmt->text(0), codec::device_kind_from_string(stmt->text(1)),
-                           codec::from_ns(stmt->int64(2))});
-    }
+    return db::collect(
+        impl_->db, "SELECT id, kind, first_seen_ns FROM devices ORDER BY first_seen_ns, id",
+        "cannot read the devices", [](const db::Statement& row) {
+            return DeviceRecord{row.text(0), codec::device_kind_from_string(row.text(1)),
+                                codec::from_ns(row.int64(2))};
+        });
+}
+
+Expected<std::string> SessionStore::integrity_check() const {
+    std::lock_guard lock(impl_->mutex);
+    auto lines = db::collect(impl_->db, "PRAGMA integrity_check", "cannot check the database",
+                             [](const db::Statement& row) { return row.text(0); });
+    if (!lines) return fail(lines.error());
+    std::string result;
+    for (const std::string& line : *lines) result += (result.empty() ? "" : "; ") + line;
+    return result;
 }
 
 Expected<void> SessionStore::set_value(std::string_view key, std::string_view json) {
@@ -202,20 +196,6 @@ Expected<std::optional<std::string>> SessionStore::value(std::string_view key) c
     if (!row) return fail(row.error());
     if (!*row) return std::optional<std::string>();
     return std::optional<std::string>(stmt->text(0));
-}
-
-Expected<std::string> SessionStore::integrity_check() const {
-    std::lock_guard lock(impl_->mutex);
-    auto stmt = db::Statement::prepare(impl_->db, "PRAGMA integrity_check");
-    if (!stmt) return fail(stmt.error());
-    std::string result;
-    for (;;) {
-        auto row = stmt->step("cannot check the database");
-        if (!row) return fail(row.error());
-        if (!*row) return result;
-        if (!result.empty()) result += "; ";
-        result += stmt->text(0);
-    }
 }
 
 Expected<void> SessionStore::checkpoint() {

@@ -84,16 +84,9 @@ ScanRecord read_scan_row(const db::Statement& row) {
 
 Expected<std::vector<ScanRecord>> SessionStore::scans() const {
     std::lock_guard lock(impl_->mutex);
-    auto stmt = db::Statement::prepare(
-        impl_->db, std::string("SELECT ") + kScanColumns + " FROM scans ORDER BY seq");
-    if (!stmt) return fail(stmt.error());
-    std::vector<ScanRecord> records;
-    for (;;) {
-        auto row = stmt->step("cannot read the scan list");
-        if (!row) return fail(row.error());
-        if (!*row) return records;
-        records.push_back(read_scan_row(*stmt));
-    }
+    return db::collect(impl_->db,
+                       std::string("SELECT ") + kScanColumns + " FROM scans ORDER BY seq",
+                       "cannot read the scan list", read_scan_row);
 }
 
 Expected<ScanRecord> SessionStore::scan(std::int64_t seq) const {

@@ -4,6 +4,7 @@
 #include <sqlite3.h>
 
 #include <fstream>
+#include <thread>
 
 #include "anascan/acquisition/session_store.hpp"
 #include "session_test_support.hpp"
@@ -143,6 +144,37 @@ TEST_F(SessionStoreTest, ExclusionIsUndoableAndTurnOverFlagsTheNextScan) {
     EXPECT_NE(missing.error().message.find("no scan 42"), std::string::npos);
     EXPECT_FALSE(store->add_note(42, "about nothing"));
     EXPECT_FALSE(store->record_registration(42, {}));
+}
+
+TEST_F(SessionStoreTest, ConcurrentSavesAndUpdatesKeepDenseSequenceNumbers) {
+    auto store = open_or_die(dir_);
+    ASSERT_TRUE(store);
+    auto saver = [&](unsigned seed) {
+        for (unsigned i = 0; i < 8; ++i) {
+            auto saved = store->save_scan(make_scan(30, seed + i), std::nullopt);
+            EXPECT_TRUE(saved) << saved.error().message;
+            if (saved) {
+                EXPECT_TRUE(store->record_registration(
+                    saved->seq, {ScanState::kRegistered, 0, make_test_pose(1), "{}", 0.01}));
+            }
+        }
+    };
+    std::thread a(saver, 100u), b(saver, 200u);
+    std::thread c([&] {
+        for (int i = 0; i < 8; ++i) EXPECT_TRUE(store->add_event("tick", "", "x"));
+    });
+    a.join();
+    b.join();
+    c.join();
+    auto scans = store->scans();
+    ASSERT_TRUE(scans);
+    ASSERT_EQ(scans->size(), 16u);
+    for (std::size_t i = 0; i < scans->size(); ++i) {
+        EXPECT_EQ((*scans)[i].seq, static_cast<std::int64_t>(i + 1));
+        EXPECT_EQ((*scans)[i].state, ScanState::kRegistered);
+        EXPECT_TRUE(store->load_scan((*scans)[i].seq));
+    }
+    EXPECT_EQ(store->events()->size(), 8u);
 }
 
 TEST_F(SessionStoreTest, ASecondWriterIsRefusedButReadersAreNot) {
