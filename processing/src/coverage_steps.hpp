@@ -3,11 +3,13 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
 #include "anascan/processing/coverage.hpp"
 #include "anascan/processing/mesh.hpp"
+#include "anascan/processing/plane_removal.hpp"
 
 namespace anascan::coverage_detail {
 
@@ -31,9 +33,18 @@ BinnedPoints bin_views(std::span<const CoverageScanView> scans, double bin_size_
 /// The bins whose index is in `keep` (increasing), ranges recomputed.
 BinnedPoints select_bins(const BinnedPoints& points, std::span<const std::size_t> keep);
 
-/// Indices of the bins that are stone: off each view's ground plane on the sensor's side,
-/// then the connected cluster nearest the median point.
-std::vector<std::size_t> stone_bins(const BinnedPoints& points, const CoverageConfig& config);
+/// The bins that are stone: off each view's ground plane on the sensor's side, then the
+/// connected cluster nearest the median point.
+struct StoneBins {
+    std::vector<std::size_t> indices;           ///< Increasing.
+    std::vector<std::optional<Plane>> grounds;  ///< Per view, facing its sensor.
+};
+StoneBins stone_bins(const BinnedPoints& points, const CoverageConfig& config);
+
+/// The points the hull is built on: the stone's bins and, as the stone rests on the ground,
+/// their projections onto their view's ground (what is under a seen part is stone or unseen).
+std::vector<Eigen::Vector3f> hull_input(const BinnedPoints& stone,
+                                        std::span<const std::optional<Plane>> grounds);
 
 /// Of the `candidates` (increasing bin indices), those in the cluster of occupied voxels
 /// (cluster_voxel_m, at least min_cluster_voxel_points each, 26-connected) nearest the

@@ -93,9 +93,11 @@ struct CoverageReport {
     std::string message;                     ///< Why, when not kOk.
 };
 
-/// Estimates the stone's surface from the scans (per scan, the ground plane and what lies
-/// beyond it are removed; of the rest, the connected cluster nearest the model's median
-/// point is the stone; its convex hull is the surface) and measures its coverage.
+/// Estimates the stone's surface from the scans and measures its coverage. Per scan, the
+/// ground plane and what lies beyond it are removed; of the rest, the connected cluster
+/// nearest the model's median point is the stone. As the stone rests on the ground, its
+/// points are also projected onto their scan's ground; the convex hull of both is the
+/// surface (the face it rests on, and sides never seen down to the ground, become holes).
 CoverageReport compute_coverage(std::span<const CoverageScanView> scans,
                                 const CoverageConfig& config);
 
