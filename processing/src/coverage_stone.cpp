@@ -21,7 +21,7 @@ namespace {
 
 constexpr double kFitVoxelM = 0.008;          // plane fits on a coarse copy of the view
 constexpr double kMaxBehindFraction = 0.02;   // of the view's points, beyond the ground
-constexpr double kMinFrontFraction = 0.1;     // of the view's points, the stone in front
+constexpr double kMinFrontFraction = 0.01;    // of the view's points, the stone in front
 constexpr std::size_t kMinGroundPoints = 30;  // coarse points on the ground (~20 cm²)
 constexpr int kMaxPlanes = 6;                 // candidate planes tried per view
 
