@@ -74,7 +74,7 @@ bool has_points(std::span<const CoverageScanView> scans) {
 CoverageReport compute_coverage(std::span<const CoverageScanView> scans,
                                 const CoverageConfig& config) {
     if (!has_points(scans)) return failed(CoverageStatus::kNoScans, "no scan with points");
-    const BinnedPoints all = coverage_detail::bin_views(scans, config.bin_size_m);
+    const BinnedPoints all = coverage_detail::bin_views(scans, config);
     const coverage_detail::StoneBins stone = coverage_detail::stone_bins(all, config);
     if (stone.indices.size() < 4)
         return failed(CoverageStatus::kNoStone, "no stone points off the ground");
@@ -92,7 +92,7 @@ CoverageReport compute_coverage_on_surface(const Mesh& surface_world,
                                            std::span<const CoverageScanView> scans,
                                            const CoverageConfig& config) {
     if (!has_points(scans)) return failed(CoverageStatus::kNoScans, "no scan with points");
-    const BinnedPoints all = coverage_detail::bin_views(scans, config.bin_size_m);
+    const BinnedPoints all = coverage_detail::bin_views(scans, config);
     // The surface in the bins' relative frame (float positions near zero).
     Mesh surface_rel;
     surface_rel.triangles = surface_world.triangles;

@@ -13,6 +13,16 @@
 
 namespace anascan::coverage_detail {
 
+/// A voxel's integer cell packed into 64 bits (21 bits per axis, cells within ±2^20).
+inline std::uint64_t pack_cell(const Eigen::Vector3i& cell) {
+    constexpr std::int64_t kOffset = std::int64_t{1} << 20;
+    constexpr std::uint64_t kMask = (std::uint64_t{1} << 21) - 1;
+    std::uint64_t key = 0;
+    for (int a = 0; a < 3; ++a)
+        key = (key << 21) | (static_cast<std::uint64_t>(cell[a] + kOffset) & kMask);
+    return key;
+}
+
 /// Every scan binned into voxels (count kept), in the world frame relative to origin_m.
 struct BinnedPoints {
     Eigen::Vector3d origin_m = Eigen::Vector3d::Zero();
@@ -27,8 +37,10 @@ struct BinnedPoints {
     std::size_t size() const { return positions.size(); }
 };
 
-/// Bins every view; views are processed in parallel, the result is in view order.
-BinnedPoints bin_views(std::span<const CoverageScanView> scans, double bin_size_m);
+/// Bins every view (at most max_points_per_view of its points, evenly spaced in its order,
+/// each standing for the ones skipped); views are processed in parallel, the result is in
+/// view order.
+BinnedPoints bin_views(std::span<const CoverageScanView> scans, const CoverageConfig& config);
 
 /// The bins whose index is in `keep` (increasing), ranges recomputed.
 BinnedPoints select_bins(const BinnedPoints& points, std::span<const std::size_t> keep);

@@ -19,11 +19,12 @@
 namespace anascan::coverage_detail {
 namespace {
 
-constexpr double kFitVoxelM = 0.008;          // plane fits on a coarse copy of the view
+constexpr double kFitVoxelM = 0.012;          // plane fits on a coarse copy of the view
 constexpr double kMaxBehindFraction = 0.02;   // of the view's points, beyond the ground
 constexpr double kMinFrontFraction = 0.01;    // of the view's points, the stone in front
-constexpr std::size_t kMinGroundPoints = 30;  // coarse points on the ground (~20 cm²)
+constexpr std::size_t kMinGroundPoints = 20;  // coarse points on the ground (~30 cm²)
 constexpr int kMaxPlanes = 6;                 // candidate planes tried per view
+constexpr double kHullVoxelM = 0.003;         // hull input thinned (centroids: <= 1.5 mm in)
 
 PointCloud view_cloud(const BinnedPoints& points, std::size_t view) {
     PointCloud cloud;
@@ -63,7 +64,8 @@ bool is_ground(const Plane& plane, const PointCloud& coarse, const CoverageConfi
 std::optional<Plane> own_ground(const PointCloud& coarse, const Eigen::Vector3f& sensor,
                                 const CoverageConfig& config) {
     PointCloud remaining = coarse;
-    const PlaneFitConfig fit_config{.distance_threshold_m = config.ground_distance_m};
+    const PlaneFitConfig fit_config{.distance_threshold_m = config.ground_distance_m,
+                                    .max_iterations = 200};
     for (int attempt = 0; attempt < kMaxPlanes && remaining.size() >= kMinGroundPoints; ++attempt) {
         const PlaneFitResult fit = find_dominant_plane(remaining, fit_config);
         if (fit.inlier_indices.size() < kMinGroundPoints) break;
@@ -131,16 +133,19 @@ StoneBins stone_bins(const BinnedPoints& points, const CoverageConfig& config) {
 
 std::vector<Eigen::Vector3f> hull_input(const BinnedPoints& stone,
                                         std::span<const std::optional<Plane>> grounds) {
-    std::vector<Eigen::Vector3f> input = stone.positions;
+    PointCloud input;
+    input.positions = stone.positions;
     for (std::size_t v = 0; v < stone.ranges.size(); ++v) {
         if (!grounds[v]) continue;
         const Eigen::Vector3f normal = grounds[v]->normal.cast<float>();
         for (std::size_t i = stone.ranges[v].first; i < stone.ranges[v].second; ++i) {
             const Eigen::Vector3f& p = stone.positions[i];
-            input.push_back(p - static_cast<float>(grounds[v]->signed_distance_m(p)) * normal);
+            input.positions.push_back(p - static_cast<float>(grounds[v]->signed_distance_m(p)) *
+                                              normal);
         }
     }
-    return input;
+    // Overlapping views repeat the same surface: one point per small voxel is enough.
+    return voxel_downsample(input, {.voxel_size_m = kHullVoxelM}).positions;
 }
 
 }  // namespace anascan::coverage_detail
