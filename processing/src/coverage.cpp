@@ -74,15 +74,17 @@ bool has_points(std::span<const CoverageScanView> scans) {
 CoverageReport compute_coverage(std::span<const CoverageScanView> scans,
                                 const CoverageConfig& config) {
     if (!has_points(scans)) return failed(CoverageStatus::kNoScans, "no scan with points");
-    const BinnedPoints all = coverage_detail::bin_views(scans, config.bin_size_m);
-    const std::vector<std::size_t> stone = coverage_detail::stone_bins(all, config);
-    if (stone.size() < 4) return failed(CoverageStatus::kNoStone, "no stone points off the ground");
-    const BinnedPoints stone_points = coverage_detail::select_bins(all, stone);
-    Mesh hull = coverage_detail::convex_hull(stone_points.positions);
+    const BinnedPoints all = coverage_detail::bin_views(scans, config);
+    const coverage_detail::StoneBins stone = coverage_detail::stone_bins(all, config);
+    if (stone.indices.size() < 4)
+        return failed(CoverageStatus::kNoStone, "no stone points off the ground");
+    const BinnedPoints stone_points = coverage_detail::select_bins(all, stone.indices);
+    Mesh hull =
+        coverage_detail::convex_hull(coverage_detail::hull_input(stone_points, stone.grounds));
     if (hull.triangles.empty())
         return failed(CoverageStatus::kInvalidSurface, "the stone's points span no volume");
     CoverageReport report = measure(std::move(hull), stone_points, config);
-    report.stone_point_count = stone.size();
+    report.stone_point_count = stone.indices.size();
     return report;
 }
 
@@ -90,7 +92,7 @@ CoverageReport compute_coverage_on_surface(const Mesh& surface_world,
                                            std::span<const CoverageScanView> scans,
                                            const CoverageConfig& config) {
     if (!has_points(scans)) return failed(CoverageStatus::kNoScans, "no scan with points");
-    const BinnedPoints all = coverage_detail::bin_views(scans, config.bin_size_m);
+    const BinnedPoints all = coverage_detail::bin_views(scans, config);
     // The surface in the bins' relative frame (float positions near zero).
     Mesh surface_rel;
     surface_rel.triangles = surface_world.triangles;

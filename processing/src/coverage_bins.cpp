@@ -3,6 +3,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <unordered_map>
@@ -19,14 +20,7 @@ struct Bin {
 };
 
 std::uint64_t bin_key(const Eigen::Vector3d& p, double inv_size) {
-    constexpr std::int64_t kOffset = std::int64_t{1} << 20;
-    constexpr std::uint64_t kMask = (std::uint64_t{1} << 21) - 1;
-    std::uint64_t key = 0;
-    for (int a = 0; a < 3; ++a) {
-        auto cell = static_cast<std::int64_t>(std::floor(p[a] * inv_size)) + kOffset;
-        key = (key << 21) | (static_cast<std::uint64_t>(cell) & kMask);
-    }
-    return key;
+    return pack_cell((p * inv_size).array().floor().cast<int>());
 }
 
 // One view's bins, in order of first occurrence (deterministic for a given cloud).
@@ -36,7 +30,7 @@ struct ViewBins {
 };
 
 ViewBins bin_view(const CoverageScanView& view, const Eigen::Vector3d& origin_m,
-                  double bin_size_m) {
+                  const CoverageConfig& config) {
     const PointCloud& cloud = *view.cloud;
     const Pose T_rel_scan = Eigen::Translation3d(-origin_m) * view.T_world_scan;
     const Eigen::Vector3d shift = T_rel_scan * cloud.origin_m;
@@ -44,8 +38,13 @@ ViewBins bin_view(const CoverageScanView& view, const Eigen::Vector3d& origin_m,
     std::unordered_map<std::uint64_t, std::uint32_t> index;
     index.reserve(cloud.size() / 2 + 16);
     std::vector<Bin> bins;
-    const double inv_size = 1.0 / bin_size_m;
-    for (const Eigen::Vector3f& local : cloud.positions) {
+    const double inv_size = 1.0 / config.bin_size_m;
+    // Down-sampled first: every step-th point stands for step points.
+    const std::size_t step =
+        std::max<std::size_t>(1, (cloud.size() + config.max_points_per_view - 1) /
+                                     std::max<std::size_t>(1, config.max_points_per_view));
+    for (std::size_t i = 0; i < cloud.size(); i += step) {
+        const Eigen::Vector3f& local = cloud.positions[i];
         if (!local.allFinite()) continue;
         const Eigen::Vector3d p = shift + R * local.cast<double>();
         auto [it, inserted] =
@@ -60,7 +59,7 @@ ViewBins bin_view(const CoverageScanView& view, const Eigen::Vector3d& origin_m,
     out.weights.reserve(bins.size());
     for (const Bin& bin : bins) {
         out.positions.push_back((bin.sum / bin.count).cast<float>());
-        out.weights.push_back(static_cast<float>(bin.count * view.points_per_point));
+        out.weights.push_back(static_cast<float>(bin.count * step * view.points_per_point));
     }
     return out;
 }
@@ -75,13 +74,13 @@ Eigen::Vector3d common_origin(std::span<const CoverageScanView> scans) {
 
 }  // namespace
 
-BinnedPoints bin_views(std::span<const CoverageScanView> scans, double bin_size_m) {
+BinnedPoints bin_views(std::span<const CoverageScanView> scans, const CoverageConfig& config) {
     BinnedPoints out;
     out.origin_m = common_origin(scans);
     if (!std::isfinite(out.origin_m.sum())) out.origin_m.setZero();
     std::vector<ViewBins> per_view(scans.size());
     tbb::parallel_for(std::size_t{0}, scans.size(), [&](std::size_t v) {
-        if (scans[v].cloud != nullptr) per_view[v] = bin_view(scans[v], out.origin_m, bin_size_m);
+        if (scans[v].cloud != nullptr) per_view[v] = bin_view(scans[v], out.origin_m, config);
     });
     const float nan = std::numeric_limits<float>::quiet_NaN();
     for (std::size_t v = 0; v < scans.size(); ++v) {

@@ -13,15 +13,6 @@ namespace {
 
 using Cell = Eigen::Vector3i;
 
-std::uint64_t cell_key(const Cell& c) {
-    constexpr std::int64_t kOffset = std::int64_t{1} << 20;
-    constexpr std::uint64_t kMask = (std::uint64_t{1} << 21) - 1;
-    std::uint64_t key = 0;
-    for (int a = 0; a < 3; ++a)
-        key = (key << 21) | (static_cast<std::uint64_t>(c[a] + kOffset) & kMask);
-    return key;
-}
-
 struct Voxel {
     Cell cell;
     double weight = 0.0;
@@ -41,7 +32,7 @@ Occupancy occupy(const BinnedPoints& points, std::span<const std::size_t> candid
     for (std::size_t i : candidates) {
         const Cell cell =
             (points.positions[i] / static_cast<float>(voxel_m)).array().floor().cast<int>();
-        auto [it, inserted] = occ.index.try_emplace(cell_key(cell), occ.voxels.size());
+        auto [it, inserted] = occ.index.try_emplace(pack_cell(cell), occ.voxels.size());
         if (inserted) occ.voxels.push_back(Voxel{.cell = cell});
         occ.voxels[it->second].weight += points.weights[i];
         occ.voxel_of.push_back(it->second);
@@ -62,7 +53,7 @@ int label_components(Occupancy& occ, double min_weight) {
             stack.pop_back();
             for (int d = 0; d < 27; ++d) {
                 const Cell n = c + Cell(d % 3 - 1, d / 3 % 3 - 1, d / 9 - 1);
-                auto it = occ.index.find(cell_key(n));
+                auto it = occ.index.find(pack_cell(n));
                 if (it == occ.index.end()) continue;
                 Voxel& voxel = occ.voxels[it->second];
                 if (voxel.component >= 0 || voxel.weight < min_weight) continue;

@@ -1,5 +1,7 @@
 // Coverage, holes: the samples not observed, linked when closer than twice the sample
-// spacing (random samples leave gaps up to about that), grouped into connected regions.
+// spacing (random samples leave gaps up to about that) and their normals differ by less
+// than 45° (so a hole does not turn a sharp edge: each missing face is its own hole),
+// grouped into connected regions.
 
 #include <algorithm>
 
@@ -10,15 +12,19 @@ namespace anascan::coverage_detail {
 namespace {
 
 // Breadth-first search from `seed` over unvisited points; returns the region's indices.
+constexpr float kMinNormalCos = 0.7071f;  // 45°
+
 std::vector<std::size_t> grow_region(const KdTree& tree, std::span<const Eigen::Vector3f> points,
-                                     std::size_t seed, float link_m, std::vector<bool>& visited) {
+                                     std::span<const Eigen::Vector3f> normals, std::size_t seed,
+                                     float link_m, std::vector<bool>& visited) {
     std::vector<std::size_t> region{seed};
     visited[seed] = true;
     std::vector<Neighbor> neighbors;
     for (std::size_t k = 0; k < region.size(); ++k) {
         tree.radius_any_order(points[region[k]], link_m, neighbors);
         for (const Neighbor& nb : neighbors) {
-            if (visited[nb.index]) continue;
+            if (visited[nb.index] || normals[nb.index].dot(normals[region[k]]) < kMinNormalCos)
+                continue;
             visited[nb.index] = true;
             region.push_back(nb.index);
         }
@@ -64,7 +70,8 @@ std::vector<CoverageHole> find_holes(const SurfaceSamples& samples,
     std::vector<bool> visited(positions.size(), false);
     for (std::size_t seed = 0; seed < positions.size(); ++seed) {
         if (visited[seed]) continue;
-        const std::vector<std::size_t> region = grow_region(tree, positions, seed, link_m, visited);
+        const std::vector<std::size_t> region =
+            grow_region(tree, positions, normals, seed, link_m, visited);
         CoverageHole hole = describe_hole(positions, normals, region, area_per_sample, origin_m);
         if (hole.area_m2 >= config.min_hole_area_m2) holes.push_back(hole);
     }

@@ -64,15 +64,23 @@ std::vector<SampleState> classify_samples(const SurfaceSamples& samples, const B
         .depth_below = static_cast<float>(config.depth_below_m),
         .depth_above = static_cast<float>(config.depth_above_m),
         .cos_max = static_cast<float>(std::cos(config.max_incidence_deg * std::numbers::pi / 180))};
+    // A small sphere first (the cylinder's part near the surface): its sums are lower
+    // bounds, so when they suffice the sample is observed; else the whole cylinder.
+    const auto near_radius = static_cast<float>(std::sqrt(2.0 * r * r));
     const double depth = std::max(config.depth_below_m, config.depth_above_m);
-    const auto search_radius = static_cast<float>(std::sqrt(r * r + depth * depth));
+    const auto full_radius = static_cast<float>(std::sqrt(r * r + depth * depth));
     const double needed = config.min_density_per_cm2 * std::numbers::pi * r * r * 1e4;
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, states.size(), 256), [&](auto range) {
         std::vector<Neighbor> neighbors;
         for (std::size_t i = range.begin(); i < range.end(); ++i) {
-            tree.radius_any_order(samples.positions[i], search_radius, neighbors);
-            const Sums sums =
-                cylinder_sums(points, c, samples.positions[i], samples.normals[i], neighbors);
+            const Eigen::Vector3f& p = samples.positions[i];
+            const Eigen::Vector3f& n = samples.normals[i];
+            tree.radius_any_order(p, near_radius, neighbors);
+            Sums sums = cylinder_sums(points, c, p, n, neighbors);
+            if (sums.good < needed && full_radius > near_radius) {
+                tree.radius_any_order(p, full_radius, neighbors);
+                sums = cylinder_sums(points, c, p, n, neighbors);
+            }
             if (sums.good >= needed)
                 states[i] = SampleState::kObserved;
             else if (sums.seen > 0.0)

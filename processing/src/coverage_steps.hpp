@@ -3,13 +3,25 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
 #include "anascan/processing/coverage.hpp"
 #include "anascan/processing/mesh.hpp"
+#include "anascan/processing/plane_removal.hpp"
 
 namespace anascan::coverage_detail {
+
+/// A voxel's integer cell packed into 64 bits (21 bits per axis, cells within ±2^20).
+inline std::uint64_t pack_cell(const Eigen::Vector3i& cell) {
+    constexpr std::int64_t kOffset = std::int64_t{1} << 20;
+    constexpr std::uint64_t kMask = (std::uint64_t{1} << 21) - 1;
+    std::uint64_t key = 0;
+    for (int a = 0; a < 3; ++a)
+        key = (key << 21) | (static_cast<std::uint64_t>(cell[a] + kOffset) & kMask);
+    return key;
+}
 
 /// Every scan binned into voxels (count kept), in the world frame relative to origin_m.
 struct BinnedPoints {
@@ -25,15 +37,26 @@ struct BinnedPoints {
     std::size_t size() const { return positions.size(); }
 };
 
-/// Bins every view; views are processed in parallel, the result is in view order.
-BinnedPoints bin_views(std::span<const CoverageScanView> scans, double bin_size_m);
+/// Bins every view (at most max_points_per_view of its points, evenly spaced in its order,
+/// each standing for the ones skipped); views are processed in parallel, the result is in
+/// view order.
+BinnedPoints bin_views(std::span<const CoverageScanView> scans, const CoverageConfig& config);
 
 /// The bins whose index is in `keep` (increasing), ranges recomputed.
 BinnedPoints select_bins(const BinnedPoints& points, std::span<const std::size_t> keep);
 
-/// Indices of the bins that are stone: off each view's ground plane on the sensor's side,
-/// then the connected cluster nearest the median point.
-std::vector<std::size_t> stone_bins(const BinnedPoints& points, const CoverageConfig& config);
+/// The bins that are stone: off each view's ground plane on the sensor's side, then the
+/// connected cluster nearest the median point.
+struct StoneBins {
+    std::vector<std::size_t> indices;           ///< Increasing.
+    std::vector<std::optional<Plane>> grounds;  ///< Per view, facing its sensor.
+};
+StoneBins stone_bins(const BinnedPoints& points, const CoverageConfig& config);
+
+/// The points the hull is built on: the stone's bins and, as the stone rests on the ground,
+/// their projections onto their view's ground (what is under a seen part is stone or unseen).
+std::vector<Eigen::Vector3f> hull_input(const BinnedPoints& stone,
+                                        std::span<const std::optional<Plane>> grounds);
 
 /// Of the `candidates` (increasing bin indices), those in the cluster of occupied voxels
 /// (cluster_voxel_m, at least min_cluster_voxel_points each, 26-connected) nearest the

@@ -26,11 +26,13 @@ struct CoverageSession {
     Mesh stone_world0;        ///< Ground-truth stone surface, same frame.
 };
 
-/// Where view i of a placement stands: around the block, low and high in turn.
+/// Where view i of a placement stands: around the block, low (the lower sides and the
+/// ground; the rig aims at the block's upper half) and high in turn.
 inline Viewpoint coverage_viewpoint(int i, int count) {
+    const bool low = i % 2 == 0;
     return Viewpoint{.azimuth_deg = 15.0 + 360.0 * i / count,
-                     .elevation_deg = i % 2 == 0 ? 25.0 : 50.0,
-                     .distance_m = 1.0};
+                     .elevation_deg = low ? 15.0 : 45.0,
+                     .distance_m = low ? 1.6 : 1.2};
 }
 
 inline Expected<CoverageSession> simulate_coverage_session(const CoverageSessionConfig& config) {

@@ -45,7 +45,10 @@ struct CoverageConfig {
     double cylinder_radius_m = 0.004;   ///< Radius of the cylinder under a sample.
     double depth_below_m = 0.015;       ///< Cylinder depth into the stone (concavities).
     double depth_above_m = 0.004;       ///< Cylinder height above the surface (noise).
-    double bin_size_m = 0.002;          ///< Scans are binned (counts kept) before counting.
+    double bin_size_m = 0.003;          ///< Scans are binned (counts kept) before counting.
+    /// Each scan is first thinned to this many points, evenly in its order (each kept point
+    /// stands for the skipped ones), so the time does not grow with the scanner's resolution.
+    std::size_t max_points_per_view = 40000;
     /// The surface estimate (compute_coverage only).
     double ground_distance_m = 0.003;     ///< Points this close to the ground are ground.
     double cluster_voxel_m = 0.01;        ///< Voxels linking the stone's points.
@@ -93,9 +96,11 @@ struct CoverageReport {
     std::string message;                     ///< Why, when not kOk.
 };
 
-/// Estimates the stone's surface from the scans (per scan, the ground plane and what lies
-/// beyond it are removed; of the rest, the connected cluster nearest the model's median
-/// point is the stone; its convex hull is the surface) and measures its coverage.
+/// Estimates the stone's surface from the scans and measures its coverage. Per scan, the
+/// ground plane and what lies beyond it are removed; of the rest, the connected cluster
+/// nearest the model's median point is the stone. As the stone rests on the ground, its
+/// points are also projected onto their scan's ground; the convex hull of both is the
+/// surface (the face it rests on, and sides never seen down to the ground, become holes).
 CoverageReport compute_coverage(std::span<const CoverageScanView> scans,
                                 const CoverageConfig& config);
 
