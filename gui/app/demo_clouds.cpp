@@ -54,8 +54,7 @@ std::vector<LoadedScan> synthetic_stone(const SyntheticStoneConfig& config) {
                  .group = 0};
         s.cloud.positions.reserve(config.points / static_cast<std::size_t>(scans) + 1);
     }
-    const Eigen::Vector3d half(0.5 * config.size_x_m, 0.5 * config.size_y_m,
-                               0.5 * config.size_z_m);
+    const Eigen::Vector3d half(0.5 * config.size_x_m, 0.5 * config.size_y_m, 0.5 * config.size_z_m);
     std::mt19937_64 rng(42);
     for (std::size_t k = 0; k < config.points; ++k) {
         const Eigen::Vector3f p = box_surface_point(half, rng);

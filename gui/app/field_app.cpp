@@ -39,8 +39,8 @@ Expected<void> load_scans(const FieldAppConfig& config, AppState& app) {
         app.renderer->add_chunk(seq, std::move(scan->cloud), Eigen::Isometry3d::Identity());
     }
     if (config.synthetic_points > 0) {
-        for (LoadedScan& scan : synthetic_stone({.points = config.synthetic_points,
-                                                 .scans = config.synthetic_scans})) {
+        for (LoadedScan& scan : synthetic_stone(
+                 {.points = config.synthetic_points, .scans = config.synthetic_scans})) {
             scan.row.seq = ++seq;
             app.view.scans.push_back(scan.row);
             app.renderer->add_chunk(seq, std::move(scan.cloud), Eigen::Isometry3d::Identity());
@@ -66,7 +66,8 @@ gui::PanelLayout current_layout(float font_scale) {
     const ImGuiStyle& style = ImGui::GetStyle();
     return {.width_px = io.DisplaySize.x,
             .height_px = io.DisplaySize.y,
-            .side_width_px = 280.0f * font_scale,
+            .scan_list_width_px = 300.0f * font_scale,
+            .device_width_px = 240.0f * font_scale,
             .status_height_px = ImGui::GetFrameHeight() + 2.0f * style.WindowPadding.y,
             .banner_height_px = 90.0f * font_scale};
 }
@@ -105,10 +106,13 @@ gui::DrawStats draw_scene(AppState& app, const gui::PanelLayout& layout, int fb_
     glViewport(0, 0, fb_w, fb_h);
     glClearColor(0.16f, 0.18f, 0.22f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    const int x = static_cast<int>(layout.side_width_px);
-    const int y = static_cast<int>(layout.status_height_px);
-    const int w = std::max(1, fb_w - 2 * x);
-    const int h = std::max(1, fb_h - y);
+    // Window pixels (top left) to frame-buffer pixels (bottom left), HiDPI-safe.
+    const float sx = static_cast<float>(fb_w) / std::max(layout.width_px, 1.0f);
+    const float sy = static_cast<float>(fb_h) / std::max(layout.height_px, 1.0f);
+    const int x = static_cast<int>(layout.view_x_px() * sx);
+    const int y = static_cast<int>(layout.status_height_px * sy);
+    const int w = std::max(1, static_cast<int>(layout.view_width_px() * sx));
+    const int h = std::max(1, static_cast<int>(layout.view_height_px() * sy));
     glViewport(x, y, w, h);
     if (app.fit_pending) {
         app.camera.fit(app.renderer->bounds(), static_cast<double>(w) / h);
@@ -120,11 +124,10 @@ gui::DrawStats draw_scene(AppState& app, const gui::PanelLayout& layout, int fb_
     return stats;
 }
 
-void report(const std::vector<double>& frame_ms, const gui::DrawStats& last,
-            std::size_t budget, const std::string& renderer_name) {
+void report(const std::vector<double>& frame_ms, const gui::DrawStats& last, std::size_t budget,
+            const std::string& renderer_name) {
     // The first frame compiles shaders and fills caches: it is not a steady-state frame.
-    std::vector<double> steady(frame_ms.begin() + (frame_ms.size() > 1 ? 1 : 0),
-                               frame_ms.end());
+    std::vector<double> steady(frame_ms.begin() + (frame_ms.size() > 1 ? 1 : 0), frame_ms.end());
     const FrameTimeSummary s = summarize_frame_times(steady);
     std::fprintf(stderr,
                  "anascan-field: %zu frames (first excluded): frame time median %.1f ms, "
@@ -154,7 +157,9 @@ int run_loop(const FieldAppConfig& config, FieldWindow& window, AppState& app) {
         window.framebuffer_size(fb_w, fb_h);
         const std::size_t budget = config.point_budget > 0 ? config.point_budget : lod.budget();
         stats = draw_scene(app, layout, fb_w, fb_h,
-                           {.color_mode = app.view.color_mode, .budget_points = budget});
+                           {.color_mode = app.view.color_mode,
+                            .budget_points = budget,
+                            .base_point_size_px = config.point_size_px});
         window.render_ui();
         if (config.screenshot_png && frame + 1 == config.frames) {
             if (auto written = write_screenshot(*config.screenshot_png, fb_w, fb_h); !written) {

@@ -20,6 +20,7 @@ struct FieldAppConfig {
     int frames = 0;                 ///< 0: run until the window is closed.
     std::size_t point_budget = 0;   ///< LOD budget in points; 0: adapt to target_frame_ms.
     double target_frame_ms = 25.0;  ///< Frame time the adaptive LOD aims for.
+    float point_size_px = 2.0f;     ///< Point size when every point is drawn.
     int width_px = 1280, height_px = 800;
     float font_scale = 1.5f;
     bool high_contrast = false;

@@ -3,9 +3,9 @@
 
 #include <GL/gl.h>
 #include <GLFW/glfw3.h>
-#include <imgui.h>
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
 
 #include "anascan/gui/theme.hpp"
 
@@ -24,9 +24,9 @@ void on_glfw_error(int code, const char* description) {
 Expected<std::unique_ptr<FieldWindow>> FieldWindow::open(const WindowConfig& config) {
     glfwSetErrorCallback(on_glfw_error);
     if (glfwInit() != GLFW_TRUE) {
-        return fail(ErrorCode::kUnsupported,
-                    "anascan-field: cannot open the display (" + last_glfw_error +
-                        "); is DISPLAY set? Headless: run under xvfb-run");
+        return fail(ErrorCode::kUnsupported, "anascan-field: cannot open the display (" +
+                                                 last_glfw_error +
+                                                 "); is DISPLAY set? Headless: run under xvfb-run");
     }
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
     glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);

@@ -1,6 +1,5 @@
 // anascan-field: the operator's window in the scanning tent.
 #include <CLI/CLI.hpp>
-
 #include <cstdio>
 #include <map>
 
@@ -10,8 +9,9 @@ namespace {
 
 void add_options(CLI::App& app, anascan::field::FieldAppConfig& config,
                  std::optional<std::string>& session) {
-    app.add_option("--session", session, "Session folder (attaching to a capture session "
-                                         "arrives with the live capture session)");
+    app.add_option("--session", session,
+                   "Session folder (attaching to a capture session "
+                   "arrives with the live capture session)");
     app.add_option("--cloud", config.clouds, "PLY file(s) to show, one scan each")
         ->check(CLI::ExistingFile);
     app.add_option("--synthetic-points", config.synthetic_points,
@@ -29,6 +29,9 @@ void add_options(CLI::App& app, anascan::field::FieldAppConfig& config,
     app.add_option("--target-frame-ms", config.target_frame_ms,
                    "Frame time in ms the adaptive level of detail aims for")
         ->check(CLI::PositiveNumber);
+    app.add_option("--point-size", config.point_size_px,
+                   "Point size in pixels at full density (grows when thinned)")
+        ->check(CLI::Range(1.0f, 16.0f));
     app.add_option("--width", config.width_px, "Window width, pixels")->check(CLI::PositiveNumber);
     app.add_option("--height", config.height_px, "Window height, pixels")
         ->check(CLI::PositiveNumber);

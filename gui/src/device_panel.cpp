@@ -18,8 +18,7 @@ void draw_devices(const DevicePanelState& device, UiActions& actions) {
         if (!active && ImGui::SmallButton(label.c_str())) {
             actions.push_back({.kind = UiActionKind::kConnectDevice, .device_index = i});
         }
-        ImGui::TextColored(detail::kColorMuted, "    %s, %s", row.kind.c_str(),
-                           row.status.c_str());
+        ImGui::TextColored(detail::kColorMuted, "    %s, %s", row.kind.c_str(), row.status.c_str());
     }
 }
 
@@ -39,11 +38,10 @@ void draw_capture_buttons(const DevicePanelState& device, UiActions& actions) {
 
 void draw_view_options(const FieldViewState& state, UiActions& actions) {
     ImGui::TextUnformatted("Colour points by");
-    constexpr std::pair<ColorMode, const char*> kModes[] = {
-        {ColorMode::kByScan, "scan"}, {ColorMode::kByQuality, "quality"},
-        {ColorMode::kByCoverage, "coverage"}};
+    constexpr std::pair<ColorMode, const char*> kModes[] = {{ColorMode::kByScan, "scan"},
+                                                            {ColorMode::kByQuality, "quality"},
+                                                            {ColorMode::kByCoverage, "coverage"}};
     for (const auto& [mode, name] : kModes) {
-        ImGui::SameLine();
         if (ImGui::RadioButton(name, state.color_mode == mode)) {
             actions.push_back({.kind = UiActionKind::kSetColorMode, .color_mode = mode});
         }
@@ -52,16 +50,14 @@ void draw_view_options(const FieldViewState& state, UiActions& actions) {
     if (ImGui::Checkbox("High contrast", &high_contrast)) {
         actions.push_back({.kind = UiActionKind::kToggleContrast});
     }
-    ImGui::SameLine();
     if (ImGui::Button("Fit view  (F)")) actions.push_back({.kind = UiActionKind::kFitView});
 }
 
 }  // namespace
 
-void draw_device_panel(const FieldViewState& state, const PanelLayout& layout,
-                       UiActions& actions) {
-    detail::place_next_window(layout.width_px - layout.side_width_px, 0.0f, layout.side_width_px,
-                              layout.height_px - layout.status_height_px);
+void draw_device_panel(const FieldViewState& state, const PanelLayout& layout, UiActions& actions) {
+    detail::place_next_window(layout.width_px - layout.device_width_px, 0.0f,
+                              layout.device_width_px, layout.height_px - layout.status_height_px);
     ImGui::Begin("Device", nullptr, detail::kPanelFlags);
     if (!state.session_dir.empty()) {
         ImGui::TextWrapped("Session: %s", state.session_dir.c_str());
@@ -75,7 +71,7 @@ void draw_device_panel(const FieldViewState& state, const PanelLayout& layout,
     draw_capture_buttons(state.device, actions);
     ImGui::Separator();
     draw_view_options(state, actions);
-    ImGui::TextColored(detail::kColorMuted, "X excludes the newest scan, C cycles colours");
+    ImGui::TextWrapped("X excludes the newest scan, C cycles the colours.");
     ImGui::End();
 }
 

@@ -9,12 +9,11 @@ bool draw_failure_banner(const FieldViewState& state, const PanelLayout& layout,
                          UiActions& actions) {
     const std::optional<FailureBanner> banner = failure_banner(state);
     if (!banner) return false;
-    const float width = layout.width_px - 2.0f * layout.side_width_px;
-    detail::place_next_window(layout.side_width_px, 0.0f, width, layout.banner_height_px);
+    detail::place_next_window(layout.view_x_px(), 0.0f, layout.view_width_px(),
+                              layout.banner_height_px);
     ImGui::PushStyleColor(ImGuiCol_WindowBg, ImVec4(0.75f, 0.05f, 0.05f, 1.0f));
     ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 1.0f, 1.0f, 1.0f));
-    ImGui::Begin("Registration failed", nullptr,
-                 detail::kPanelFlags | ImGuiWindowFlags_NoTitleBar);
+    ImGui::Begin("Registration failed", nullptr, detail::kPanelFlags | ImGuiWindowFlags_NoTitleBar);
     ImGui::SetWindowFontScale(1.3f);
     ImGui::TextWrapped("%s", banner->message.c_str());
     ImGui::SetWindowFontScale(1.0f);

@@ -6,10 +6,14 @@ namespace anascan::gui {
 
 const char* to_string(ScanRowState state) {
     switch (state) {
-        case ScanRowState::kQueued: return "queued";
-        case ScanRowState::kRegistered: return "registered";
-        case ScanRowState::kFailed: return "failed";
-        case ScanRowState::kExcluded: return "excluded";
+        case ScanRowState::kQueued:
+            return "queued";
+        case ScanRowState::kRegistered:
+            return "ok";
+        case ScanRowState::kFailed:
+            return "FAILED";
+        case ScanRowState::kExcluded:
+            return "excluded";
     }
     return "?";
 }

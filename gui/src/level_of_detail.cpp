@@ -8,8 +8,8 @@ namespace anascan::gui {
 
 std::vector<std::size_t> points_to_draw(std::span<const std::size_t> chunk_sizes,
                                         std::size_t budget_points) {
-    const std::size_t total = std::accumulate(chunk_sizes.begin(), chunk_sizes.end(),
-                                              std::size_t{0});
+    const std::size_t total =
+        std::accumulate(chunk_sizes.begin(), chunk_sizes.end(), std::size_t{0});
     std::vector<std::size_t> counts(chunk_sizes.begin(), chunk_sizes.end());
     if (total <= budget_points) return counts;
     const double fraction = static_cast<double>(budget_points) / static_cast<double>(total);

@@ -27,8 +27,7 @@ void OrbitCamera::orbit(double dx_px, double dy_px) {
 void OrbitCamera::pan(double dx_px, double dy_px, double viewport_height_px) {
     if (viewport_height_px <= 0.0) return;
     // Metres per pixel at the target's depth.
-    const double m_per_px =
-        2.0 * distance_m_ * std::tan(0.5 * fov_y_rad_) / viewport_height_px;
+    const double m_per_px = 2.0 * distance_m_ * std::tan(0.5 * fov_y_rad_) / viewport_height_px;
     const Eigen::Matrix3d R_world_camera = view().rotation().transpose();
     target_m_ += R_world_camera * Eigen::Vector3d(-dx_px * m_per_px, dy_px * m_per_px, 0.0);
 }

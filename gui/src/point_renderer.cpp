@@ -21,13 +21,11 @@ uniform mat4 u_mvp;
 uniform vec3 u_chunk_color;
 uniform int u_use_vertex_color;
 uniform float u_highlight;
-uniform float u_point_size;
 out vec3 v_color;
 void main() {
     gl_Position = u_mvp * vec4(a_position, 1.0);
     vec3 c = (u_use_vertex_color == 1) ? a_color : u_chunk_color;
     v_color = mix(c, vec3(1.0), 0.35 * u_highlight);
-    gl_PointSize = u_point_size;
 }
 )";
 
@@ -98,7 +96,7 @@ struct PointRenderer::Chunk {
 
 struct PointRenderer::Gpu {
     GLuint program = 0;
-    GLint mvp = -1, chunk_color = -1, use_vertex_color = -1, highlight = -1, point_size = -1;
+    GLint mvp = -1, chunk_color = -1, use_vertex_color = -1, highlight = -1;
     VertexArray markers;
     std::size_t marker_vertices = 0;
     Eigen::Vector3d markers_origin_m = Eigen::Vector3d::Zero();
@@ -121,7 +119,6 @@ Expected<std::unique_ptr<PointRenderer>> PointRenderer::create() {
     gpu.chunk_color = glGetUniformLocation(gpu.program, "u_chunk_color");
     gpu.use_vertex_color = glGetUniformLocation(gpu.program, "u_use_vertex_color");
     gpu.highlight = glGetUniformLocation(gpu.program, "u_highlight");
-    gpu.point_size = glGetUniformLocation(gpu.program, "u_point_size");
     return renderer;
 }
 
@@ -222,30 +219,30 @@ DrawStats PointRenderer::draw(const OrbitCamera& camera, double aspect, const Dr
         stats.points_visible += sizes[i];
         stats.points_drawn += counts[i];
     }
-    const double fraction = stats.points_visible == 0
-                                ? 1.0
-                                : static_cast<double>(stats.points_drawn) /
-                                      static_cast<double>(stats.points_visible);
+    const double fraction =
+        stats.points_visible == 0
+            ? 1.0
+            : static_cast<double>(stats.points_drawn) / static_cast<double>(stats.points_visible);
     const float size_px = thinned_point_size_px(config.base_point_size_px, fraction);
     const Eigen::Matrix4d PV = camera.projection(aspect) * camera.view().matrix();
 
     glEnable(GL_DEPTH_TEST);
-    glEnable(GL_PROGRAM_POINT_SIZE);
+    glDisable(GL_PROGRAM_POINT_SIZE);  // glPointSize per chunk: llvmpipe's fast path
     glUseProgram(gpu.program);
     for (std::size_t i = 0; i < visible.size(); ++i) {
         const Chunk& c = *visible[i];
         const Eigen::Matrix4f mvp = model_view_projection(PV, c.T_world_chunk, c.origin_m);
         glUniformMatrix4fv(gpu.mvp, 1, GL_FALSE, mvp.data());
         const bool per_point = config.color_mode == ColorMode::kByCoverage && c.has_colors;
-        const Rgb8 chunk_rgb = config.color_mode == ColorMode::kByQuality ? c.style.quality_color
-                                                                           : c.style.scan_color;
+        const Rgb8 chunk_rgb =
+            config.color_mode == ColorMode::kByQuality ? c.style.quality_color : c.style.scan_color;
         const Eigen::Vector3f rgb = config.color_mode == ColorMode::kByCoverage
                                         ? Eigen::Vector3f::Constant(kNoColorGrey)
                                         : to_float_rgb(chunk_rgb);
         glUniform3f(gpu.chunk_color, rgb.x(), rgb.y(), rgb.z());
         glUniform1i(gpu.use_vertex_color, per_point ? 1 : 0);
         glUniform1f(gpu.highlight, c.style.highlighted ? 1.0f : 0.0f);
-        glUniform1f(gpu.point_size, c.style.highlighted ? size_px + 1.5f : size_px);
+        glPointSize(c.style.highlighted ? size_px + 1.0f : size_px);
         glBindVertexArray(c.buffers.vao);
         glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(counts[i]));
         ++stats.chunks_drawn;

@@ -16,12 +16,30 @@ Rgb8 hue_color(double hue_turns) {
     const double x = 1.0 - std::abs(std::fmod(h, 2.0) - 1.0);
     double r = 0.0, g = 0.0, b = 0.0;
     switch (static_cast<int>(h)) {
-        case 0: r = 1; g = x; break;
-        case 1: r = x; g = 1; break;
-        case 2: g = 1; b = x; break;
-        case 3: g = x; b = 1; break;
-        case 4: r = x; b = 1; break;
-        default: r = 1; b = x; break;
+        case 0:
+            r = 1;
+            g = x;
+            break;
+        case 1:
+            r = x;
+            g = 1;
+            break;
+        case 2:
+            g = 1;
+            b = x;
+            break;
+        case 3:
+            g = x;
+            b = 1;
+            break;
+        case 4:
+            r = x;
+            b = 1;
+            break;
+        default:
+            r = 1;
+            b = x;
+            break;
     }
     const double v = 0.95;
     // Lift the darkest channel a little so that no colour is too dark on a black view.
@@ -38,10 +56,13 @@ Rgb8 scan_palette_color(std::int64_t seq) {
 
 Rgb8 quality_color(const ScanRow& row) {
     switch (row.state) {
-        case ScanRowState::kFailed: return {230, 40, 30};
+        case ScanRowState::kFailed:
+            return {230, 40, 30};
         case ScanRowState::kQueued:
-        case ScanRowState::kExcluded: return {120, 120, 120};
-        case ScanRowState::kRegistered: break;
+        case ScanRowState::kExcluded:
+            return {120, 120, 120};
+        case ScanRowState::kRegistered:
+            break;
     }
     if (!row.rms_mm) return {60, 200, 80};
     if (*row.rms_mm < 0.5) return {60, 200, 80};

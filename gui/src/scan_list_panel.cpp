@@ -1,5 +1,7 @@
 #include <fmt/format.h>
 
+#include <string_view>
+
 #include "anascan/gui/panels.hpp"
 #include "panel_util.hpp"
 
@@ -8,10 +10,14 @@ namespace {
 
 ImVec4 state_color(ScanRowState state) {
     switch (state) {
-        case ScanRowState::kRegistered: return detail::kColorGood;
-        case ScanRowState::kFailed: return detail::kColorBad;
-        case ScanRowState::kQueued: return detail::kColorWarn;
-        case ScanRowState::kExcluded: return detail::kColorMuted;
+        case ScanRowState::kRegistered:
+            return detail::kColorGood;
+        case ScanRowState::kFailed:
+            return detail::kColorBad;
+        case ScanRowState::kQueued:
+            return detail::kColorWarn;
+        case ScanRowState::kExcluded:
+            return detail::kColorMuted;
     }
     return detail::kColorMuted;
 }
@@ -43,7 +49,8 @@ void draw_selected_actions(const ScanRow& row, UiActions& actions) {
     ImGui::Text("Scan %lld:", static_cast<long long>(row.seq));
     ImGui::SameLine();
     if (row.state == ScanRowState::kExcluded) {
-        if (ImGui::Button("Include")) actions.push_back({.kind = UiActionKind::kInclude, .seq = row.seq});
+        if (ImGui::Button("Include"))
+            actions.push_back({.kind = UiActionKind::kInclude, .seq = row.seq});
     } else if (ImGui::Button("Exclude")) {
         actions.push_back({.kind = UiActionKind::kExclude, .seq = row.seq});
     }
@@ -56,7 +63,7 @@ void draw_selected_actions(const ScanRow& row, UiActions& actions) {
 }  // namespace
 
 void draw_scan_list(const FieldViewState& state, const PanelLayout& layout, UiActions& actions) {
-    detail::place_next_window(0.0f, 0.0f, layout.side_width_px,
+    detail::place_next_window(0.0f, 0.0f, layout.scan_list_width_px,
                               layout.height_px - layout.status_height_px);
     ImGui::Begin("Scans", nullptr, detail::kPanelFlags);
     const ScanRow* selected = nullptr;
@@ -69,12 +76,16 @@ void draw_scan_list(const FieldViewState& state, const PanelLayout& layout, UiAc
         ImGui::TextColored(detail::kColorMuted, "%zu scans; click one to select",
                            state.scans.size());
     }
+    ImGui::TextColored(detail::kColorMuted, "RMS in mm, overlap (Ovl) in %%");
     constexpr ImGuiTableFlags kFlags = ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV |
                                        ImGuiTableFlags_ScrollY | ImGuiTableFlags_SizingFixedFit;
     if (ImGui::BeginTable("scan_table", 7, kFlags)) {
         ImGui::TableSetupScrollFreeze(0, 1);
-        for (const char* name : {"Seq", "Device", "Time", "State", "RMS mm", "Ovl %", "Grp"}) {
-            ImGui::TableSetupColumn(name);
+        // The device column takes what is left; the figures keep their full width.
+        for (const char* name : {"#", "Device", "Time", "State", "RMS", "Ovl", "Grp"}) {
+            const bool device = std::string_view(name) == "Device";
+            ImGui::TableSetupColumn(name, device ? ImGuiTableColumnFlags_WidthStretch
+                                                 : ImGuiTableColumnFlags_WidthFixed);
         }
         ImGui::TableHeadersRow();
         for (const ScanRow& row : state.scans) {

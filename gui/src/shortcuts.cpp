@@ -6,9 +6,12 @@ namespace {
 
 ColorMode next_color_mode(ColorMode mode) {
     switch (mode) {
-        case ColorMode::kByScan: return ColorMode::kByQuality;
-        case ColorMode::kByQuality: return ColorMode::kByCoverage;
-        case ColorMode::kByCoverage: return ColorMode::kByScan;
+        case ColorMode::kByScan:
+            return ColorMode::kByQuality;
+        case ColorMode::kByQuality:
+            return ColorMode::kByCoverage;
+        case ColorMode::kByCoverage:
+            return ColorMode::kByScan;
     }
     return ColorMode::kByScan;
 }
@@ -38,8 +41,7 @@ void handle_shortcuts(const FieldViewState& state, UiActions& actions) {
     }
 }
 
-void draw_field_panels(const FieldViewState& state, const PanelLayout& layout,
-                       UiActions& actions) {
+void draw_field_panels(const FieldViewState& state, const PanelLayout& layout, UiActions& actions) {
     draw_scan_list(state, layout, actions);
     draw_device_panel(state, layout, actions);
     draw_status_bar(state, layout);

@@ -22,12 +22,13 @@ ScanRow row(std::int64_t seq, ScanRowState state, double rms_mm = 0.4) {
 
 FieldViewState four_registered_scans() {
     FieldViewState state;
-    for (std::int64_t seq = 1; seq <= 4; ++seq) state.scans.push_back(row(seq, ScanRowState::kRegistered));
-    state.device.devices = {{.id = "sim:tof/0", .kind = "time-of-flight", .connected = true,
-                             .status = "ready"}};
+    for (std::int64_t seq = 1; seq <= 4; ++seq)
+        state.scans.push_back(row(seq, ScanRowState::kRegistered));
+    state.device.devices = {
+        {.id = "sim:tof/0", .kind = "time-of-flight", .connected = true, .status = "ready"}};
     state.device.active_device = 0;
-    state.status = {.coverage_percent = 72.5, .queued_registrations = 1,
-                    .disk_free_bytes = 40'000'000'000ull};
+    state.status = {
+        .coverage_percent = 72.5, .queued_registrations = 1, .disk_free_bytes = 40'000'000'000ull};
     return state;
 }
 
@@ -74,7 +75,7 @@ TEST(ScanListPanel, SelectedScanOffersExcludeAndReRegister) {
     ui.frame([&] { draw_field_panels(state, kLayout, warmup); });
     // The buttons sit on the first line under the title bar, left to right.
     UiActions actions;
-    for (float x = 5.0f; x < kLayout.side_width_px; x += 4.0f) {
+    for (float x = 5.0f; x < kLayout.scan_list_width_px; x += 4.0f) {
         for (float y = 20.0f; y < 60.0f; y += 6.0f) {
             ui.click([&] { draw_field_panels(state, kLayout, actions); }, ImVec2(x, y));
         }
@@ -113,7 +114,7 @@ TEST(FailureBanner, ItsButtonExcludesTheFailedScan) {
     state.scans.push_back(row(5, ScanRowState::kFailed));
     UiActions warmup;
     ui.frame([&] { draw_field_panels(state, kLayout, warmup); });
-    const float x = kLayout.side_width_px + 60.0f;
+    const float x = kLayout.view_x_px() + 60.0f;
     const UiActions actions = sweep_clicks(ui, state, x, 0.0f, kLayout.banner_height_px);
     EXPECT_EQ(distinct_seqs(actions, UiActionKind::kExclude), (std::vector<std::int64_t>{5}));
 }
@@ -138,7 +139,7 @@ TEST(Shortcuts, SpaceCapturesXExcludesTheNewestTMarksTurnedOver) {
 TEST(DevicePanel, CaptureButtonOnlyWithAnActiveIdleDevice) {
     HeadlessImGui ui;
     FieldViewState state = four_registered_scans();
-    const float x = kLayout.width_px - kLayout.side_width_px + 40.0f;
+    const float x = kLayout.width_px - kLayout.device_width_px + 40.0f;
     auto captures = [&] {
         UiActions warmup;
         ui.frame([&] { draw_field_panels(state, kLayout, warmup); });

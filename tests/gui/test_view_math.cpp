@@ -81,7 +81,8 @@ TEST(LevelOfDetail, EveryChunkKeepsTheSameFractionWithinTheBudget) {
 }
 
 TEST(LevelOfDetail, ControllerShrinksOnSlowFramesAndGrowsBackOnFastOnes) {
-    LodController lod({.target_frame_ms = 25.0, .min_budget_points = 100'000,
+    LodController lod({.target_frame_ms = 25.0,
+                       .min_budget_points = 100'000,
                        .initial_budget_points = 10'000'000});
     const std::size_t total = 10'000'000;
     EXPECT_EQ(lod.update(50.0, total), 5'000'000u);   // twice too slow: half

@@ -16,25 +16,26 @@ namespace anascan::gui {
 /// Registration state of one scan (mirrors acquisition::ScanState).
 enum class ScanRowState { kQueued, kRegistered, kFailed, kExcluded };
 
-/// Short English name: "queued", "registered", "failed", "excluded".
+/// As the scan list shows it: "queued", "ok", "FAILED" (capitals: it must stand out),
+/// "excluded".
 const char* to_string(ScanRowState state);
 
 /// One line of the scan list, in capture order.
 struct ScanRow {
-    std::int64_t seq = 0;                              ///< ScanRecord::seq.
-    std::string device_id;                             ///< ScanRecord::device_id.
+    std::int64_t seq = 0;                               ///< ScanRecord::seq.
+    std::string device_id;                              ///< ScanRecord::device_id.
     std::chrono::system_clock::time_point captured_at;  ///< ScanRecord::captured_at.
-    ScanRowState state = ScanRowState::kQueued;        ///< ScanRecord::state.
-    std::optional<double> rms_mm;                      ///< Registration RMS, millimetres.
-    std::optional<double> overlap_percent;             ///< Overlap with the model, 0..100 %.
-    int group = -1;                                    ///< ScanRecord::group (-1: none yet).
+    ScanRowState state = ScanRowState::kQueued;         ///< ScanRecord::state.
+    std::optional<double> rms_mm;                       ///< Registration RMS, millimetres.
+    std::optional<double> overlap_percent;              ///< Overlap with the model, 0..100 %.
+    int group = -1;                                     ///< ScanRecord::group (-1: none yet).
     std::string message;  ///< The registrar's message (why it failed), may be empty.
 };
 
 /// One device of the device panel (mirrors the device list of acquisition).
 struct DeviceRow {
-    std::string id;      ///< Device id, e.g. "sim:tof/0".
-    std::string kind;    ///< "time-of-flight", "structured-light", ...
+    std::string id;    ///< Device id, e.g. "sim:tof/0".
+    std::string kind;  ///< "time-of-flight", "structured-light", ...
     bool connected = false;
     std::string status;  ///< Last status line ("ready", "unplugged", ...).
 };
@@ -72,8 +73,8 @@ struct FieldViewState {
 /// A failed registration, as the banner shows it: impossible to miss, says what to try.
 struct FailureBanner {
     std::int64_t seq = 0;
-    std::string message;     ///< What happened, naming the scan.
-    std::string what_to_try; ///< The operator's next step.
+    std::string message;      ///< What happened, naming the scan.
+    std::string what_to_try;  ///< The operator's next step.
 };
 
 /// The banner for the newest failed scan, if the newest registration outcome is a failure

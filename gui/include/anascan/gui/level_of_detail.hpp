@@ -17,7 +17,7 @@ std::vector<std::size_t> points_to_draw(std::span<const std::size_t> chunk_sizes
                                         std::size_t budget_points);
 
 struct LodConfig {
-    double target_frame_ms = 25.0;       ///< Frame time the budget aims for.
+    double target_frame_ms = 25.0;  ///< Frame time the budget aims for.
     std::size_t min_budget_points = 100'000;
     std::size_t initial_budget_points = 2'000'000;
 };

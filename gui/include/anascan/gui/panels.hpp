@@ -14,9 +14,15 @@ namespace anascan::gui {
 struct PanelLayout {
     float width_px = 1280.0f;
     float height_px = 800.0f;
-    float side_width_px = 420.0f;  ///< Width of the scan list (left) and device panel (right).
+    float scan_list_width_px = 450.0f;  ///< The scan list, on the left.
+    float device_width_px = 360.0f;     ///< The device panel, on the right.
     float status_height_px = 40.0f;
     float banner_height_px = 90.0f;
+
+    /// The 3D view: between the side panels, above the status bar (x, y from top left).
+    float view_x_px() const { return scan_list_width_px; }
+    float view_width_px() const { return width_px - scan_list_width_px - device_width_px; }
+    float view_height_px() const { return height_px - status_height_px; }
 };
 
 /// The scan list window ("Scans"): one row per scan in capture order; clicking a row
@@ -29,8 +35,7 @@ void draw_status_bar(const FieldViewState& state, const PanelLayout& layout);
 
 /// The device panel window ("Device"): devices with connect buttons, the capture and
 /// turned-over buttons, the colour mode and theme switches.
-void draw_device_panel(const FieldViewState& state, const PanelLayout& layout,
-                       UiActions& actions);
+void draw_device_panel(const FieldViewState& state, const PanelLayout& layout, UiActions& actions);
 
 /// The failure banner window ("Registration failed"), drawn only when failure_banner(state)
 /// has a value: red, large, with the message and what to try. Returns true when drawn.
@@ -43,14 +48,13 @@ void handle_shortcuts(const FieldViewState& state, UiActions& actions);
 
 /// Key indices of the shortcuts in ImGuiIO::KeysDown (GLFW key codes, which are ASCII for
 /// letters and space).
-inline constexpr int kKeyCapture = 32;      // Space
+inline constexpr int kKeyCapture = 32;  // Space
 inline constexpr int kKeyExcludeLast = 'X';
 inline constexpr int kKeyTurnedOver = 'T';
 inline constexpr int kKeyFitView = 'F';
 inline constexpr int kKeyColorMode = 'C';
 
 /// Draws every panel (banner, scan list, device panel, status bar) and the shortcuts.
-void draw_field_panels(const FieldViewState& state, const PanelLayout& layout,
-                       UiActions& actions);
+void draw_field_panels(const FieldViewState& state, const PanelLayout& layout, UiActions& actions);
 
 }  // namespace anascan::gui

@@ -26,8 +26,8 @@ enum class UiActionKind {
 /// One operator request.
 struct UiAction {
     UiActionKind kind = UiActionKind::kCapture;
-    std::int64_t seq = -1;       ///< For the scan actions.
-    int device_index = -1;       ///< For kConnectDevice.
+    std::int64_t seq = -1;                      ///< For the scan actions.
+    int device_index = -1;                      ///< For kConnectDevice.
     ColorMode color_mode = ColorMode::kByScan;  ///< For kSetColorMode.
     friend bool operator==(const UiAction&, const UiAction&) = default;
 };
