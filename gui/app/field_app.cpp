@@ -9,6 +9,7 @@
 #include "anascan/gui/level_of_detail.hpp"
 #include "anascan/gui/panels.hpp"
 #include "anascan/gui/point_renderer.hpp"
+#include "anascan/gui/progressive_view.hpp"
 #include "anascan/gui/scan_colors.hpp"
 #include "anascan/gui/theme.hpp"
 #include "demo_clouds.hpp"
@@ -19,11 +20,15 @@
 namespace anascan::field {
 namespace {
 
+/// The view's background (linear RGB, 0..1): dark blue-grey, the points stand out.
+const Eigen::Vector3f kBackground(0.16f, 0.18f, 0.22f);
+
 /// Everything one run of the app owns besides the window.
 struct AppState {
     gui::FieldViewState view;
     gui::OrbitCamera camera;
     std::unique_ptr<gui::PointRenderer> renderer;
+    std::unique_ptr<gui::ProgressiveView> view_image;
     gui::ThemeConfig theme;
     bool fit_pending = true;  ///< Fit the camera in the next frame (its aspect is known there).
 };
@@ -104,7 +109,7 @@ void apply_actions(const gui::UiActions& actions, AppState& app, bool font_scale
 gui::DrawStats draw_scene(AppState& app, const gui::PanelLayout& layout, int fb_w, int fb_h,
                           const gui::DrawConfig& draw) {
     glViewport(0, 0, fb_w, fb_h);
-    glClearColor(0.16f, 0.18f, 0.22f, 1.0f);
+    glClearColor(kBackground.x(), kBackground.y(), kBackground.z(), 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     // Window pixels (top left) to frame-buffer pixels (bottom left), HiDPI-safe.
     const float sx = static_cast<float>(fb_w) / std::max(layout.width_px, 1.0f);
@@ -113,42 +118,54 @@ gui::DrawStats draw_scene(AppState& app, const gui::PanelLayout& layout, int fb_
     const int y = static_cast<int>(layout.status_height_px * sy);
     const int w = std::max(1, static_cast<int>(layout.view_width_px() * sx));
     const int h = std::max(1, static_cast<int>(layout.view_height_px() * sy));
-    glViewport(x, y, w, h);
     if (app.fit_pending) {
         app.camera.fit(app.renderer->bounds(), static_cast<double>(w) / h);
         app.fit_pending = false;
     }
     handle_camera_input(app.camera, static_cast<float>(h));
-    gui::DrawStats stats = app.renderer->draw(app.camera, static_cast<double>(w) / h, draw);
+    const gui::DrawStats stats =
+        app.view_image->render(*app.renderer, app.camera, {x, y, w, h}, draw);
     glViewport(0, 0, fb_w, fb_h);
     return stats;
 }
 
-void report(const std::vector<double>& frame_ms, const gui::DrawStats& last, std::size_t budget,
-            const std::string& renderer_name) {
+/// Frame times on stderr: all frames, and those that drew points apart from the copies of
+/// a complete image.
+void report(const std::vector<double>& frame_ms, const std::vector<bool>& drew,
+            const gui::DrawStats& last, std::size_t budget, const std::string& renderer_name) {
     // The first frame compiles shaders and fills caches: it is not a steady-state frame.
-    std::vector<double> steady(frame_ms.begin() + (frame_ms.size() > 1 ? 1 : 0), frame_ms.end());
+    std::vector<double> steady, drawing, copies;
+    for (std::size_t i = 1; i < frame_ms.size(); ++i) {
+        steady.push_back(frame_ms[i]);
+        (drew[i] ? drawing : copies).push_back(frame_ms[i]);
+    }
     const FrameTimeSummary s = summarize_frame_times(steady);
+    const FrameTimeSummary d = summarize_frame_times(drawing);
+    const FrameTimeSummary c = summarize_frame_times(copies);
     std::fprintf(stderr,
                  "anascan-field: %zu frames (first excluded): frame time median %.1f ms, "
-                 "p95 %.1f ms, max %.1f ms; last frame drew %zu of %zu points (budget %zu); "
-                 "GL renderer %s\n",
-                 steady.size(), s.median_ms, s.p95_ms, s.max_ms, last.points_drawn,
+                 "p95 %.1f ms, max %.1f ms\n"
+                 "  %zu frames drew points: median %.1f ms, p95 %.1f ms; %zu copied the complete "
+                 "image: median %.1f ms, p95 %.1f ms\n"
+                 "  image holds %zu of %zu points (budget %zu points per frame); GL renderer %s\n",
+                 steady.size(), s.median_ms, s.p95_ms, s.max_ms, drawing.size(), d.median_ms,
+                 d.p95_ms, copies.size(), c.median_ms, c.p95_ms, last.points_in_image,
                  last.points_visible, budget, renderer_name.c_str());
 }
 
 /// init → loop (poll, new frame, panels, scene, UI, screenshot, swap) as Dear ImGui's
 /// example; the LOD budget follows the measured frame time unless fixed.
 int run_loop(const FieldAppConfig& config, FieldWindow& window, AppState& app) {
-    gui::LodController lod({.target_frame_ms = config.target_frame_ms,
-                            .initial_budget_points = app.renderer->total_points()});
+    gui::LodController lod({.target_frame_ms = config.target_frame_ms});
     std::vector<double> frame_ms;
+    std::vector<bool> drew;
     gui::DrawStats stats;
     for (int frame = 0; config.frames == 0 || frame < config.frames; ++frame) {
         if (window.should_close()) break;
         const auto start = std::chrono::steady_clock::now();
         window.begin_frame();
         const gui::PanelLayout layout = current_layout(config.font_scale);
+        app.camera.orbit(config.orbit_px_per_frame, 0.0);  // simulated operator (measuring)
         gui::UiActions actions;
         gui::draw_field_panels(app.view, layout, actions);
         apply_actions(actions, app, window.font_scaled());
@@ -171,10 +188,14 @@ int run_loop(const FieldAppConfig& config, FieldWindow& window, AppState& app) {
         const std::chrono::duration<double, std::milli> took =
             std::chrono::steady_clock::now() - start;
         frame_ms.push_back(took.count());
-        if (frame > 0) lod.update(took.count(), app.renderer->total_points());
+        // Only frames that drew points tell the cost of a budget (cached frames are copies).
+        if (frame > 0 && stats.points_drawn > 0) {
+            lod.update(took.count(), app.renderer->total_points());
+        }
+        drew.push_back(stats.points_drawn > 0);
     }
     if (config.frames > 0) {
-        report(frame_ms, stats, config.point_budget > 0 ? config.point_budget : lod.budget(),
+        report(frame_ms, drew, stats, config.point_budget > 0 ? config.point_budget : lod.budget(),
                window.renderer_name());
     }
     return 0;
@@ -197,6 +218,12 @@ int run_field_app(const FieldAppConfig& config) {
         return 1;
     }
     app.renderer = std::move(*renderer);
+    auto view_image = gui::ProgressiveView::create(kBackground);
+    if (!view_image) {
+        std::fprintf(stderr, "anascan-field: error: %s\n", view_image.error().message.c_str());
+        return 1;
+    }
+    app.view_image = std::move(*view_image);
     if (auto loaded = load_scans(config, app); !loaded) {
         std::fprintf(stderr, "anascan-field: error: %s\n", loaded.error().message.c_str());
         return 1;

@@ -32,6 +32,9 @@ void add_options(CLI::App& app, anascan::field::FieldAppConfig& config,
     app.add_option("--point-size", config.point_size_px,
                    "Point size in pixels at full density (grows when thinned)")
         ->check(CLI::Range(1.0f, 16.0f));
+    app.add_option("--orbit-per-frame", config.orbit_px_per_frame,
+                   "Turn the view by this many pixels of mouse motion every frame (to measure "
+                   "frame times while the operator moves the view)");
     app.add_option("--width", config.width_px, "Window width, pixels")->check(CLI::PositiveNumber);
     app.add_option("--height", config.height_px, "Window height, pixels")
         ->check(CLI::PositiveNumber);

@@ -137,20 +137,30 @@ void PointRenderer::add_chunk(std::int64_t id, PointCloud cloud,
     shuffle_for_lod(cloud, 0x5eed0000ull + static_cast<std::uint64_t>(id));
     chunk->buffers.upload(cloud.positions, cloud.colors);
     chunks_[id] = std::move(chunk);
+    ++revision_;
     // `cloud` (the only CPU copy) is freed on return.
 }
 
 void PointRenderer::set_pose(std::int64_t id, const Eigen::Isometry3d& T_world_chunk) {
-    if (auto it = chunks_.find(id); it != chunks_.end()) it->second->T_world_chunk = T_world_chunk;
+    if (auto it = chunks_.find(id); it != chunks_.end()) {
+        it->second->T_world_chunk = T_world_chunk;
+        ++revision_;
+    }
 }
 
 void PointRenderer::set_style(std::int64_t id, const ChunkStyle& style) {
-    if (auto it = chunks_.find(id); it != chunks_.end()) it->second->style = style;
+    auto it = chunks_.find(id);
+    if (it == chunks_.end() || it->second->style == style) return;
+    it->second->style = style;
+    ++revision_;
 }
 
-void PointRenderer::remove_chunk(std::int64_t id) { chunks_.erase(id); }
+void PointRenderer::remove_chunk(std::int64_t id) {
+    if (chunks_.erase(id) > 0) ++revision_;
+}
 
 void PointRenderer::set_hole_markers(std::span<const HoleMarker> holes) {
+    ++revision_;
     gpu_->markers.release();
     const detail::MarkerLines lines = detail::hole_marker_lines(holes);
     gpu_->marker_vertices = lines.vertices.size();
@@ -204,8 +214,41 @@ Eigen::Matrix4f model_view_projection(const Eigen::Matrix4d& PV, const Eigen::Is
 
 }  // namespace
 
-DrawStats PointRenderer::draw(const OrbitCamera& camera, double aspect, const DrawConfig& config) {
+void PointRenderer::draw_chunk(const Chunk& c, const Eigen::Matrix4d& PV, const DrawConfig& config,
+                               std::size_t begin, std::size_t end, float size_px) const {
     const Gpu& gpu = *gpu_;
+    const Eigen::Matrix4f mvp = model_view_projection(PV, c.T_world_chunk, c.origin_m);
+    glUniformMatrix4fv(gpu.mvp, 1, GL_FALSE, mvp.data());
+    const bool per_point = config.color_mode == ColorMode::kByCoverage && c.has_colors;
+    const Rgb8 chunk_rgb =
+        config.color_mode == ColorMode::kByQuality ? c.style.quality_color : c.style.scan_color;
+    const Eigen::Vector3f rgb = config.color_mode == ColorMode::kByCoverage
+                                    ? Eigen::Vector3f::Constant(kNoColorGrey)
+                                    : to_float_rgb(chunk_rgb);
+    glUniform3f(gpu.chunk_color, rgb.x(), rgb.y(), rgb.z());
+    glUniform1i(gpu.use_vertex_color, per_point ? 1 : 0);
+    glUniform1f(gpu.highlight, c.style.highlighted ? 1.0f : 0.0f);
+    glPointSize(c.style.highlighted ? size_px + 1.0f : size_px);
+    glBindVertexArray(c.buffers.vao);
+    glDrawArrays(GL_POINTS, static_cast<GLint>(begin), static_cast<GLsizei>(end - begin));
+}
+
+void PointRenderer::draw_markers(const Eigen::Matrix4d& PV) const {
+    const Gpu& gpu = *gpu_;
+    if (gpu.marker_vertices == 0) return;
+    const Eigen::Matrix4f mvp =
+        model_view_projection(PV, Eigen::Isometry3d::Identity(), gpu.markers_origin_m);
+    glUniformMatrix4fv(gpu.mvp, 1, GL_FALSE, mvp.data());
+    const Eigen::Vector3f rgb = to_float_rgb(kHoleColor);
+    glUniform3f(gpu.chunk_color, rgb.x(), rgb.y(), rgb.z());
+    glUniform1i(gpu.use_vertex_color, 0);
+    glUniform1f(gpu.highlight, 0.0f);
+    glDisable(GL_DEPTH_TEST);  // a hole marker must show even behind points
+    glBindVertexArray(gpu.markers.vao);
+    glDrawArrays(GL_LINES, 0, static_cast<GLsizei>(gpu.marker_vertices));
+}
+
+DrawStats PointRenderer::draw(const OrbitCamera& camera, double aspect, const DrawConfig& config) {
     std::vector<const Chunk*> visible;
     std::vector<std::size_t> sizes;
     for (const auto& [id, c] : chunks_) {
@@ -213,52 +256,36 @@ DrawStats PointRenderer::draw(const OrbitCamera& camera, double aspect, const Dr
         visible.push_back(c.get());
         sizes.push_back(c->count);
     }
-    const std::vector<std::size_t> counts = points_to_draw(sizes, config.budget_points);
+    // This frame's slice of every chunk: [begin_i, end_i) of its shuffled points.
+    const std::vector<std::size_t> begins = points_to_draw(sizes, config.slice_begin_points);
+    const std::vector<std::size_t> ends =
+        points_to_draw(sizes, config.slice_begin_points + config.budget_points);
     DrawStats stats;
+    std::size_t drawn_total = 0;
     for (std::size_t i = 0; i < visible.size(); ++i) {
         stats.points_visible += sizes[i];
-        stats.points_drawn += counts[i];
+        stats.points_drawn += ends[i] - std::min(begins[i], ends[i]);
+        drawn_total += ends[i];
     }
+    stats.points_in_image = drawn_total;
+    stats.complete = drawn_total == stats.points_visible;
     const double fraction =
         stats.points_visible == 0
             ? 1.0
             : static_cast<double>(stats.points_drawn) / static_cast<double>(stats.points_visible);
-    const float size_px = thinned_point_size_px(config.base_point_size_px, fraction);
+    const float size_px = config.enlarge_thinned
+                              ? thinned_point_size_px(config.base_point_size_px, fraction)
+                              : config.base_point_size_px;
     const Eigen::Matrix4d PV = camera.projection(aspect) * camera.view().matrix();
-
     glEnable(GL_DEPTH_TEST);
     glDisable(GL_PROGRAM_POINT_SIZE);  // glPointSize per chunk: llvmpipe's fast path
-    glUseProgram(gpu.program);
+    glUseProgram(gpu_->program);
     for (std::size_t i = 0; i < visible.size(); ++i) {
-        const Chunk& c = *visible[i];
-        const Eigen::Matrix4f mvp = model_view_projection(PV, c.T_world_chunk, c.origin_m);
-        glUniformMatrix4fv(gpu.mvp, 1, GL_FALSE, mvp.data());
-        const bool per_point = config.color_mode == ColorMode::kByCoverage && c.has_colors;
-        const Rgb8 chunk_rgb =
-            config.color_mode == ColorMode::kByQuality ? c.style.quality_color : c.style.scan_color;
-        const Eigen::Vector3f rgb = config.color_mode == ColorMode::kByCoverage
-                                        ? Eigen::Vector3f::Constant(kNoColorGrey)
-                                        : to_float_rgb(chunk_rgb);
-        glUniform3f(gpu.chunk_color, rgb.x(), rgb.y(), rgb.z());
-        glUniform1i(gpu.use_vertex_color, per_point ? 1 : 0);
-        glUniform1f(gpu.highlight, c.style.highlighted ? 1.0f : 0.0f);
-        glPointSize(c.style.highlighted ? size_px + 1.0f : size_px);
-        glBindVertexArray(c.buffers.vao);
-        glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(counts[i]));
+        if (ends[i] <= begins[i]) continue;
+        draw_chunk(*visible[i], PV, config, begins[i], ends[i], size_px);
         ++stats.chunks_drawn;
     }
-    if (gpu.marker_vertices > 0) {
-        const Eigen::Matrix4f mvp =
-            model_view_projection(PV, Eigen::Isometry3d::Identity(), gpu.markers_origin_m);
-        glUniformMatrix4fv(gpu.mvp, 1, GL_FALSE, mvp.data());
-        const Eigen::Vector3f rgb = to_float_rgb(kHoleColor);
-        glUniform3f(gpu.chunk_color, rgb.x(), rgb.y(), rgb.z());
-        glUniform1i(gpu.use_vertex_color, 0);
-        glUniform1f(gpu.highlight, 0.0f);
-        glDisable(GL_DEPTH_TEST);  // a hole marker must show even behind points
-        glBindVertexArray(gpu.markers.vao);
-        glDrawArrays(GL_LINES, 0, static_cast<GLsizei>(gpu.marker_vertices));
-    }
+    draw_markers(PV);
     glBindVertexArray(0);
     glUseProgram(0);
     return stats;

@@ -17,9 +17,9 @@ std::vector<std::size_t> points_to_draw(std::span<const std::size_t> chunk_sizes
                                         std::size_t budget_points);
 
 struct LodConfig {
-    double target_frame_ms = 25.0;  ///< Frame time the budget aims for.
-    std::size_t min_budget_points = 100'000;
-    std::size_t initial_budget_points = 2'000'000;
+    double target_frame_ms = 25.0;           ///< Frame time the budget aims for.
+    std::size_t min_budget_points = 25'000;  ///< Still a recognisable stone, enlarged.
+    std::size_t initial_budget_points = 300'000;
 };
 
 /// Adapts the point budget to the frame time: shrinks it in proportion when a frame is too

@@ -29,6 +29,7 @@ struct ChunkStyle {
     Rgb8 quality_color{200, 200, 200};  ///< Used in ColorMode::kByQuality.
     bool visible = true;                ///< Excluded scans are hidden.
     bool highlighted = false;           ///< Newest or selected scan: brighter, larger points.
+    friend bool operator==(const ChunkStyle&, const ChunkStyle&) = default;
 };
 
 /// A coverage hole, drawn as a ring (radius from the area) with its normal.
@@ -41,13 +42,19 @@ struct HoleMarker {
 struct DrawConfig {
     ColorMode color_mode = ColorMode::kByScan;
     std::size_t budget_points = 2'000'000;  ///< LOD: at most this many points per frame.
+    /// Progressive refinement: skip the points earlier frames drew (see ProgressiveView).
+    std::size_t slice_begin_points = 0;
     float base_point_size_px = 2.0f;
+    /// Enlarge thinned points to fill the gaps (a fresh image); off when adding detail.
+    bool enlarge_thinned = true;
 };
 
 struct DrawStats {
     std::size_t points_drawn = 0;
     std::size_t points_visible = 0;  ///< Of the visible chunks, before LOD.
     int chunks_drawn = 0;
+    std::size_t points_in_image = 0;  ///< This and the earlier slices.
+    bool complete = false;            ///< Every visible point is now in the image.
 };
 
 class PointRenderer {
@@ -77,11 +84,18 @@ public:
     std::size_t total_points() const;
     /// Bytes of point data in GPU buffers (the CPU keeps none).
     std::size_t gpu_bytes() const;
+    /// Changes whenever the drawn image would change for an unchanged camera (chunks, poses,
+    /// styles, markers): the key of a cached view.
+    std::uint64_t revision() const { return revision_; }
 
 private:
     struct Chunk;
     struct Gpu;
     PointRenderer();
+    void draw_chunk(const Chunk& c, const Eigen::Matrix4d& PV, const DrawConfig& config,
+                    std::size_t begin, std::size_t end, float size_px) const;
+    void draw_markers(const Eigen::Matrix4d& PV) const;
+    std::uint64_t revision_ = 0;
     std::map<std::int64_t, std::unique_ptr<Chunk>> chunks_;
     std::unique_ptr<Gpu> gpu_;
 };
