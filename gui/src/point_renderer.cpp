@@ -51,26 +51,29 @@ void shuffle_for_lod(PointCloud& cloud, std::uint64_t seed) {
     }
 }
 
+/// A buffer for vertex attribute `index` of the bound vertex array: `components` values of
+/// `type` per vertex (bytes are normalised to 0..1).
+GLuint upload_attribute(GLuint index, std::span<const std::byte> bytes, GLint components,
+                        GLenum type) {
+    GLuint buffer = 0;
+    glGenBuffers(1, &buffer);
+    glBindBuffer(GL_ARRAY_BUFFER, buffer);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(bytes.size()), bytes.data(),
+                 GL_STATIC_DRAW);
+    glEnableVertexAttribArray(index);
+    glVertexAttribPointer(index, components, type, type == GL_UNSIGNED_BYTE ? GL_TRUE : GL_FALSE, 0,
+                          nullptr);
+    return buffer;
+}
+
 /// A vertex array with a position buffer and an optional colour buffer.
 struct VertexArray {
     GLuint vao = 0, positions = 0, colors = 0;
     void upload(std::span<const Eigen::Vector3f> p, std::span<const Rgb8> c) {
         glGenVertexArrays(1, &vao);
         glBindVertexArray(vao);
-        glGenBuffers(1, &positions);
-        glBindBuffer(GL_ARRAY_BUFFER, positions);
-        glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(p.size_bytes()), p.data(),
-                     GL_STATIC_DRAW);
-        glEnableVertexAttribArray(0);
-        glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
-        if (!c.empty()) {
-            glGenBuffers(1, &colors);
-            glBindBuffer(GL_ARRAY_BUFFER, colors);
-            glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(c.size_bytes()), c.data(),
-                         GL_STATIC_DRAW);
-            glEnableVertexAttribArray(1);
-            glVertexAttribPointer(1, 3, GL_UNSIGNED_BYTE, GL_TRUE, 0, nullptr);
-        }
+        positions = upload_attribute(0, std::as_bytes(p), 3, GL_FLOAT);
+        if (!c.empty()) colors = upload_attribute(1, std::as_bytes(c), 3, GL_UNSIGNED_BYTE);
         glBindVertexArray(0);
     }
     void release() {
