@@ -125,6 +125,24 @@ TEST_F(FieldApp, ScreenshotShowsThePointsAndThePanels) {
     }
 }
 
+TEST_F(FieldApp, ASmallPointBudgetStillShowsTheStoneAndRefinesIt) {
+    // 2 000 points per frame of 60 000: a fresh thinned image, then refinement slices.
+    const fs::path ply = write_sphere_ply();
+    const cv::Rect view_centre(585, 280, 200, 200);
+    double covered[2] = {0.0, 0.0};
+    for (int frames : {2, 8}) {
+        const fs::path png = dir_ / ("budget_" + std::to_string(frames) + ".png");
+        const RunResult r = run("--cloud " + ply.string() + " --screenshot " + png.string() +
+                                " --frames " + std::to_string(frames) + " --point-budget 2000");
+        ASSERT_EQ(r.exit_code, 0) << r.output;
+        const cv::Mat image = cv::imread(png.string(), cv::IMREAD_COLOR);
+        ASSERT_FALSE(image.empty()) << png;
+        covered[frames == 2 ? 0 : 1] = fraction_not(image, view_centre, kClearRgb);
+    }
+    EXPECT_GT(covered[0], 0.02) << "the first refinement slice shows no points";
+    EXPECT_GT(covered[1], covered[0]) << "later slices add no points";
+}
+
 TEST_F(FieldApp, MissingOrCorruptFileIsNamedInTheError) {
     const fs::path corrupt = dir_ / "corrupt.ply";
     std::ofstream(corrupt) << "ply\nformat binary_little_endian 1.0\nelement vertex 1000\n"

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "anascan/gui/panels.hpp"
+#include "anascan/gui/theme.hpp"
 #include "headless_imgui.hpp"
 
 namespace anascan::gui {
@@ -165,6 +166,22 @@ TEST(Panels, SameStateDrawsTheSameFrame) {
     const int a = vertices();
     EXPECT_GT(a, 0);
     EXPECT_EQ(vertices(), a);
+}
+
+TEST(Theme, HighContrastIsBlackAndWhiteAndSwitchingBackDoesNotAccumulateScaling) {
+    HeadlessImGui ui;
+    apply_theme({.high_contrast = true, .font_scale = 2.0f}, /*font_already_scaled=*/false);
+    const ImGuiStyle& style = ImGui::GetStyle();
+    EXPECT_EQ(style.Colors[ImGuiCol_WindowBg].x, 0.0f);
+    EXPECT_EQ(style.Colors[ImGuiCol_Text].x, 1.0f);
+    EXPECT_FLOAT_EQ(ImGui::GetIO().FontGlobalScale, 2.0f);
+    const float padding = style.WindowPadding.x;
+    apply_theme({.high_contrast = false, .font_scale = 2.0f}, false);
+    apply_theme({.high_contrast = true, .font_scale = 2.0f}, false);
+    EXPECT_FLOAT_EQ(ImGui::GetStyle().WindowPadding.x, padding);
+    EXPECT_FLOAT_EQ(padding, 2.0f * ImGuiStyle().WindowPadding.x);
+    apply_theme({.font_scale = 2.0f}, /*font_already_scaled=*/true);
+    EXPECT_FLOAT_EQ(ImGui::GetIO().FontGlobalScale, 1.0f);
 }
 
 TEST(ViewActions, SelectionColourModeAndContrastChangeOnlyTheViewState) {
