@@ -36,6 +36,9 @@ void draw_row(const ScanRow& row, bool selected, UiActions& actions) {
     ImGui::TextUnformatted(detail::format_clock(row.captured_at).c_str());
     ImGui::TableNextColumn();
     ImGui::TextColored(state_color(row.state), "%s", to_string(row.state));
+    if (!row.message.empty() && ImGui::IsItemHovered()) {
+        ImGui::SetTooltip("%s", row.message.c_str());
+    }
     ImGui::TableNextColumn();
     ImGui::TextUnformatted(detail::format_optional(row.rms_mm, "{:.2f}").c_str());
     ImGui::TableNextColumn();
@@ -91,6 +94,9 @@ void draw_scan_list(const FieldViewState& state, const PanelLayout& layout, UiAc
         for (const ScanRow& row : state.scans) {
             draw_row(row, row.seq == state.selected_seq, actions);
         }
+        // Stick to the newest scan while the list is scrolled to the bottom (as ImGui's
+        // console example); scrolling up to look at older scans stays put.
+        if (ImGui::GetScrollY() >= ImGui::GetScrollMaxY()) ImGui::SetScrollHereY(1.0f);
         ImGui::EndTable();
     }
     ImGui::End();
