@@ -43,7 +43,7 @@ std::size_t LodController::update(double frame_ms, std::size_t total_points) {
 float thinned_point_size_px(float base_px, double fraction_drawn) {
     if (!(fraction_drawn > 0.0) || fraction_drawn >= 1.0) return base_px;
     const double size = base_px / std::sqrt(fraction_drawn);
-    return static_cast<float>(std::min(size, 4.0 * base_px));
+    return static_cast<float>(std::min(size, 2.0 * base_px));
 }
 
 }  // namespace anascan::gui

@@ -97,8 +97,8 @@ TEST(LevelOfDetail, ControllerShrinksOnSlowFramesAndGrowsBackOnFastOnes) {
 
 TEST(LevelOfDetail, ThinnedPointsGrowToFillTheGaps) {
     EXPECT_FLOAT_EQ(thinned_point_size_px(2.0f, 1.0), 2.0f);
-    EXPECT_FLOAT_EQ(thinned_point_size_px(2.0f, 0.25), 4.0f);
-    EXPECT_FLOAT_EQ(thinned_point_size_px(2.0f, 1e-6), 8.0f);  // capped at 4x
+    EXPECT_FLOAT_EQ(thinned_point_size_px(2.0f, 0.64), 2.5f);
+    EXPECT_FLOAT_EQ(thinned_point_size_px(2.0f, 1e-6), 4.0f);  // capped at 2x
 }
 
 TEST(ScanColors, PaletteTellsNeighboursApartQualityFollowsTheRms) {
