@@ -163,7 +163,10 @@ int run_loop(const FieldAppConfig& config, FieldWindow& window, AppState& app) {
     for (int frame = 0; config.frames == 0 || frame < config.frames; ++frame) {
         if (window.should_close()) break;
         const auto start = std::chrono::steady_clock::now();
-        window.begin_frame();
+        // Interactive and nothing left to refine: sleep until input (or 50 ms, for live
+        // updates) instead of spinning; measurement runs (--frames) never wait.
+        const bool idle = config.frames == 0 && stats.complete && !ImGui::IsAnyMouseDown();
+        window.begin_frame(idle ? 0.05 : 0.0);
         const gui::PanelLayout layout = current_layout(config.font_scale);
         app.camera.orbit(config.orbit_px_per_frame, 0.0);  // simulated operator (measuring)
         gui::UiActions actions;
@@ -206,6 +209,7 @@ int run_loop(const FieldAppConfig& config, FieldWindow& window, AppState& app) {
 int run_field_app(const FieldAppConfig& config) {
     auto window = FieldWindow::open({.width_px = config.width_px,
                                      .height_px = config.height_px,
+                                     .vsync = config.frames == 0,
                                      .font_scale = config.font_scale});
     if (!window) {
         std::fprintf(stderr, "anascan-field: error: %s\n", window.error().message.c_str());

@@ -64,8 +64,12 @@ FieldWindow::~FieldWindow() {
 
 bool FieldWindow::should_close() const { return glfwWindowShouldClose(window_) == GLFW_TRUE; }
 
-void FieldWindow::begin_frame() {
-    glfwPollEvents();
+void FieldWindow::begin_frame(double idle_wait_s) {
+    if (idle_wait_s > 0.0) {
+        glfwWaitEventsTimeout(idle_wait_s);
+    } else {
+        glfwPollEvents();
+    }
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();

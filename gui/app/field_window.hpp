@@ -17,7 +17,7 @@ struct WindowConfig {
     int width_px = 1280;
     int height_px = 800;
     bool visible = true;  ///< Hidden windows still render (used for screenshots).
-    bool vsync = false;   ///< Off: frame times measure the work, not the display rate.
+    bool vsync = false;   ///< On when interactive; off when measuring frame times (--frames).
     float font_scale = 1.5f;
 };
 
@@ -30,8 +30,9 @@ public:
     FieldWindow& operator=(const FieldWindow&) = delete;
 
     bool should_close() const;
-    /// Polls events and starts an ImGui frame.
-    void begin_frame();
+    /// Takes the pending events (or, with idle_wait_s > 0, waits up to that long for one, so
+    /// an idle window leaves the CPU to capture and registration) and starts an ImGui frame.
+    void begin_frame(double idle_wait_s = 0.0);
     /// Renders ImGui's draw data over the scene (call after drawing the scene).
     void render_ui();
     void swap();
