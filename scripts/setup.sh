@@ -19,6 +19,7 @@ PACKAGES=(
     umockdev libumockdev-dev
     zlib1g-dev libx11-dev              # drivers: recording CRC-32; projector test reads the X screen
     xvfb xauth
+    fonts-dejavu-core                  # gui: anascan-field's large readable font (DejaVu Sans)
     python3-open3d python3-numpy       # peer for the side-by-side benchmarks
     libopen3d-dev                      # Open3D C++: peer linked into anascan_bench_ply
 )

@@ -1,0 +1,242 @@
+#include "field_app.hpp"
+
+#include <GL/gl.h>
+#include <imgui.h>
+
+#include <chrono>
+#include <cstdio>
+
+#include "anascan/gui/level_of_detail.hpp"
+#include "anascan/gui/panels.hpp"
+#include "anascan/gui/point_renderer.hpp"
+#include "anascan/gui/progressive_view.hpp"
+#include "anascan/gui/scan_colors.hpp"
+#include "anascan/gui/theme.hpp"
+#include "demo_clouds.hpp"
+#include "field_window.hpp"
+#include "frame_times.hpp"
+#include "screenshot.hpp"
+
+namespace anascan::field {
+namespace {
+
+/// The view's background (linear RGB, 0..1): dark blue-grey, the points stand out.
+const Eigen::Vector3f kBackground(0.16f, 0.18f, 0.22f);
+
+/// Everything one run of the app owns besides the window.
+struct AppState {
+    gui::FieldViewState view;
+    gui::OrbitCamera camera;
+    std::unique_ptr<gui::PointRenderer> renderer;
+    std::unique_ptr<gui::ProgressiveView> view_image;
+    gui::ThemeConfig theme;
+    bool fit_pending = true;  ///< Fit the camera in the next frame (its aspect is known there).
+};
+
+/// Loads the PLY files and the synthetic stone into the renderer and the scan list; the
+/// renderer keeps the only copy of the points (on the GPU).
+Expected<void> load_scans(const FieldAppConfig& config, AppState& app) {
+    std::int64_t seq = 0;
+    for (const auto& path : config.clouds) {
+        auto scan = load_ply_scan(path, ++seq);
+        if (!scan) return fail(scan.error());
+        app.view.scans.push_back(scan->row);
+        app.renderer->add_chunk(seq, std::move(scan->cloud), Eigen::Isometry3d::Identity());
+    }
+    if (config.synthetic_points > 0) {
+        for (LoadedScan& scan : synthetic_stone(
+                 {.points = config.synthetic_points, .scans = config.synthetic_scans})) {
+            scan.row.seq = ++seq;
+            app.view.scans.push_back(scan.row);
+            app.renderer->add_chunk(seq, std::move(scan.cloud), Eigen::Isometry3d::Identity());
+        }
+    }
+    return {};
+}
+
+/// Chunk styles follow the view state: palette, quality, exclusion, highlight.
+void update_styles(AppState& app) {
+    const std::int64_t highlight =
+        app.view.selected_seq >= 0 ? app.view.selected_seq : gui::newest_scan(app.view);
+    for (const gui::ScanRow& row : app.view.scans) {
+        app.renderer->set_style(row.seq, {.scan_color = gui::scan_palette_color(row.seq),
+                                          .quality_color = gui::quality_color(row),
+                                          .visible = row.state != gui::ScanRowState::kExcluded,
+                                          .highlighted = row.seq == highlight});
+    }
+}
+
+gui::PanelLayout current_layout(float font_scale) {
+    const ImGuiIO& io = ImGui::GetIO();
+    const ImGuiStyle& style = ImGui::GetStyle();
+    return {.width_px = io.DisplaySize.x,
+            .height_px = io.DisplaySize.y,
+            .scan_list_width_px = 300.0f * font_scale,
+            .device_width_px = 240.0f * font_scale,
+            .status_height_px = ImGui::GetFrameHeight() + 2.0f * style.WindowPadding.y,
+            .banner_height_px = 90.0f * font_scale};
+}
+
+/// Mouse over the 3D view: left drag orbits, right or middle drag pans, the wheel zooms.
+void handle_camera_input(gui::OrbitCamera& camera, float view_height_px) {
+    const ImGuiIO& io = ImGui::GetIO();
+    if (io.WantCaptureMouse) return;
+    if (io.MouseDown[0]) camera.orbit(io.MouseDelta.x, io.MouseDelta.y);
+    if (io.MouseDown[1] || io.MouseDown[2]) {
+        camera.pan(io.MouseDelta.x, io.MouseDelta.y, view_height_px);
+    }
+    if (io.MouseWheel != 0.0f) camera.zoom(io.MouseWheel);
+}
+
+/// View actions change the state; session actions wait for the capture session.
+void apply_actions(const gui::UiActions& actions, AppState& app, bool font_scaled) {
+    for (const gui::UiAction& action : actions) {
+        if (action.kind == gui::UiActionKind::kFitView) {
+            app.fit_pending = true;
+        } else if (action.kind == gui::UiActionKind::kToggleContrast) {
+            gui::apply_view_action(app.view, action);
+            app.theme.high_contrast = app.view.high_contrast;
+            gui::apply_theme(app.theme, font_scaled);
+        } else if (!gui::apply_view_action(app.view, action)) {
+            app.view.status.last_error =
+                "no capture session attached: open one with --session (scans and devices "
+                "arrive with the capture session)";
+        }
+    }
+}
+
+/// The 3D view fills the space between the side panels and above the status bar.
+gui::DrawStats draw_scene(AppState& app, const gui::PanelLayout& layout, int fb_w, int fb_h,
+                          const gui::DrawConfig& draw) {
+    glViewport(0, 0, fb_w, fb_h);
+    glClearColor(kBackground.x(), kBackground.y(), kBackground.z(), 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    // Window pixels (top left) to frame-buffer pixels (bottom left), HiDPI-safe.
+    const float sx = static_cast<float>(fb_w) / std::max(layout.width_px, 1.0f);
+    const float sy = static_cast<float>(fb_h) / std::max(layout.height_px, 1.0f);
+    const int x = static_cast<int>(layout.view_x_px() * sx);
+    const int y = static_cast<int>(layout.status_height_px * sy);
+    const int w = std::max(1, static_cast<int>(layout.view_width_px() * sx));
+    const int h = std::max(1, static_cast<int>(layout.view_height_px() * sy));
+    if (app.fit_pending) {
+        app.camera.fit(app.renderer->bounds(), static_cast<double>(w) / h);
+        app.fit_pending = false;
+    }
+    handle_camera_input(app.camera, static_cast<float>(h));
+    const gui::DrawStats stats =
+        app.view_image->render(*app.renderer, app.camera, {x, y, w, h}, draw);
+    glViewport(0, 0, fb_w, fb_h);
+    return stats;
+}
+
+/// Frame times on stderr: all frames, and those that drew points apart from the copies of
+/// a complete image.
+void report(const std::vector<double>& frame_ms, const std::vector<bool>& drew,
+            const gui::DrawStats& last, std::size_t budget, const std::string& renderer_name) {
+    // The first frame compiles shaders and fills caches: it is not a steady-state frame.
+    std::vector<double> steady, drawing, copies;
+    for (std::size_t i = 1; i < frame_ms.size(); ++i) {
+        steady.push_back(frame_ms[i]);
+        (drew[i] ? drawing : copies).push_back(frame_ms[i]);
+    }
+    const FrameTimeSummary s = summarize_frame_times(steady);
+    const FrameTimeSummary d = summarize_frame_times(drawing);
+    const FrameTimeSummary c = summarize_frame_times(copies);
+    std::fprintf(stderr,
+                 "anascan-field: %zu frames (first excluded): frame time median %.1f ms, "
+                 "p95 %.1f ms, max %.1f ms\n"
+                 "  %zu frames drew points: median %.1f ms, p95 %.1f ms; %zu copied the complete "
+                 "image: median %.1f ms, p95 %.1f ms\n"
+                 "  image holds %zu of %zu points (budget %zu points per frame); GL renderer %s\n",
+                 steady.size(), s.median_ms, s.p95_ms, s.max_ms, drawing.size(), d.median_ms,
+                 d.p95_ms, copies.size(), c.median_ms, c.p95_ms, last.points_in_image,
+                 last.points_visible, budget, renderer_name.c_str());
+}
+
+/// init → loop (poll, new frame, panels, scene, UI, screenshot, swap) as Dear ImGui's
+/// example; the LOD budget follows the measured frame time unless fixed.
+int run_loop(const FieldAppConfig& config, FieldWindow& window, AppState& app) {
+    gui::LodController lod({.target_frame_ms = config.target_frame_ms});
+    std::vector<double> frame_ms;
+    std::vector<bool> drew;
+    gui::DrawStats stats;
+    for (int frame = 0; config.frames == 0 || frame < config.frames; ++frame) {
+        if (window.should_close()) break;
+        const auto start = std::chrono::steady_clock::now();
+        // Interactive and nothing left to refine: sleep until input (or 50 ms, for live
+        // updates) instead of spinning; measurement runs (--frames) never wait.
+        const bool idle = config.frames == 0 && stats.complete && !ImGui::IsAnyMouseDown();
+        window.begin_frame(idle ? 0.05 : 0.0);
+        const gui::PanelLayout layout = current_layout(config.font_scale);
+        app.camera.orbit(config.orbit_px_per_frame, 0.0);  // simulated operator (measuring)
+        gui::UiActions actions;
+        gui::draw_field_panels(app.view, layout, actions);
+        apply_actions(actions, app, window.font_scaled());
+        update_styles(app);
+        int fb_w = 0, fb_h = 0;
+        window.framebuffer_size(fb_w, fb_h);
+        const std::size_t budget = config.point_budget > 0 ? config.point_budget : lod.budget();
+        stats = draw_scene(app, layout, fb_w, fb_h,
+                           {.color_mode = app.view.color_mode,
+                            .budget_points = budget,
+                            .base_point_size_px = config.point_size_px});
+        window.render_ui();
+        if (config.screenshot_png && frame + 1 == config.frames) {
+            if (auto written = write_screenshot(*config.screenshot_png, fb_w, fb_h); !written) {
+                std::fprintf(stderr, "anascan-field: error: %s\n", written.error().message.c_str());
+                return 1;
+            }
+        }
+        window.swap();
+        const std::chrono::duration<double, std::milli> took =
+            std::chrono::steady_clock::now() - start;
+        frame_ms.push_back(took.count());
+        // Only frames that drew points tell the cost of a budget (cached frames are copies).
+        if (frame > 0 && stats.points_drawn > 0) {
+            lod.update(took.count(), app.renderer->total_points());
+        }
+        drew.push_back(stats.points_drawn > 0);
+    }
+    if (config.frames > 0) {
+        report(frame_ms, drew, stats, config.point_budget > 0 ? config.point_budget : lod.budget(),
+               window.renderer_name());
+    }
+    return 0;
+}
+
+}  // namespace
+
+int run_field_app(const FieldAppConfig& config) {
+    auto window = FieldWindow::open({.width_px = config.width_px,
+                                     .height_px = config.height_px,
+                                     .vsync = config.frames == 0,
+                                     .font_scale = config.font_scale});
+    if (!window) {
+        std::fprintf(stderr, "anascan-field: error: %s\n", window.error().message.c_str());
+        return 1;
+    }
+    AppState app;
+    auto renderer = gui::PointRenderer::create();
+    if (!renderer) {
+        std::fprintf(stderr, "anascan-field: error: %s\n", renderer.error().message.c_str());
+        return 1;
+    }
+    app.renderer = std::move(*renderer);
+    auto view_image = gui::ProgressiveView::create(kBackground);
+    if (!view_image) {
+        std::fprintf(stderr, "anascan-field: error: %s\n", view_image.error().message.c_str());
+        return 1;
+    }
+    app.view_image = std::move(*view_image);
+    if (auto loaded = load_scans(config, app); !loaded) {
+        std::fprintf(stderr, "anascan-field: error: %s\n", loaded.error().message.c_str());
+        return 1;
+    }
+    app.view.color_mode = config.color_mode;
+    app.view.high_contrast = config.high_contrast;
+    app.theme = {.high_contrast = config.high_contrast, .font_scale = config.font_scale};
+    gui::apply_theme(app.theme, (*window)->font_scaled());
+    return run_loop(config, **window, app);
+}
+
+}  // namespace anascan::field

@@ -1,0 +1,34 @@
+#pragma once
+/// \file
+/// The field app's main loop: window, point view and panels, until the window closes or
+/// `frames` frames are drawn; then the screenshot and the frame-time report.
+
+#include <cstddef>
+#include <filesystem>
+#include <optional>
+#include <vector>
+
+#include "anascan/gui/field_view_state.hpp"
+
+namespace anascan::field {
+
+struct FieldAppConfig {
+    std::vector<std::filesystem::path> clouds;  ///< PLY files, one scan each.
+    std::size_t synthetic_points = 0;           ///< > 0: add a synthetic stone of this size.
+    int synthetic_scans = 10;
+    std::optional<std::filesystem::path> screenshot_png;
+    int frames = 0;                   ///< 0: run until the window is closed.
+    std::size_t point_budget = 0;     ///< LOD budget in points; 0: adapt to target_frame_ms.
+    double target_frame_ms = 25.0;    ///< Frame time the adaptive LOD aims for.
+    float point_size_px = 2.0f;       ///< Point size when every point is drawn.
+    double orbit_px_per_frame = 0.0;  ///< Turn the camera every frame (measuring interaction).
+    int width_px = 1280, height_px = 800;
+    float font_scale = 1.5f;
+    bool high_contrast = false;
+    gui::ColorMode color_mode = gui::ColorMode::kByScan;
+};
+
+/// Runs the app; returns the process exit code (errors are printed on stderr).
+int run_field_app(const FieldAppConfig& config);
+
+}  // namespace anascan::field

@@ -1,0 +1,94 @@
+#define GLFW_INCLUDE_NONE
+#include "field_window.hpp"
+
+#include <GL/gl.h>
+#include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
+
+#include "anascan/gui/theme.hpp"
+
+namespace anascan::field {
+namespace {
+
+/// GLFW reports errors through a callback; keep the last one for our error message.
+thread_local std::string last_glfw_error;
+
+void on_glfw_error(int code, const char* description) {
+    last_glfw_error = "GLFW error " + std::to_string(code) + ": " + description;
+}
+
+}  // namespace
+
+Expected<std::unique_ptr<FieldWindow>> FieldWindow::open(const WindowConfig& config) {
+    glfwSetErrorCallback(on_glfw_error);
+    if (glfwInit() != GLFW_TRUE) {
+        return fail(ErrorCode::kUnsupported, "anascan-field: cannot open the display (" +
+                                                 last_glfw_error +
+                                                 "); is DISPLAY set? Headless: run under xvfb-run");
+    }
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+    glfwWindowHint(GLFW_VISIBLE, config.visible ? GLFW_TRUE : GLFW_FALSE);
+    GLFWwindow* window =
+        glfwCreateWindow(config.width_px, config.height_px, "anascan-field", nullptr, nullptr);
+    if (window == nullptr) {
+        glfwTerminate();
+        return fail(ErrorCode::kUnsupported,
+                    "anascan-field: cannot create an OpenGL 3.3 window (" + last_glfw_error + ")");
+    }
+    std::unique_ptr<FieldWindow> self(new FieldWindow(window));
+    glfwMakeContextCurrent(window);
+    glfwSwapInterval(config.vsync ? 1 : 0);
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGui::GetIO().IniFilename = nullptr;  // the layout comes from PanelLayout, not a file
+    self->font_scaled_ = gui::load_scaled_font(config.font_scale);
+    self->imgui_glfw_ = ImGui_ImplGlfw_InitForOpenGL(window, true);
+    self->imgui_gl_ = ImGui_ImplOpenGL3_Init("#version 330 core");
+    if (!self->imgui_glfw_ || !self->imgui_gl_) {
+        return fail(ErrorCode::kUnsupported, "anascan-field: ImGui backends failed to start");
+    }
+    return self;
+}
+
+FieldWindow::~FieldWindow() {
+    if (imgui_gl_) ImGui_ImplOpenGL3_Shutdown();
+    if (imgui_glfw_) ImGui_ImplGlfw_Shutdown();
+    if (ImGui::GetCurrentContext() != nullptr) ImGui::DestroyContext();
+    glfwDestroyWindow(window_);
+    glfwTerminate();
+}
+
+bool FieldWindow::should_close() const { return glfwWindowShouldClose(window_) == GLFW_TRUE; }
+
+void FieldWindow::begin_frame(double idle_wait_s) {
+    if (idle_wait_s > 0.0) {
+        glfwWaitEventsTimeout(idle_wait_s);
+    } else {
+        glfwPollEvents();
+    }
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+}
+
+void FieldWindow::render_ui() {
+    ImGui::Render();
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+}
+
+void FieldWindow::swap() { glfwSwapBuffers(window_); }
+
+void FieldWindow::framebuffer_size(int& width_px, int& height_px) const {
+    glfwGetFramebufferSize(window_, &width_px, &height_px);
+}
+
+std::string FieldWindow::renderer_name() const {
+    const auto* name = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    return name != nullptr ? name : "?";
+}
+
+}  // namespace anascan::field

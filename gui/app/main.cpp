@@ -1,0 +1,72 @@
+// anascan-field: the operator's window in the scanning tent.
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <map>
+
+#include "field_app.hpp"
+
+namespace {
+
+void add_options(CLI::App& app, anascan::field::FieldAppConfig& config,
+                 std::optional<std::string>& session) {
+    app.add_option("--session", session,
+                   "Session folder (attaching to a capture session "
+                   "arrives with the live capture session)");
+    app.add_option("--cloud", config.clouds, "PLY file(s) to show, one scan each")
+        ->check(CLI::ExistingFile);
+    app.add_option("--synthetic-points", config.synthetic_points,
+                   "Add a synthetic stone of this many points (renderer measurements)");
+    app.add_option("--synthetic-scans", config.synthetic_scans,
+                   "Split the synthetic stone into this many scans")
+        ->check(CLI::PositiveNumber);
+    app.add_option("--screenshot", config.screenshot_png,
+                   "Write the last frame as PNG (default --frames 5)");
+    app.add_option("--frames", config.frames,
+                   "Draw this many frames, then exit and print frame times (ms) on stderr")
+        ->check(CLI::NonNegativeNumber);
+    app.add_option("--point-budget", config.point_budget,
+                   "Points drawn per frame at most (0: adapt to --target-frame-ms)");
+    app.add_option("--target-frame-ms", config.target_frame_ms,
+                   "Frame time in ms the adaptive level of detail aims for")
+        ->check(CLI::PositiveNumber);
+    app.add_option("--point-size", config.point_size_px,
+                   "Point size in pixels at full density (grows when thinned)")
+        ->check(CLI::Range(1.0f, 16.0f));
+    app.add_option("--orbit-per-frame", config.orbit_px_per_frame,
+                   "Turn the view by this many pixels of mouse motion every frame (to measure "
+                   "frame times while the operator moves the view)");
+    app.add_option("--width", config.width_px, "Window width, pixels")->check(CLI::PositiveNumber);
+    app.add_option("--height", config.height_px, "Window height, pixels")
+        ->check(CLI::PositiveNumber);
+    app.add_option("--font-scale", config.font_scale, "Size of text and widgets (1 = small)")
+        ->check(CLI::Range(0.5f, 4.0f));
+    app.add_flag("--high-contrast", config.high_contrast, "High-contrast theme (bright light)");
+    const std::map<std::string, anascan::gui::ColorMode> modes{
+        {"scan", anascan::gui::ColorMode::kByScan},
+        {"quality", anascan::gui::ColorMode::kByQuality},
+        {"coverage", anascan::gui::ColorMode::kByCoverage}};
+    app.add_option("--color-by", config.color_mode, "Colour points by scan|quality|coverage")
+        ->transform(CLI::CheckedTransformer(modes, CLI::ignore_case));
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{
+        "anascan-field: the field app of anascan (3D view of the scans, scan list, devices, "
+        "status). Units are metres.",
+        "anascan-field"};
+    anascan::field::FieldAppConfig config;
+    std::optional<std::string> session;
+    add_options(app, config, session);
+    CLI11_PARSE(app, argc, argv);
+    if (session) {
+        std::fprintf(stderr,
+                     "anascan-field: error: --session %s: attaching to a capture session is not "
+                     "built yet; show the scans' PLY files with --cloud\n",
+                     session->c_str());
+        return 2;
+    }
+    if (config.screenshot_png && config.frames == 0) config.frames = 5;
+    return anascan::field::run_field_app(config);
+}

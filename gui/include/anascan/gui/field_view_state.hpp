@@ -1,0 +1,87 @@
+#pragma once
+/// \file
+/// Everything the field app's panels show, as plain data. The panels are pure functions of
+/// this state (no `static` locals), so they can be drawn and tested in a headless ImGui
+/// context. The app fills it from acquisition's ScanRecords and SessionEvents; each field
+/// names the ScanRecord / event field it mirrors.
+
+#include <chrono>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace anascan::gui {
+
+/// Registration state of one scan (mirrors acquisition::ScanState).
+enum class ScanRowState { kQueued, kRegistered, kFailed, kExcluded };
+
+/// As the scan list shows it: "queued", "ok", "FAILED" (capitals: it must stand out),
+/// "excluded".
+const char* to_string(ScanRowState state);
+
+/// One line of the scan list, in capture order.
+struct ScanRow {
+    std::int64_t seq = 0;                               ///< ScanRecord::seq.
+    std::string device_id;                              ///< ScanRecord::device_id.
+    std::chrono::system_clock::time_point captured_at;  ///< ScanRecord::captured_at.
+    ScanRowState state = ScanRowState::kQueued;         ///< ScanRecord::state.
+    std::optional<double> rms_mm;                       ///< Registration RMS, millimetres.
+    std::optional<double> overlap_percent;              ///< Overlap with the model, 0..100 %.
+    int group = -1;                                     ///< ScanRecord::group (-1: none yet).
+    std::string message;  ///< The registrar's message (why it failed), may be empty.
+};
+
+/// One device of the device panel (mirrors the device list of acquisition).
+struct DeviceRow {
+    std::string id;    ///< Device id, e.g. "sim:tof/0".
+    std::string kind;  ///< "time-of-flight", "structured-light", ...
+    bool connected = false;
+    std::string status;  ///< Last status line ("ready", "unplugged", ...).
+};
+
+/// The device panel: the devices, which one captures, whether a capture is running.
+struct DevicePanelState {
+    std::vector<DeviceRow> devices;
+    int active_device = -1;  ///< Index into devices, -1 when none is chosen.
+    bool capturing = false;  ///< A capture is in progress: the capture button is disabled.
+};
+
+/// The status bar figures; an absent figure shows as "-".
+struct StatusBarState {
+    std::optional<double> coverage_percent;        ///< Of the stone surface, 0..100 %.
+    int queued_registrations = 0;                  ///< Scans saved but not yet registered.
+    std::optional<std::uint64_t> disk_free_bytes;  ///< On the session's file system.
+    std::string last_error;                        ///< Last error event, empty when none.
+};
+
+/// How the 3D view colours the points.
+enum class ColorMode { kByScan, kByQuality, kByCoverage };
+
+/// The whole view state of the field app.
+struct FieldViewState {
+    std::string session_dir;         ///< Shown in the title line; empty when no session.
+    std::string session_check;       ///< What `session check` found on reopening, or empty.
+    std::vector<ScanRow> scans;      ///< In capture order (ascending seq).
+    std::int64_t selected_seq = -1;  ///< Highlighted scan, -1 when none.
+    DevicePanelState device;
+    StatusBarState status;
+    ColorMode color_mode = ColorMode::kByScan;
+    bool high_contrast = false;
+};
+
+/// A failed registration, as the banner shows it: impossible to miss, says what to try.
+struct FailureBanner {
+    std::int64_t seq = 0;
+    std::string message;      ///< What happened, naming the scan.
+    std::string what_to_try;  ///< The operator's next step.
+};
+
+/// The banner for the newest failed scan, if the newest registration outcome is a failure
+/// (a later registered scan clears it: the operator has recovered).
+std::optional<FailureBanner> failure_banner(const FieldViewState& state);
+
+/// The newest scan (highest seq) that is not excluded, or -1.
+std::int64_t newest_scan(const FieldViewState& state);
+
+}  // namespace anascan::gui

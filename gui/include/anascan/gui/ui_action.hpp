@@ -1,0 +1,41 @@
+#pragma once
+/// \file
+/// What the operator asked for, returned by the panels as values. The app applies the
+/// view-only ones itself (apply_view_action) and forwards the others to the session.
+
+#include <cstdint>
+#include <vector>
+
+#include "anascan/gui/field_view_state.hpp"
+
+namespace anascan::gui {
+
+enum class UiActionKind {
+    kSelectScan,      ///< seq: highlight this scan (view only).
+    kCapture,         ///< Capture a scan with the active device.
+    kExclude,         ///< seq: leave the scan out of the model (undoable).
+    kInclude,         ///< seq: undo an exclusion.
+    kReRegister,      ///< seq: register the scan again.
+    kTurnedOver,      ///< The stone was turned over before the next scan.
+    kConnectDevice,   ///< device_index: connect (or choose) this device.
+    kSetColorMode,    ///< color_mode (view only).
+    kToggleContrast,  ///< Switch the high-contrast theme (view only).
+    kFitView,         ///< Fit the camera to the stone (view only).
+};
+
+/// One operator request.
+struct UiAction {
+    UiActionKind kind = UiActionKind::kCapture;
+    std::int64_t seq = -1;                      ///< For the scan actions.
+    int device_index = -1;                      ///< For kConnectDevice.
+    ColorMode color_mode = ColorMode::kByScan;  ///< For kSetColorMode.
+    friend bool operator==(const UiAction&, const UiAction&) = default;
+};
+
+using UiActions = std::vector<UiAction>;
+
+/// Applies a view-only action (select, colour mode, contrast) to the state; returns false
+/// for actions that must go to the session (capture, exclude, ...) or the camera (fit).
+bool apply_view_action(FieldViewState& state, const UiAction& action);
+
+}  // namespace anascan::gui

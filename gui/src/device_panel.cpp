@@ -1,0 +1,78 @@
+#include <fmt/format.h>
+
+#include "anascan/gui/panels.hpp"
+#include "panel_util.hpp"
+
+namespace anascan::gui {
+namespace {
+
+void draw_devices(const DevicePanelState& device, UiActions& actions) {
+    if (device.devices.empty()) ImGui::TextColored(detail::kColorMuted, "No devices found");
+    for (int i = 0; i < static_cast<int>(device.devices.size()); ++i) {
+        const DeviceRow& row = device.devices[static_cast<std::size_t>(i)];
+        const bool active = i == device.active_device;
+        ImGui::TextColored(row.connected ? detail::kColorGood : detail::kColorBad, "%s%s",
+                           active ? "> " : "  ", row.id.c_str());
+        ImGui::SameLine();
+        const std::string label = fmt::format("{}##dev{}", row.connected ? "Use" : "Connect", i);
+        if (!active && ImGui::SmallButton(label.c_str())) {
+            actions.push_back({.kind = UiActionKind::kConnectDevice, .device_index = i});
+        }
+        ImGui::TextColored(detail::kColorMuted, "    %s, %s", row.kind.c_str(), row.status.c_str());
+    }
+}
+
+void draw_capture_buttons(const DevicePanelState& device, UiActions& actions) {
+    const bool can_capture = device.active_device >= 0 && !device.capturing;
+    ImGui::BeginDisabled(!can_capture);
+    const float width = ImGui::GetContentRegionAvail().x;
+    if (ImGui::Button(device.capturing ? "Capturing..." : "Capture  (Space)",
+                      ImVec2(width, 2.5f * ImGui::GetFrameHeight()))) {
+        actions.push_back({.kind = UiActionKind::kCapture});
+    }
+    ImGui::EndDisabled();
+    if (ImGui::Button("Stone turned over  (T)", ImVec2(width, 0.0f))) {
+        actions.push_back({.kind = UiActionKind::kTurnedOver});
+    }
+}
+
+void draw_view_options(const FieldViewState& state, UiActions& actions) {
+    ImGui::TextUnformatted("Colour points by");
+    constexpr std::pair<ColorMode, const char*> kModes[] = {{ColorMode::kByScan, "scan"},
+                                                            {ColorMode::kByQuality, "quality"},
+                                                            {ColorMode::kByCoverage, "coverage"}};
+    for (const auto& [mode, name] : kModes) {
+        if (ImGui::RadioButton(name, state.color_mode == mode)) {
+            actions.push_back({.kind = UiActionKind::kSetColorMode, .color_mode = mode});
+        }
+    }
+    bool high_contrast = state.high_contrast;
+    if (ImGui::Checkbox("High contrast", &high_contrast)) {
+        actions.push_back({.kind = UiActionKind::kToggleContrast});
+    }
+    if (ImGui::Button("Fit view  (F)")) actions.push_back({.kind = UiActionKind::kFitView});
+}
+
+}  // namespace
+
+void draw_device_panel(const FieldViewState& state, const PanelLayout& layout, UiActions& actions) {
+    detail::place_next_window(layout.width_px - layout.device_width_px, 0.0f,
+                              layout.device_width_px, layout.height_px - layout.status_height_px);
+    ImGui::Begin("Device", nullptr, detail::kPanelFlags);
+    if (!state.session_dir.empty()) {
+        ImGui::TextWrapped("Session: %s", state.session_dir.c_str());
+    }
+    if (!state.session_check.empty()) {
+        ImGui::TextColored(detail::kColorWarn, "Reopened: %s", state.session_check.c_str());
+    }
+    ImGui::Separator();
+    draw_devices(state.device, actions);
+    ImGui::Separator();
+    draw_capture_buttons(state.device, actions);
+    ImGui::Separator();
+    draw_view_options(state, actions);
+    ImGui::TextWrapped("X excludes the newest scan, C cycles the colours.");
+    ImGui::End();
+}
+
+}  // namespace anascan::gui

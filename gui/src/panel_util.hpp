@@ -1,0 +1,40 @@
+#pragma once
+/// \file
+/// Small helpers shared by the panels (private to the gui module).
+
+#include <imgui.h>
+
+#include <chrono>
+#include <cstdint>
+#include <optional>
+#include <string>
+
+namespace anascan::gui::detail {
+
+/// Flags of a panel window: fixed place and size, chosen by the layout, not by dragging.
+inline constexpr ImGuiWindowFlags kPanelFlags =
+    ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
+    ImGuiWindowFlags_NoSavedSettings;
+
+/// Places the next window at (x, y) with size (w, h), pixels.
+inline void place_next_window(float x, float y, float w, float h) {
+    ImGui::SetNextWindowPos(ImVec2(x, y), ImGuiCond_Always);
+    ImGui::SetNextWindowSize(ImVec2(w, h), ImGuiCond_Always);
+}
+
+/// Colours that keep their meaning in both themes.
+inline const ImVec4 kColorGood{0.25f, 0.85f, 0.35f, 1.0f};
+inline const ImVec4 kColorWarn{1.0f, 0.8f, 0.1f, 1.0f};
+inline const ImVec4 kColorBad{1.0f, 0.3f, 0.25f, 1.0f};
+inline const ImVec4 kColorMuted{0.6f, 0.6f, 0.6f, 1.0f};
+
+/// "12.3" or "-" for an absent figure.
+std::string format_optional(const std::optional<double>& value, const char* format);
+
+/// "14:03:27" (local time).
+std::string format_clock(std::chrono::system_clock::time_point time);
+
+/// "12.3 GB" / "850 MB".
+std::string format_bytes(std::uint64_t bytes);
+
+}  // namespace anascan::gui::detail

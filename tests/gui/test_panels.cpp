@@ -1,0 +1,201 @@
+// The field app's panels in a headless ImGui context: simulated clicks and keys give the
+// operator's actions as values; the failure banner appears exactly when it must.
+#include <gtest/gtest.h>
+
+#include "anascan/gui/panels.hpp"
+#include "anascan/gui/theme.hpp"
+#include "headless_imgui.hpp"
+
+namespace anascan::gui {
+namespace {
+
+using std::chrono::system_clock;
+
+ScanRow row(std::int64_t seq, ScanRowState state, double rms_mm = 0.4) {
+    return {.seq = seq,
+            .device_id = "sim:tof/0",
+            .captured_at = system_clock::time_point(std::chrono::seconds(1'700'000'000 + seq)),
+            .state = state,
+            .rms_mm = rms_mm,
+            .overlap_percent = 60.0,
+            .group = 0};
+}
+
+FieldViewState four_registered_scans() {
+    FieldViewState state;
+    for (std::int64_t seq = 1; seq <= 4; ++seq)
+        state.scans.push_back(row(seq, ScanRowState::kRegistered));
+    state.device.devices = {
+        {.id = "sim:tof/0", .kind = "time-of-flight", .connected = true, .status = "ready"}};
+    state.device.active_device = 0;
+    state.status = {
+        .coverage_percent = 72.5, .queued_registrations = 1, .disk_free_bytes = 40'000'000'000ull};
+    return state;
+}
+
+constexpr PanelLayout kLayout{};
+
+/// Clicks down a vertical line through a panel, returning every action in order of y.
+UiActions sweep_clicks(HeadlessImGui& ui, const FieldViewState& state, float x, float y0,
+                       float y1) {
+    UiActions all;
+    for (float y = y0; y < y1; y += 3.0f) {
+        UiActions actions;
+        ui.click([&] { draw_field_panels(state, kLayout, actions); }, ImVec2(x, y));
+        all.insert(all.end(), actions.begin(), actions.end());
+    }
+    return all;
+}
+
+std::vector<std::int64_t> distinct_seqs(const UiActions& actions, UiActionKind kind) {
+    std::vector<std::int64_t> seqs;
+    for (const UiAction& a : actions) {
+        if (a.kind == kind && (seqs.empty() || seqs.back() != a.seq)) seqs.push_back(a.seq);
+    }
+    return seqs;
+}
+
+TEST(ScanListPanel, ClickingEachRowSelectsItsScanInCaptureOrder) {
+    HeadlessImGui ui;
+    const FieldViewState state = four_registered_scans();
+    UiActions warmup;
+    ui.frame([&] { draw_field_panels(state, kLayout, warmup); });
+    const UiActions actions = sweep_clicks(ui, state, 30.0f, 0.0f, 400.0f);
+    EXPECT_EQ(distinct_seqs(actions, UiActionKind::kSelectScan),
+              (std::vector<std::int64_t>{1, 2, 3, 4}));
+    EXPECT_TRUE(HeadlessImGui::window_drawn("Scans"));
+    EXPECT_TRUE(HeadlessImGui::window_drawn("Status"));
+    EXPECT_TRUE(HeadlessImGui::window_drawn("Device"));
+}
+
+TEST(ScanListPanel, SelectedScanOffersExcludeAndReRegister) {
+    HeadlessImGui ui;
+    FieldViewState state = four_registered_scans();
+    state.selected_seq = 3;
+    UiActions warmup;
+    ui.frame([&] { draw_field_panels(state, kLayout, warmup); });
+    // The buttons sit on the first line under the title bar, left to right.
+    UiActions actions;
+    for (float x = 5.0f; x < kLayout.scan_list_width_px; x += 4.0f) {
+        for (float y = 20.0f; y < 60.0f; y += 6.0f) {
+            ui.click([&] { draw_field_panels(state, kLayout, actions); }, ImVec2(x, y));
+        }
+    }
+    EXPECT_EQ(distinct_seqs(actions, UiActionKind::kExclude), (std::vector<std::int64_t>{3}));
+    EXPECT_EQ(distinct_seqs(actions, UiActionKind::kReRegister), (std::vector<std::int64_t>{3}));
+}
+
+TEST(FailureBanner, ShownWhenTheNewestOutcomeFailedAndClearedByALaterSuccess) {
+    HeadlessImGui ui;
+    FieldViewState state = four_registered_scans();
+    state.scans.push_back(row(5, ScanRowState::kFailed));
+    state.scans.back().message = "overlap 8 % below 30 %";
+    state.scans.push_back(row(6, ScanRowState::kQueued));  // still waiting: banner stays
+    UiActions actions;
+    bool drawn = false;
+    ui.frame([&] { drawn = draw_failure_banner(state, kLayout, actions); });
+    EXPECT_TRUE(drawn);
+    EXPECT_TRUE(HeadlessImGui::window_drawn("Registration failed"));
+    const auto banner = failure_banner(state);
+    ASSERT_TRUE(banner.has_value());
+    EXPECT_EQ(banner->seq, 5);
+    EXPECT_NE(banner->message.find("overlap 8 %"), std::string::npos);
+    EXPECT_FALSE(banner->what_to_try.empty());
+
+    state.scans.back().state = ScanRowState::kRegistered;  // scan 6 registered: recovered
+    ui.frame([&] { drawn = draw_failure_banner(state, kLayout, actions); });
+    EXPECT_FALSE(drawn);
+    EXPECT_FALSE(HeadlessImGui::window_drawn("Registration failed"));
+    EXPECT_FALSE(failure_banner(state).has_value());
+}
+
+TEST(FailureBanner, ItsButtonExcludesTheFailedScan) {
+    HeadlessImGui ui;
+    FieldViewState state = four_registered_scans();
+    state.scans.push_back(row(5, ScanRowState::kFailed));
+    UiActions warmup;
+    ui.frame([&] { draw_field_panels(state, kLayout, warmup); });
+    const float x = kLayout.view_x_px() + 60.0f;
+    const UiActions actions = sweep_clicks(ui, state, x, 0.0f, kLayout.banner_height_px);
+    EXPECT_EQ(distinct_seqs(actions, UiActionKind::kExclude), (std::vector<std::int64_t>{5}));
+}
+
+TEST(Shortcuts, SpaceCapturesXExcludesTheNewestTMarksTurnedOver) {
+    HeadlessImGui ui;
+    FieldViewState state = four_registered_scans();
+    state.scans.back().state = ScanRowState::kExcluded;  // already excluded: newest is 3
+    auto press = [&](int key) {
+        UiActions actions;
+        ui.frame([&] { handle_shortcuts(state, actions); });  // key up
+        ui.frame([&] { handle_shortcuts(state, actions); }, ImVec2(-1, -1), false, key);
+        return actions;
+    };
+    EXPECT_EQ(press(kKeyCapture), (UiActions{{.kind = UiActionKind::kCapture}}));
+    EXPECT_EQ(press(kKeyExcludeLast), (UiActions{{.kind = UiActionKind::kExclude, .seq = 3}}));
+    EXPECT_EQ(press(kKeyTurnedOver), (UiActions{{.kind = UiActionKind::kTurnedOver}}));
+    state.device.capturing = true;  // no second capture while one runs
+    EXPECT_TRUE(press(kKeyCapture).empty());
+}
+
+TEST(DevicePanel, CaptureButtonOnlyWithAnActiveIdleDevice) {
+    HeadlessImGui ui;
+    FieldViewState state = four_registered_scans();
+    const float x = kLayout.width_px - kLayout.device_width_px + 40.0f;
+    auto captures = [&] {
+        UiActions warmup;
+        ui.frame([&] { draw_field_panels(state, kLayout, warmup); });
+        const UiActions actions = sweep_clicks(ui, state, x, 0.0f, 400.0f);
+        return std::count_if(actions.begin(), actions.end(),
+                             [](const UiAction& a) { return a.kind == UiActionKind::kCapture; });
+    };
+    EXPECT_GT(captures(), 0);
+    state.device.active_device = -1;
+    EXPECT_EQ(captures(), 0);
+}
+
+TEST(Panels, SameStateDrawsTheSameFrame) {
+    // No hidden state: two frames from one state and no input give identical geometry.
+    HeadlessImGui ui;
+    const FieldViewState state = four_registered_scans();
+    auto vertices = [&] {
+        UiActions actions;
+        ui.frame([&] { draw_field_panels(state, kLayout, actions); });
+        return ImGui::GetDrawData()->TotalVtxCount;
+    };
+    vertices();  // first frame sizes the windows
+    const int a = vertices();
+    EXPECT_GT(a, 0);
+    EXPECT_EQ(vertices(), a);
+}
+
+TEST(Theme, HighContrastIsBlackAndWhiteAndSwitchingBackDoesNotAccumulateScaling) {
+    HeadlessImGui ui;
+    apply_theme({.high_contrast = true, .font_scale = 2.0f}, /*font_already_scaled=*/false);
+    const ImGuiStyle& style = ImGui::GetStyle();
+    EXPECT_EQ(style.Colors[ImGuiCol_WindowBg].x, 0.0f);
+    EXPECT_EQ(style.Colors[ImGuiCol_Text].x, 1.0f);
+    EXPECT_FLOAT_EQ(ImGui::GetIO().FontGlobalScale, 2.0f);
+    const float padding = style.WindowPadding.x;
+    apply_theme({.high_contrast = false, .font_scale = 2.0f}, false);
+    apply_theme({.high_contrast = true, .font_scale = 2.0f}, false);
+    EXPECT_FLOAT_EQ(ImGui::GetStyle().WindowPadding.x, padding);
+    EXPECT_FLOAT_EQ(padding, 2.0f * ImGuiStyle().WindowPadding.x);
+    apply_theme({.font_scale = 2.0f}, /*font_already_scaled=*/true);
+    EXPECT_FLOAT_EQ(ImGui::GetIO().FontGlobalScale, 1.0f);
+}
+
+TEST(ViewActions, SelectionColourModeAndContrastChangeOnlyTheViewState) {
+    FieldViewState state = four_registered_scans();
+    EXPECT_TRUE(apply_view_action(state, {.kind = UiActionKind::kSelectScan, .seq = 2}));
+    EXPECT_EQ(state.selected_seq, 2);
+    EXPECT_TRUE(apply_view_action(
+        state, {.kind = UiActionKind::kSetColorMode, .color_mode = ColorMode::kByQuality}));
+    EXPECT_EQ(state.color_mode, ColorMode::kByQuality);
+    EXPECT_TRUE(apply_view_action(state, {.kind = UiActionKind::kToggleContrast}));
+    EXPECT_TRUE(state.high_contrast);
+    EXPECT_FALSE(apply_view_action(state, {.kind = UiActionKind::kCapture}));
+    EXPECT_FALSE(apply_view_action(state, {.kind = UiActionKind::kExclude, .seq = 1}));
+}
+
+}  // namespace
+}  // namespace anascan::gui
