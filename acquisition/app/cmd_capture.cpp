@@ -11,12 +11,10 @@
 #include <thread>
 
 #include "anascan/acquisition/capture_session.hpp"
-#include "anascan/drivers/device_registry.hpp"
-#include "anascan/sim/scanning_tour.hpp"
-#include "anascan/sim/sim_scanner.hpp"
+#include "anascan/acquisition/scanner_source.hpp"
+#include "anascan/acquisition/session_coverage.hpp"
 #include "capture_summary.hpp"
 #include "commands.hpp"
-#include "device_registry_setup.hpp"
 
 namespace anascan::cli {
 namespace {
@@ -34,7 +32,7 @@ struct CaptureOptions {
     bool no_register = false;
     bool no_coverage = false;
     int sim_unplug_after = -1;
-    drivers::DeviceSettings settings;  ///< Only the fields given on the command line.
+    acquisition::ScannerSettings settings;  ///< Only the fields given on the command line.
     double reconnect_timeout_s = 10.0;
 };
 
@@ -50,32 +48,6 @@ std::string device_uri(const CaptureOptions& o) {
     return o.device + "/" + o.scene;
 }
 
-acquisition::ScannerOpener make_opener(std::string uri, int unplug_after,
-                                       drivers::DeviceSettings settings) {
-    auto registry = std::make_shared<drivers::DeviceRegistry>(make_cli_registry());
-    auto first = std::make_shared<bool>(true);
-    return [registry, uri, unplug_after, settings, first]() -> Expected<std::unique_ptr<drivers::Scanner>> {
-        auto device = registry->open(uri);
-        if (!device) return fail(device.error());
-        drivers::Scanner* scanner = (*device)->as_scanner();
-        if (scanner == nullptr)
-            return fail(ErrorCode::kUnsupported,
-                        uri + ": not a scanner (a camera?); capture needs a scanner");
-        device->release();
-        std::unique_ptr<drivers::Scanner> owned(scanner);
-        if (settings != drivers::DeviceSettings{})
-            if (auto ok = owned->configure(settings); !ok) return fail(ok.error());
-        auto* sim = dynamic_cast<sim::SimScanner*>(owned.get());
-        if (sim != nullptr && unplug_after >= 0 && *first) {
-            auto faults = std::make_shared<sim::SimDeviceFaults>();
-            faults->unplug_after_captures = unplug_after;
-            sim->set_faults(faults);
-        }
-        *first = false;
-        return owned;
-    };
-}
-
 /// Prints the session's events, one line each, as they arrive (stdout is a log here).
 acquisition::SessionEventSink printing_sink() {
     auto mutex = std::make_shared<std::mutex>();
@@ -88,6 +60,18 @@ acquisition::SessionEventSink printing_sink() {
         std::printf("%s\n", event.message.c_str());
         std::fflush(stdout);
     };
+}
+
+/// The coverage of the finished session, from the scans on disk as `anascan coverage`
+/// computes it, so that both report the same figure.
+void store_final_coverage(acquisition::SessionStore& store) {
+    auto report = acquisition::session_coverage(store, {});
+    if (!report) {
+        spdlog::warn("no coverage: {}", report.error().message);
+        return;
+    }
+    if (auto ok = store.set_value("coverage", coverage_to_json(*report)); !ok)
+        spdlog::warn("coverage not stored: {}", ok.error().message);
 }
 
 /// A real scanner: the operator places it and presses Enter (q or end of input stops).
@@ -128,35 +112,34 @@ void run_capture(const CaptureOptions& o) {
     if (!existing) fail_command(existing.error());
     const int already = static_cast<int>(existing->size());
 
-    sim::ScanningTourConfig tour{.views = o.views,
-                                 .flip_after = o.flip_after < 0 ? o.views / 2 : o.flip_after,
-                                 .distance_m = o.distance_m,
-                                 .seed = o.tour_seed};
-    const std::vector<sim::TourStep> steps = sim::plan_scanning_tour(tour);
+    const acquisition::SimulatedTour tour{
+        .views = o.views,
+        .flip_after = o.flip_after < 0 ? o.views / 2 : o.flip_after,
+        .distance_m = o.distance_m,
+        .seed = o.tour_seed};
     acquisition::CaptureSessionConfig config{.register_live = !o.no_register,
                                              .coverage_live = !o.no_coverage};
     auto session = CaptureSession::start(std::move(*store), config, printing_sink());
     if (!session) fail_command(session.error());
-    if (auto ok = (*session)->attach_scanner(uri, make_opener(uri, o.sim_unplug_after, o.settings));
-        !ok)
+    const acquisition::ScannerSource source{
+        .uri = uri, .settings = o.settings, .sim_unplug_after = o.sim_unplug_after};
+    if (auto ok = (*session)->attach_scanner(uri, acquisition::make_scanner_opener(source)); !ok)
         fail_command(ok.error());
     if (already > 0)
         std::printf("session %s has %d scans: resuming at view %d of %d\n", o.session.c_str(),
                     already, std::min(already, o.views) + 1, o.views);
     std::optional<Error> stopped;
-    const bool simulated = uri.rfind("sim:", 0) == 0;
+    const bool simulated = acquisition::is_simulated(uri);
     for (int i = already; i < o.views && !stopped; ++i) {
-        const sim::TourStep step = steps[static_cast<std::size_t>(i)];
         if (!simulated && !operator_ready(i, o.views)) break;
-        if (step.turn_now) std::printf("the stone is turned over before view %d\n", i + 1);
-        acquisition::CaptureRequest request{
-            .before = [tour,
-                       step](drivers::Scanner& s) { return sim::apply_tour_step(s, tour, step); },
-            .turned_over = step.turn_now};
-        stopped = capture_view(**session, request, o.reconnect_timeout_s);
+        if (acquisition::tour_turns_over_before(tour, i))
+            std::printf("the stone is turned over before view %d\n", i + 1);
+        stopped =
+            capture_view(**session, acquisition::tour_request(tour, i), o.reconnect_timeout_s);
     }
     spdlog::info("capture done; waiting for registration to catch up");
     (*session)->wait_until_idle();
+    if (!o.no_register && !o.no_coverage) store_final_coverage((*session)->store());
     print_capture_summary((*session)->store());
     if (stopped) throw CommandFailed("capture stopped: " + stopped->message);
 }
