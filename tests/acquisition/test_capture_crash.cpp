@@ -90,10 +90,10 @@ TEST_F(CaptureCrash, EveryAcknowledgedScanSurvivesSigkillAndCaptureResumes) {
     const std::string session = (dir_ / "session").string();
     const std::vector<std::string> capture{
         "capture", "--device",           "sim:tof", "--scene", "small-block", "--session",
-        session,   "--angular-step-deg", "0.5",     "--views", "100000",      "--flip-after",
+        session,   "--angular-step-deg", "1",     "--views", "5000",      "--flip-after",
         "0",       "--no-coverage"};
     std::mt19937_64 rng(20261122);
-    std::uniform_int_distribution<int> kill_ms(0, 2500);
+    std::uniform_int_distribution<int> kill_ms(0, 1500);
     std::set<std::int64_t> acknowledged;
     constexpr int kKills = 50;
     for (int k = 0; k < kKills; ++k) {
@@ -123,7 +123,7 @@ TEST_F(CaptureCrash, EveryAcknowledgedScanSurvivesSigkillAndCaptureResumes) {
     const std::size_t before = files.size();
     const auto resumed =
         run_cli("capture --device sim:tof --scene small-block --session " + session +
-                " --angular-step-deg 0.5 --flip-after 0 --no-coverage --views " +
+                " --angular-step-deg 1 --flip-after 0 --no-coverage --views " +
                 std::to_string(before + 2));
     EXPECT_EQ(resumed.exit_code, 0) << resumed.output;
     EXPECT_NE(resumed.output.find("saved scan " + std::to_string(files.rbegin()->first + 1)),
