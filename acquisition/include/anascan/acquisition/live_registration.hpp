@@ -72,7 +72,13 @@ struct LiveRegistrationConfig {
     /// the fine registration is taken for a wrong local minimum.
     double max_prior_correction_deg = 15.0;
     double max_prior_correction_m = 0.15;
-    std::size_t model_scans = 5;  ///< Registered scans merged into the model of a hypothesis.
+    std::size_t model_scans = 5;
+    /// A verified pose is probed by restarts shifted ±1 and ±2 times this (metres) along
+    /// its weakest direction (an ornament band repeats every few centimetres); a restart
+    /// whose overlap is larger by `slide_overlap_margin` replaces it. 0 = no probes.
+    double slide_probe_m = 0.03;
+    double slide_overlap_margin =
+        0.01;  ///< Registered scans merged into the model of a hypothesis.
     /// Verification (issue 3): RMS at most this many voxel sizes ...
     double max_rms_voxel_factor = 0.75;
     double min_overlap_fraction = 0.3;       ///< ... overlap of the new scan at least this ...
@@ -82,6 +88,12 @@ struct LiveRegistrationConfig {
     /// Descriptor radii for the session; all zero = from the first usable scan's diagonal.
     InvariantRadii radii_m{};
     std::size_t max_global_targets = 8;
+    /// Once `min_links_for_rms_gate` links exist, a global hypothesis counts only with an RMS
+    /// within this multiple of the links' median RMS: a near-symmetric stone (a box with
+    /// different relief per face) matches itself turned by 90° or 180° at a few times the
+    /// RMS of the right pose.
+    double global_rms_median_factor = 2.5;
+    std::size_t min_links_for_rms_gate = 5;
     /// A verified global pose (any hypothesis, also of an ambiguous result) within these of
     /// a motion prior or the previous pose is taken: the prior resolves the look-alikes.
     double max_global_prior_deg = 30.0;
