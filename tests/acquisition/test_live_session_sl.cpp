@@ -1,6 +1,6 @@
 // LiveRegistrar on a simulated structured-light session of the small block (the real
 // decoder, ~300k points per scan): views around the block, turned over halfway, refine()
-// after each scan as the registration worker does. Views: ANASCAN_LIVE_VIEWS (default 8;
+// after each scan as the registration worker does. Views: ANASCAN_LIVE_VIEWS (default 10;
 // scripts/live-session-check.sh runs the 24). Prints the figures of the session.
 #include <gtest/gtest.h>
 
@@ -18,10 +18,14 @@
 namespace anascan::acquisition {
 namespace {
 
+/// The tour has 12 views per side (30° steps); a session of N views takes the first N/2 of
+/// each side (default 10: a minute or two; the figure is N = 24).
+constexpr int kViewsPerSide = 12;
+
 int view_count() {
     const char* text = std::getenv("ANASCAN_LIVE_VIEWS");
-    const int n = text ? std::atoi(text) : 8;
-    return std::max(4, n - n % 2);
+    const int n = text ? std::atoi(text) : 10;
+    return std::clamp(n - n % 2, 4, 2 * kViewsPerSide);
 }
 
 double percentile(std::vector<double> values, double q) {
@@ -34,8 +38,13 @@ double percentile(std::vector<double> values, double q) {
 TEST(LiveSessionStructuredLight, EveryScanRegisteredInOneGroupNearTheTruth) {
     const int views = view_count();
     const sim::SceneConfig scene = sim::named_scene("small-block").value();
-    const std::vector<anascan::testing::PlannedView> plan =
-        anascan::testing::plan_tour(views / 2, scene.placement, 11);
+    std::vector<anascan::testing::PlannedView> plan;
+    const std::vector<anascan::testing::PlannedView> tour =
+        anascan::testing::plan_tour(kViewsPerSide, scene.placement, 11);
+    for (int side = 0; side < 2; ++side) {
+        plan.insert(plan.end(), tour.begin() + side * kViewsPerSide,
+                    tour.begin() + side * kViewsPerSide + views / 2);
+    }
     auto device = sim::SimStructuredLightScanner::open({.scene = scene, .advance_deg = 0.0});
     const Pose T_world_block0 = sim::block_pose(scene.placement, scene.block.size_m);
 
@@ -62,6 +71,7 @@ TEST(LiveSessionStructuredLight, EveryScanRegisteredInOneGroupNearTheTruth) {
         add_s.push_back(d.time_s);
         ++methods[d.method];
         std::printf("%zu points | %s\n", points, d.message.c_str());
+        std::fflush(stdout);
         const auto refine_start = std::chrono::steady_clock::now();
         const std::size_t changed = registrar.refine().size();
         std::printf(
