@@ -14,13 +14,16 @@
 /// overlap, normals agree, RMS within the sample spacing, not degenerate). If neither
 /// verifies: global registration from integral-invariant features against the registered
 /// scans, most recent first, of every group (stone only, so a stone turned over still
-/// matches itself); if that fails too the scan opens a new group. After the operator marks
-/// the stone turned over, the cheap hypotheses are skipped until a scan is placed.
+/// matches itself), a verified pose near a prior taken, else one that several target scans
+/// vote for; if that fails too the scan opens a new group. After the operator marks the
+/// stone turned over, the cheap hypotheses are skipped until a scan is placed. See
+/// docs/live-registration.md.
 ///
-/// `refine` (background work) computes missing features, fine-registers every new pair of
-/// overlapping scans of a group keeping the correspondences (multi-view links), solves each
-/// group's poses at once (`refine_multiview`, paper eq. 4) and merges groups whose
-/// stone-only scans register globally; it returns the poses that changed.
+/// `refine` (background work, bounded per call) merges groups whose stone-only scans
+/// register globally (votes over pairs), computes a few missing features, fine-registers
+/// every new pair of overlapping scans of a group keeping the correspondences (multi-view
+/// links) and solves each group's poses at once (`refine_multiview`, paper eq. 4); it
+/// returns the poses that changed.
 ///
 /// Frames: group g's frame is the frame of its first scan; group 0 is the first scan's.
 /// When groups merge, the lower id survives and the other's poses are re-expressed in it.
@@ -133,7 +136,10 @@ struct LiveScanInput {
 
 /// One hypothesis tried for a scan.
 struct LiveAttempt {
-    std::string method;  ///< "motion-prior", "previous-pose", "global".
+    /// "motion-prior" (constant velocity), "motion-prior-2" (double step, alternating
+    /// elevations), "previous-pose", "global" (one target scan), "global-model" (the chosen
+    /// global pose refined against the group's model).
+    std::string method;
     std::string status;  ///< "verified", or why not ("rms too large", "no_consensus", ...).
     std::int64_t target_seq = -1;  ///< Global: the target scan; else the latest model scan.
     int target_group = -1;
