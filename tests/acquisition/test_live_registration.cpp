@@ -77,6 +77,9 @@ protected:
                                                    .turned_over_before = scan.turned_over_before}));
             registrar_->refine();
         }
+        for (int round = 0; round < 30 && registrar_->group_count() > 1; ++round) {
+            registrar_->refine();
+        }
         for (int round = 0; round < 3; ++round) registrar_->refine();
     }
     static void TearDownTestSuite() {
