@@ -1,6 +1,6 @@
 // LiveRegistrar on a simulated structured-light session of the small block (the real
-// decoder, ~300k points per scan): views around the block, turned over halfway, refine()
-// after each scan as the registration worker does. Views: ANASCAN_LIVE_VIEWS (default 10;
+// decoder, 135-210k points per scan): views around the block, turned over halfway, refine()
+// after each scan as the registration worker does. Views: ANASCAN_LIVE_VIEWS (default 8;
 // scripts/live-session-check.sh runs the 24). Prints the figures of the session.
 #include <gtest/gtest.h>
 
@@ -18,14 +18,23 @@
 namespace anascan::acquisition {
 namespace {
 
-/// The tour has 12 views per side (30° steps); a session of N views takes the first N/2 of
-/// each side (default 10: a minute or two; the figure is N = 24).
+/// The tour has 12 views per side (30° steps). ANASCAN_LIVE_VIEWS=N takes the first N/2 of
+/// each side (the figure is N = 24, turned over after 12); without it the test
+/// registers the first 8 views of the first side (a minute or two with the real decoder).
 constexpr int kViewsPerSide = 12;
 
-int view_count() {
+std::vector<anascan::testing::PlannedView> session_plan(const sim::BlockPlacement& placement) {
+    const std::vector<anascan::testing::PlannedView> tour =
+        anascan::testing::plan_tour(kViewsPerSide, placement, 11);
     const char* text = std::getenv("ANASCAN_LIVE_VIEWS");
-    const int n = text ? std::atoi(text) : 10;
-    return std::clamp(n - n % 2, 4, 2 * kViewsPerSide);
+    if (!text) return {tour.begin(), tour.begin() + 8};
+    const int half = std::clamp(std::atoi(text) / 2, 2, kViewsPerSide);
+    std::vector<anascan::testing::PlannedView> plan;
+    for (int side = 0; side < 2; ++side) {
+        plan.insert(plan.end(), tour.begin() + side * kViewsPerSide,
+                    tour.begin() + side * kViewsPerSide + half);
+    }
+    return plan;
 }
 
 double percentile(std::vector<double> values, double q) {
@@ -36,15 +45,9 @@ double percentile(std::vector<double> values, double q) {
 }
 
 TEST(LiveSessionStructuredLight, EveryScanRegisteredInOneGroupNearTheTruth) {
-    const int views = view_count();
     const sim::SceneConfig scene = sim::named_scene("small-block").value();
-    std::vector<anascan::testing::PlannedView> plan;
-    const std::vector<anascan::testing::PlannedView> tour =
-        anascan::testing::plan_tour(kViewsPerSide, scene.placement, 11);
-    for (int side = 0; side < 2; ++side) {
-        plan.insert(plan.end(), tour.begin() + side * kViewsPerSide,
-                    tour.begin() + side * kViewsPerSide + views / 2);
-    }
+    const std::vector<anascan::testing::PlannedView> plan = session_plan(scene.placement);
+    const int views = static_cast<int>(plan.size());
     auto device = sim::SimStructuredLightScanner::open({.scene = scene, .advance_deg = 0.0});
     const Pose T_world_block0 = sim::block_pose(scene.placement, scene.block.size_m);
 
