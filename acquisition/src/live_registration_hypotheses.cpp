@@ -1,6 +1,7 @@
 // LiveRegistrar: the hypotheses for a new scan (motion prior, previous pose, global) and the
 // group model they are verified against.
 #include <algorithm>
+#include <limits>
 #include <map>
 #include <set>
 #include <string>
@@ -46,6 +47,25 @@ std::string correction_problem(const ScanEntry& entry, const Pose& T_prior,
 }
 
 }  // namespace
+
+void LiveRegistrar::State::probe_slides(const ScanEntry& entry, const PointCloud& model,
+                                        const KdTree& tree, Verified& v) const {
+    // Periodic relief (an ornament band) or a long edge lets the scan slide along the
+    // weakest direction into another minimum: restart from a few shifts along it and keep
+    // the verified pose with the largest overlap.
+    const Eigen::Vector3d weak = v.fine.degeneracy.weakest_direction.tail<3>();
+    if (config.slide_probe_m <= 0.0 || weak.norm() < 0.7) return;
+    const Pose T_found = v.fine.T_target_source;
+    for (const double k : {-2.0, -1.0, 1.0, 2.0}) {
+        const Pose T_start =
+            Eigen::Translation3d(k * config.slide_probe_m * weak.normalized()) * T_found;
+        FineRegistrationResult fine = register_fine(entry.cloud, model, tree, T_start, config.fine);
+        if (!live::rejection(fine, config).empty()) continue;
+        if (fine.overlap_fraction > v.fine.overlap_fraction + config.slide_overlap_margin) {
+            v.fine = std::move(fine);
+        }
+    }
+}
 
 std::vector<std::size_t> LiveRegistrar::State::members(int group) const {
     std::vector<std::size_t> out;
@@ -109,7 +129,17 @@ live::Verified LiveRegistrar::State::verify_hypothesis(const ScanEntry& entry, i
     const KdTree tree(model.positions);
     v.fine = register_fine(entry.cloud, model, tree, T_group_scan, config.fine);
     v.rejection = live::rejection(v.fine, config);
+    if (v.rejection.empty()) probe_slides(entry, model, tree, v);
     return v;
+}
+
+double LiveRegistrar::State::rms_gate() const {
+    if (link_rms_m.size() < config.min_links_for_rms_gate) {
+        return std::numeric_limits<double>::infinity();
+    }
+    std::vector<double> rms = link_rms_m;
+    std::nth_element(rms.begin(), rms.begin() + rms.size() / 2, rms.end());
+    return config.global_rms_median_factor * rms[rms.size() / 2];
 }
 
 std::vector<std::pair<std::string, Pose>> LiveRegistrar::State::priors(std::int64_t seq,
@@ -186,22 +216,33 @@ std::optional<Pose> LiveRegistrar::State::global_pose(std::size_t entry_index, i
         const int g_id = scans[t].group;
         auto& box = votes.try_emplace(g_id, config.vote_rotation_deg, config.vote_displacement_m)
                         .first->second;
+        // A verified pose near the operator's predicted one settles the ambiguity (the
+        // largest overlap among them); otherwise verified poses within the session's RMS
+        // gate vote.
+        const HypothesisOutcome* near_prior = nullptr;
         for (const HypothesisOutcome& h : g.hypotheses) {
-            if (!h.verified) continue;
+            if (!h.verified || h.fine.rms_m > rms_gate()) continue;
             const Pose T = scans[t].T_group_scan * h.fine.T_target_source;
-            // A verified pose near the operator's predicted one settles the ambiguity.
-            for (const auto& [name, T_prior] : hypotheses) {
-                if (g_id == prior_group &&
-                    live::poses_agree(T_prior, T, entry.centroid_m, config.max_global_prior_deg,
-                                      config.max_global_prior_m)) {
-                    group = g_id;
-                    decision.attempts.back().status = "verified near the " + name;
-                    return T;
-                }
+            const bool near = g_id == prior_group &&
+                              std::any_of(hypotheses.begin(), hypotheses.end(), [&](const auto& p) {
+                                  return live::poses_agree(p.second, T, entry.centroid_m,
+                                                           config.max_global_prior_deg,
+                                                           config.max_global_prior_m);
+                              });
+            if (near &&
+                (!near_prior || h.fine.overlap_fraction > near_prior->fine.overlap_fraction)) {
+                near_prior = &h;
             }
             box.add(T, t, entry.centroid_m);
         }
-        if (g.status == GlobalRegistrationStatus::kSuccess && targets.size() == 1) {
+        if (near_prior) {
+            group = g_id;
+            decision.attempts.back().status = "verified near a prior";
+            return scans[t].T_group_scan * near_prior->fine.T_target_source;
+        }
+        // A group too small to vote (e.g. the one scan after a turn-over) takes a success.
+        if (g.status == GlobalRegistrationStatus::kSuccess && g.rms_m <= rms_gate() &&
+            members(g_id).size() < config.min_votes) {
             group = g_id;
             return scans[t].T_group_scan * g.T_target_source;
         }

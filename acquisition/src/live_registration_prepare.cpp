@@ -3,22 +3,12 @@
 #include <cmath>
 #include <string>
 
+#include "anascan/processing/scan_registration.hpp"
 #include "anascan/processing/voxel_grid.hpp"
 #include "live_registration_state.hpp"
 
 namespace anascan::acquisition::live {
 namespace {
-
-/// Keeps the points whose normal is finite and of unit length (zero = not estimated).
-void drop_points_without_normal(PointCloud& cloud) {
-    std::vector<std::size_t> keep;
-    keep.reserve(cloud.size());
-    for (std::size_t i = 0; i < cloud.size(); ++i) {
-        const Eigen::Vector3f& n = cloud.normals[i];
-        if (n.allFinite() && std::abs(n.squaredNorm() - 1.0f) < 1e-3f) keep.push_back(i);
-    }
-    if (keep.size() != cloud.size()) cloud = select(cloud, keep);
-}
 
 /// The plane turned so that the sensor lies on its positive side.
 Plane facing(Plane plane, const Eigen::Vector3f& sensor_local) {
@@ -107,11 +97,11 @@ Prepared prepare_scan(LiveScanInput input, const LiveRegistrationConfig& config)
     }
     input.cloud.normals.clear();
     entry.cloud = voxel_downsample(input.cloud, {.voxel_size_m = config.voxel_size_m});
+    // Normals on the reduced cloud (issue 3's preparation, without its down-sampling).
+    anascan::prepare_scan(entry.cloud, entry.sensor_origin_m,
+                          ScanRegistrationConfig{.normals = config.normals});
     const Eigen::Vector3f sensor_local =
         (entry.sensor_origin_m - entry.cloud.origin_m).cast<float>();
-    estimate_normals(entry.cloud, config.normals);
-    orient_toward(entry.cloud, sensor_local);
-    drop_points_without_normal(entry.cloud);
     remove_ground(entry.cloud, sensor_local, config);
     if (entry.cloud.size() < config.min_scan_points) {
         out.problem = "only " + std::to_string(entry.cloud.size()) + " stone points of " +

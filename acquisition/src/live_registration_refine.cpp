@@ -67,6 +67,7 @@ std::size_t LiveRegistrar::State::make_links() {
             FineRegistrationResult fine = register_fine(scans[s].cloud, scans[t].cloud, tree_of(t),
                                                         initial, config.link_fine);
             if (!usable_link(fine, config)) continue;
+            link_rms_m.push_back(fine.rms_m);
             links.push_back(
                 {.target = t, .source = s, .correspondences = std::move(fine.correspondences)});
             ++added;
@@ -143,7 +144,7 @@ std::vector<PoseUpdate> LiveRegistrar::State::merge_groups() {
                     const GlobalRegistrationResult g = register_global(
                         scans[j].cloud, features(j), scans[i].cloud, features(i), config.global);
                     for (const HypothesisOutcome& h : g.hypotheses) {
-                        if (!h.verified) continue;
+                        if (!h.verified || h.fine.rms_m > rms_gate()) continue;
                         const Pose T_a_b = scans[i].T_group_scan * h.fine.T_target_source *
                                            scans[j].T_group_scan.inverse();
                         box.add(T_a_b, i * scans.size() + j,

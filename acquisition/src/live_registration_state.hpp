@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "anascan/acquisition/live_registration.hpp"
+#include "anascan/processing/kdtree.hpp"
 #include "live_registration_votes.hpp"
 
 namespace anascan::acquisition {
@@ -71,6 +72,9 @@ struct LiveRegistrar::State {
     std::set<std::pair<std::size_t, std::size_t>> merge_tried;  ///< Global pairs tried (a, b).
     std::set<std::pair<std::size_t, std::size_t>> link_tried;   ///< Link pairs tried (t, s).
     LiveRefineReport report;
+    std::vector<double> link_rms_m;  ///< RMS of every multi-view link (the session's noise).
+    /// Largest RMS a global hypothesis may have to count (see global_rms_median_factor).
+    double rms_gate() const;
     mutable std::string last_prior;  ///< The motion prior that verified last.
     /// Votes for the transform between two groups (lower id first), across refine() calls.
     std::map<std::pair<int, int>, live::PoseVotes> merge_votes;
@@ -85,6 +89,9 @@ struct LiveRegistrar::State {
     /// Fine registration of `entry` from `T_group_scan` against the group's model.
     live::Verified verify_hypothesis(const live::ScanEntry& entry, int group,
                                      const Pose& T_group_scan) const;
+    /// Restarts along the weakest direction of `v` (see LiveRegistrationConfig::slide_probe_m).
+    void probe_slides(const live::ScanEntry& entry, const PointCloud& model, const KdTree& tree,
+                      live::Verified& v) const;
     /// The cheap hypotheses (motion prior, previous pose), in order; appends attempts.
     std::optional<live::Verified> try_cheap(const live::ScanEntry& entry, int& group,
                                             std::string& method, LiveDecision& decision) const;

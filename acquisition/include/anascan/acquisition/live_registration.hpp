@@ -14,13 +14,16 @@
 /// overlap, normals agree, RMS within the sample spacing, not degenerate). If neither
 /// verifies: global registration from integral-invariant features against the registered
 /// scans, most recent first, of every group (stone only, so a stone turned over still
-/// matches itself); if that fails too the scan opens a new group. After the operator marks
-/// the stone turned over, the cheap hypotheses are skipped until a scan is placed.
+/// matches itself), a verified pose near a prior taken, else one that several target scans
+/// vote for; if that fails too the scan opens a new group. After the operator marks the
+/// stone turned over, the cheap hypotheses are skipped until a scan is placed. See
+/// docs/live-registration.md.
 ///
-/// `refine` (background work) computes missing features, fine-registers every new pair of
-/// overlapping scans of a group keeping the correspondences (multi-view links), solves each
-/// group's poses at once (`refine_multiview`, paper eq. 4) and merges groups whose
-/// stone-only scans register globally; it returns the poses that changed.
+/// `refine` (background work, bounded per call) merges groups whose stone-only scans
+/// register globally (votes over pairs), computes a few missing features, fine-registers
+/// every new pair of overlapping scans of a group keeping the correspondences (multi-view
+/// links) and solves each group's poses at once (`refine_multiview`, paper eq. 4); it
+/// returns the poses that changed.
 ///
 /// Frames: group g's frame is the frame of its first scan; group 0 is the first scan's.
 /// When groups merge, the lower id survives and the other's poses are re-expressed in it.
@@ -72,7 +75,13 @@ struct LiveRegistrationConfig {
     /// the fine registration is taken for a wrong local minimum.
     double max_prior_correction_deg = 15.0;
     double max_prior_correction_m = 0.15;
-    std::size_t model_scans = 5;  ///< Registered scans merged into the model of a hypothesis.
+    std::size_t model_scans = 5;
+    /// A verified pose is probed by restarts shifted ±1 and ±2 times this (metres) along
+    /// its weakest direction (an ornament band repeats every few centimetres); a restart
+    /// whose overlap is larger by `slide_overlap_margin` replaces it. 0 = no probes.
+    double slide_probe_m = 0.03;
+    double slide_overlap_margin =
+        0.01;  ///< Registered scans merged into the model of a hypothesis.
     /// Verification (issue 3): RMS at most this many voxel sizes ...
     double max_rms_voxel_factor = 0.75;
     double min_overlap_fraction = 0.3;       ///< ... overlap of the new scan at least this ...
@@ -82,6 +91,12 @@ struct LiveRegistrationConfig {
     /// Descriptor radii for the session; all zero = from the first usable scan's diagonal.
     InvariantRadii radii_m{};
     std::size_t max_global_targets = 8;
+    /// Once `min_links_for_rms_gate` links exist, a global hypothesis counts only with an RMS
+    /// within this multiple of the links' median RMS: a near-symmetric stone (a box with
+    /// different relief per face) matches itself turned by 90° or 180° at a few times the
+    /// RMS of the right pose.
+    double global_rms_median_factor = 2.5;
+    std::size_t min_links_for_rms_gate = 5;
     /// A verified global pose (any hypothesis, also of an ambiguous result) within these of
     /// a motion prior or the previous pose is taken: the prior resolves the look-alikes.
     double max_global_prior_deg = 30.0;
@@ -121,7 +136,10 @@ struct LiveScanInput {
 
 /// One hypothesis tried for a scan.
 struct LiveAttempt {
-    std::string method;  ///< "motion-prior", "previous-pose", "global".
+    /// "motion-prior" (constant velocity), "motion-prior-2" (double step, alternating
+    /// elevations), "previous-pose", "global" (one target scan), "global-model" (the chosen
+    /// global pose refined against the group's model).
+    std::string method;
     std::string status;  ///< "verified", or why not ("rms too large", "no_consensus", ...).
     std::int64_t target_seq = -1;  ///< Global: the target scan; else the latest model scan.
     int target_group = -1;

@@ -1,0 +1,122 @@
+// LiveRegistrar on a simulated structured-light session of the small block (the real
+// decoder, 135-210k points per scan): views around the block, turned over halfway, refine()
+// after each scan as the registration worker does. Views: ANASCAN_LIVE_VIEWS (default 8;
+// scripts/live-session-check.sh runs the 24). Prints the figures of the session.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <string>
+
+#include "anascan/acquisition/live_registration.hpp"
+#include "anascan/sim/sim_structured_light_scanner.hpp"
+#include "live_session_sim.hpp"
+
+namespace anascan::acquisition {
+namespace {
+
+/// The tour has 12 views per side (30° steps). ANASCAN_LIVE_VIEWS=N takes the first N/2 of
+/// each side (the figure is N = 24, turned over after 12); without it the test
+/// registers the first 8 views of the first side (a minute or two with the real decoder).
+constexpr int kViewsPerSide = 12;
+
+std::vector<anascan::testing::PlannedView> session_plan(const sim::BlockPlacement& placement) {
+    const std::vector<anascan::testing::PlannedView> tour =
+        anascan::testing::plan_tour(kViewsPerSide, placement, 11);
+    const char* text = std::getenv("ANASCAN_LIVE_VIEWS");
+    if (!text) return {tour.begin(), tour.begin() + 8};
+    const int half = std::clamp(std::atoi(text) / 2, 2, kViewsPerSide);
+    std::vector<anascan::testing::PlannedView> plan;
+    for (int side = 0; side < 2; ++side) {
+        plan.insert(plan.end(), tour.begin() + side * kViewsPerSide,
+                    tour.begin() + side * kViewsPerSide + half);
+    }
+    return plan;
+}
+
+double percentile(std::vector<double> values, double q) {
+    std::sort(values.begin(), values.end());
+    const std::size_t k =
+        static_cast<std::size_t>(q * static_cast<double>(values.size() - 1) + 0.5);
+    return values[k];
+}
+
+TEST(LiveSessionStructuredLight, EveryScanRegisteredInOneGroupNearTheTruth) {
+    const sim::SceneConfig scene = sim::named_scene("small-block").value();
+    const std::vector<anascan::testing::PlannedView> plan = session_plan(scene.placement);
+    const int views = static_cast<int>(plan.size());
+    auto device = sim::SimStructuredLightScanner::open({.scene = scene, .advance_deg = 0.0});
+    const Pose T_world_block0 = sim::block_pose(scene.placement, scene.block.size_m);
+
+    LiveRegistrar registrar;
+    std::vector<double> add_s;
+    std::vector<Pose> truth;
+    std::vector<Eigen::Vector3d> centroids;
+    std::map<std::string, int> methods;
+    for (std::size_t i = 0; i < plan.size(); ++i) {
+        device->place_block(plan[i].placement);
+        device->move_to(plan[i].view);
+        Expected<Scan> scan = device->capture_scan({});
+        ASSERT_TRUE(scan.has_value()) << scan.error().message;
+        truth.push_back(anascan::testing::true_pose_in_first_placement(
+            T_world_block0, sim::block_pose(plan[i].placement, scene.block.size_m),
+            *scan->meta.T_world_scan));
+        centroids.push_back(anascan::testing::centroid_of(scan->cloud));
+        const std::size_t points = scan->cloud.size();
+        const LiveDecision d =
+            registrar.add({.seq = static_cast<std::int64_t>(i + 1),
+                           .cloud = std::move(scan->cloud),
+                           .sensor_origin_scan_m = scan->meta.sensor_origin_scan_m,
+                           .turned_over_before = plan[i].turned_over_before});
+        add_s.push_back(d.time_s);
+        ++methods[d.method];
+        std::printf("%zu points | %s\n", points, d.message.c_str());
+        std::fflush(stdout);
+        const auto refine_start = std::chrono::steady_clock::now();
+        const std::size_t changed = registrar.refine().size();
+        std::printf(
+            "    refine: %zu poses changed, %zu new links, %zu merges, %.3f s\n", changed,
+            registrar.last_refine_report().new_links, registrar.last_refine_report().merges,
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - refine_start).count());
+    }
+    // The worker refines while idle: until the groups merged, then a few more rounds.
+    for (int round = 0; round < 30 && registrar.group_count() > 1; ++round) registrar.refine();
+    for (int round = 0; round < 3; ++round) registrar.refine();
+
+    double worst_rotation_deg = 0.0, worst_translation_m = 0.0;
+    for (std::size_t i = 0; i < plan.size(); ++i) {
+        const std::optional<PoseUpdate> pose = registrar.pose(static_cast<std::int64_t>(i + 1));
+        ASSERT_TRUE(pose.has_value()) << "scan " << i + 1;
+        EXPECT_EQ(pose->group, 0) << "scan " << i + 1;
+        const anascan::testing::PoseError e =
+            anascan::testing::pose_error(pose->T_group_scan, truth.front(), truth[i], centroids[i]);
+        std::printf("scan %zu: group %d, error %.4f deg, %.4f mm\n", i + 1, pose->group,
+                    e.rotation_deg, e.translation_m * 1e3);
+        worst_rotation_deg = std::max(worst_rotation_deg, e.rotation_deg);
+        worst_translation_m = std::max(worst_translation_m, e.translation_m);
+    }
+    std::printf(
+        "views %d, groups %zu, max rotation error %.4f deg, max translation error %.4f mm\n", views,
+        registrar.group_count(), worst_rotation_deg, worst_translation_m * 1e3);
+    std::printf("add() median %.3f s, p95 %.3f s, max %.3f s; methods:", percentile(add_s, 0.5),
+                percentile(add_s, 0.95), percentile(add_s, 1.0));
+    for (const auto& [method, count] : methods) std::printf(" %s %d", method.c_str(), count);
+    std::printf("\n");
+    EXPECT_EQ(registrar.group_count(), 1u);
+    if (std::getenv("ANASCAN_LIVE_VIEWS")) {
+        // The goal, checked by scripts/live-session-check.sh (not met yet: see
+        // docs/live-registration.md).
+        EXPECT_LT(worst_rotation_deg, 0.05);
+        EXPECT_LT(worst_translation_m, 0.0002);
+    } else {
+        // Every scan placed, none on a look-alike pose (90°/180° turns, slides of centimetres).
+        EXPECT_LT(worst_rotation_deg, 0.5);
+        EXPECT_LT(worst_translation_m, 0.02);
+    }
+}
+
+}  // namespace
+}  // namespace anascan::acquisition
