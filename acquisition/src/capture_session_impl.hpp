@@ -60,7 +60,8 @@ struct CaptureSession::Impl {
     // Registration worker (capture_session_register.cpp).
     void registration_loop();
     void register_one(const SavedScan& saved);
-    void refine_in_background();
+    /// One refine() call; true when it still found work (call again).
+    bool refine_in_background();
     void update_coverage();
     void queue_for_registration(SavedScan saved);
     void requeue_session_scans();
@@ -79,9 +80,9 @@ struct CaptureSession::Impl {
     BoundedQueue<SavedScan> to_register{1 << 20};
     std::atomic<std::size_t> registration_items_with_points{0};
 
-    LiveRegistrar registrar;    ///< Registration worker only.
-    bool refine_due = false;    ///< Registration worker only.
-    bool coverage_due = false;  ///< Registration worker only.
+    LiveRegistrar registrar;                               ///< Registration worker only.
+    bool refine_due = false;                               ///< Registration worker only.
+    bool coverage_due = false;                             ///< Registration worker only.
     std::map<std::int64_t, CoverageCopy> coverage_copies;  ///< Registration worker only.
 
     std::mutex work_mutex;

@@ -15,7 +15,13 @@ double seconds_since(std::chrono::system_clock::time_point then) {
 
 std::string decision_message(const LiveDecision& decision, double latency_s) {
     char text[512];
-    if (decision.registered)
+    if (decision.registered && (decision.method == "first" || decision.method == "new-group"))
+        std::snprintf(
+            text, sizeof(text), "registered scan %lld: opens group %d (%s), %.2f s after saving",
+            static_cast<long long>(decision.seq), decision.group,
+            decision.method == "first" ? "the session's frame" : "matches no earlier scan yet",
+            latency_s);
+    else if (decision.registered)
         std::snprintf(text, sizeof(text),
                       "registered scan %lld: group %d by %s, RMS %.3f mm, overlap %.0f %%, "
                       "%.2f s after saving",
@@ -47,19 +53,36 @@ void CaptureSession::Impl::requeue_session_scans() {
 }
 
 void CaptureSession::Impl::registration_loop() {
-    while (auto item = to_register.pop()) {
-        if (item->exclude_change != 0) {
-            registrar.exclude(item->seq, item->exclude_change > 0);
+    // Background work (refinement, merges, coverage) runs whenever no scan waits, and
+    // counts as work in flight until it has nothing left to do, so wait_until_idle sees
+    // the final poses.
+    bool background = false;
+    int background_steps = 0;
+    for (;;) {
+        auto item =
+            background ? to_register.pop_for(std::chrono::milliseconds(0)) : to_register.pop();
+        if (item) {
+            if (item->exclude_change != 0) {
+                registrar.exclude(item->seq, item->exclude_change > 0);
+            } else {
+                register_one(*item);
+                if (item->scan) --registration_items_with_points;
+            }
             refine_due = coverage_due = true;
-        } else {
-            register_one(*item);
-            if (item->scan) --registration_items_with_points;
+            if (!background) begin_work();
+            background = true;
+            background_steps = 0;
+            end_work();
+            continue;
         }
-        if (to_register.size() == 0) {
-            refine_in_background();
+        if (!background) break;  // closed and drained
+        const bool more =
+            ++background_steps < config.max_background_steps && refine_in_background();
+        if (!more) {
             update_coverage();
+            background = false;
+            end_work();
         }
-        end_work();
     }
 }
 
@@ -111,22 +134,28 @@ void CaptureSession::Impl::register_one(const SavedScan& saved) {
     refine_due = coverage_due = true;
 }
 
-void CaptureSession::Impl::refine_in_background() {
-    if (!refine_due) return;
-    refine_due = false;
+bool CaptureSession::Impl::refine_in_background() {
+    if (!refine_due) return false;
     const std::vector<PoseUpdate> updates = registrar.refine();
-    if (updates.empty()) return;
+    const LiveRefineReport& report = registrar.last_refine_report();
+    // refine() works to a budget per call: call again while it still finds work.
+    const bool more = !updates.empty() || report.new_links > 0 || report.merges > 0;
+    refine_due = more;
+    if (updates.empty()) return more;
     std::vector<std::pair<std::int64_t, PoseInGroup>> poses;
     poses.reserve(updates.size());
     for (const PoseUpdate& u : updates)
         poses.push_back({u.seq, {.group = u.group, .T_group_scan = u.T_group_scan}});
     if (auto ok = store->update_poses(poses); !ok) {
         emit({.kind = SessionEventKind::kSaveFailed, .message = ok.error().message});
-        return;
+        return more;
     }
-    char message[128];
-    std::snprintf(message, sizeof(message), "refined: %zu poses updated", updates.size());
+    char message[160];
+    std::snprintf(message, sizeof(message),
+                  "refined: %zu poses updated (%zu new links, %zu merges)", updates.size(),
+                  report.new_links, report.merges);
     emit({.kind = SessionEventKind::kPosesRefined, .message = message, .count = updates.size()});
+    return more;
 }
 
 void CaptureSession::Impl::update_coverage() {

@@ -142,7 +142,7 @@ Expected<std::vector<EventRecord>> SessionStore::events() const {
                        "SELECT id, time_ns, kind, device, message FROM events ORDER BY id",
                        "cannot read the events", [](const db::Statement& row) {
                            return EventRecord{row.int64(0), codec::from_ns(row.int64(1)),
-                                               row.text(2), row.text(3), row.text(4)};
+                                              row.text(2), row.text(3), row.text(4)};
                        });
 }
 

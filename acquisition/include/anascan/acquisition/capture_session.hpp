@@ -43,7 +43,9 @@ struct CaptureSessionConfig {
     std::chrono::milliseconds capture_timeout{120000};
     LiveRegistrationConfig registration{};
     CoverageConfig coverage{};
-    double coverage_voxel_size_m = 0.002;  ///< Scans reduced for coverage (session_coverage).
+    double coverage_voxel_size_m = 0.002;
+    /// Background refine() calls in a row while no scan waits, at most (each has a budget).
+    int max_background_steps = 50;  ///< Scans reduced for coverage (session_coverage).
 };
 
 /// Opens the scanner (again, after it was unplugged).
