@@ -11,7 +11,7 @@
 #include <thread>
 
 #include "anascan/acquisition/capture_session.hpp"
-#include "anascan/acquisition/scanner_source.hpp"
+#include "anascan/runtime/scanner_source.hpp"
 #include "anascan/acquisition/session_coverage.hpp"
 #include "capture_summary.hpp"
 #include "commands.hpp"
@@ -32,7 +32,7 @@ struct CaptureOptions {
     bool no_register = false;
     bool no_coverage = false;
     int sim_unplug_after = -1;
-    acquisition::ScannerSettings settings;  ///< Only the fields given on the command line.
+    runtime::ScannerSettings settings;  ///< Only the fields given on the command line.
     double reconnect_timeout_s = 10.0;
 };
 
@@ -112,7 +112,7 @@ void run_capture(const CaptureOptions& o) {
     if (!existing) fail_command(existing.error());
     const int already = static_cast<int>(existing->size());
 
-    const acquisition::SimulatedTour tour{
+    const runtime::SimulatedTour tour{
         .views = o.views,
         .flip_after = o.flip_after < 0 ? o.views / 2 : o.flip_after,
         .distance_m = o.distance_m,
@@ -121,21 +121,21 @@ void run_capture(const CaptureOptions& o) {
                                              .coverage_live = !o.no_coverage};
     auto session = CaptureSession::start(std::move(*store), config, printing_sink());
     if (!session) fail_command(session.error());
-    const acquisition::ScannerSource source{
+    const runtime::ScannerSource source{
         .uri = uri, .settings = o.settings, .sim_unplug_after = o.sim_unplug_after};
-    if (auto ok = (*session)->attach_scanner(uri, acquisition::make_scanner_opener(source)); !ok)
+    if (auto ok = (*session)->attach_scanner(uri, runtime::make_scanner_opener(source)); !ok)
         fail_command(ok.error());
     if (already > 0)
         std::printf("session %s has %d scans: resuming at view %d of %d\n", o.session.c_str(),
                     already, std::min(already, o.views) + 1, o.views);
     std::optional<Error> stopped;
-    const bool simulated = acquisition::is_simulated(uri);
+    const bool simulated = runtime::is_simulated(uri);
     for (int i = already; i < o.views && !stopped; ++i) {
         if (!simulated && !operator_ready(i, o.views)) break;
-        if (acquisition::tour_turns_over_before(tour, i))
+        if (runtime::tour_turns_over_before(tour, i))
             std::printf("the stone is turned over before view %d\n", i + 1);
         stopped =
-            capture_view(**session, acquisition::tour_request(tour, i), o.reconnect_timeout_s);
+            capture_view(**session, runtime::tour_request(tour, i), o.reconnect_timeout_s);
     }
     spdlog::info("capture done; waiting for registration to catch up");
     (*session)->wait_until_idle();

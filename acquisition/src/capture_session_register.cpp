@@ -162,11 +162,19 @@ void CaptureSession::Impl::update_coverage() {
     if (!config.coverage_live || !coverage_due) return;
     coverage_due = false;
     // Coverage sees the whole scans (it removes the ground itself), reduced as
-    // session_coverage reduces them, placed by the registrar's current poses of group 0.
+    // session_coverage reduces them, placed by the registrar's current poses.
+    // The largest group (lowest id on a tie), as session_coverage and the field app choose.
+    const std::vector<LiveModelScan> model = registrar.model();
+    std::map<int, std::size_t> group_sizes;
+    for (const LiveModelScan& m : model) ++group_sizes[m.group];
+    int group = -1;
+    std::size_t group_size = 0;
+    for (const auto& [g, size] : group_sizes)
+        if (size > group_size) group = g, group_size = size;
     std::vector<CoverageScanView> views;
-    for (const LiveModelScan& m : registrar.model()) {
+    for (const LiveModelScan& m : model) {
         const auto copy = coverage_copies.find(m.seq);
-        if (m.group != 0 || copy == coverage_copies.end()) continue;
+        if (m.group != group || copy == coverage_copies.end()) continue;
         views.push_back({.cloud = &copy->second.cloud,
                          .T_world_scan = m.T_group_scan,
                          .sensor_origin_scan_m = copy->second.sensor_origin_scan_m,

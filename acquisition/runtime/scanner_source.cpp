@@ -1,11 +1,11 @@
-#include "anascan/acquisition/scanner_source.hpp"
+#include "anascan/runtime/scanner_source.hpp"
 
 #include "anascan/drivers/device_registry.hpp"
 #include "anascan/sim/scanning_tour.hpp"
 #include "anascan/sim/sim_backend.hpp"
 #include "anascan/sim/sim_scanner.hpp"
 
-namespace anascan::acquisition {
+namespace anascan::runtime {
 namespace {
 
 drivers::DeviceRegistry make_registry() {
@@ -84,4 +84,4 @@ bool tour_turns_over_before(const SimulatedTour& tour, int index) {
            steps[static_cast<std::size_t>(index)].turn_now;
 }
 
-}  // namespace anascan::acquisition
+}  // namespace anascan::runtime

@@ -12,7 +12,10 @@
 
 #include "anascan/acquisition/capture_session.hpp"
 
-namespace anascan::acquisition {
+namespace anascan::runtime {
+
+using acquisition::CaptureRequest;
+using acquisition::ScannerOpener;
 
 /// Device settings asked for at every opening; absent fields are left as they are.
 struct ScannerSettings {
@@ -62,4 +65,4 @@ CaptureRequest tour_request(const SimulatedTour& tour, int index);
 /// Whether the stone is turned over right before view `index`.
 bool tour_turns_over_before(const SimulatedTour& tour, int index);
 
-}  // namespace anascan::acquisition
+}  // namespace anascan::runtime
