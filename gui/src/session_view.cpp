@@ -98,7 +98,7 @@ int model_group(const std::vector<acquisition::ScanRecord>& scans) {
 
 std::string check_summary(const acquisition::SessionCheckReport& report) {
     if (report.issues.empty() && report.integrity == "ok") return {};
-    std::string text = fmt::format("session check: {} of {} scans ok, {} finding(s)",
+    std::string text = fmt::format("Reopened: session check: {} of {} scans ok, {} finding(s)",
                                    report.scans_ok, report.scans_checked, report.issues.size());
     for (const auto& issue : report.issues) {
         text += fmt::format("; {}: {}", issue.file.filename().string(), issue.problem);
