@@ -123,10 +123,13 @@ void SessionLink::poll_futures(gui::FieldViewState& view) {
         if (acknowledged) {
             ++acknowledged_;
         } else {
-            view.status.last_error = "capture failed: " + acknowledged.error().message;
-            if (acknowledged.error().code == ErrorCode::kDisconnected ||
-                acknowledged.error().code == ErrorCode::kTimeout)
-                set_device_status(view, false, "unplugged or silent: plug it in, capture again");
+            const Error& error = acknowledged.error();
+            const bool away =
+                error.code == ErrorCode::kDisconnected || error.code == ErrorCode::kTimeout;
+            view.status.last_error =
+                "capture failed: " + error.message +
+                (away ? " (unplugged or silent: plug it in, then capture again)" : "");
+            if (away) set_device_status(view, false, "unplugged or silent");
         }
         dirty_ = true;
     }

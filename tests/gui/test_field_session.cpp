@@ -3,10 +3,8 @@
 // `anascan coverage` report it; captures driven from the app's capture action register;
 // an unplugged simulated scanner and an unwritable folder give a message, not a crash.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
-#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -16,28 +14,19 @@
 #include <opencv2/imgcodecs.hpp>
 #include <string>
 
+#include "field_app_run.hpp"
+
 namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
 
-struct RunResult {
-    int exit_code = -1;
-    std::string output;  // stdout and stderr
-};
+using anascan::test::fraction_not;
+using anascan::test::kClearRgb;
+using anascan::test::RunResult;
 
-/// `stderr_too`: merge stderr into the output (messages); else drop it (JSON on stdout).
 RunResult run(const std::string& program, const std::string& args, bool stderr_too = true) {
-    const std::string command = program + " " + args + (stderr_too ? " 2>&1" : " 2>/dev/null");
-    RunResult result;
-    FILE* pipe = popen(command.c_str(), "r");
-    if (pipe == nullptr) return result;
-    std::array<char, 4096> buffer{};
-    while (std::fgets(buffer.data(), buffer.size(), pipe) != nullptr)
-        result.output += buffer.data();
-    const int status = pclose(pipe);
-    result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return result;
+    return anascan::test::run_command(program + " " + args, stderr_too);
 }
 
 json read_json(const fs::path& file) {
@@ -75,22 +64,6 @@ protected:
     }
     fs::path dir_;
 };
-
-/// Fraction of pixels in the rectangle that differ from `rgb` by more than 24 in a channel.
-double fraction_not(const cv::Mat& bgr, cv::Rect rect, cv::Vec3b rgb) {
-    int differing = 0;
-    for (int y = rect.y; y < rect.y + rect.height; ++y) {
-        for (int x = rect.x; x < rect.x + rect.width; ++x) {
-            const cv::Vec3b p = bgr.at<cv::Vec3b>(y, x);
-            const bool same = std::abs(p[2] - rgb[0]) <= 24 && std::abs(p[1] - rgb[1]) <= 24 &&
-                              std::abs(p[0] - rgb[2]) <= 24;
-            if (!same) ++differing;
-        }
-    }
-    return static_cast<double>(differing) / rect.area();
-}
-
-const cv::Vec3b kClearRgb{41, 46, 56};  // glClearColor(0.16, 0.18, 0.22) of the view
 
 int registered_rows(const json& state) {
     int n = 0;
