@@ -1,11 +1,14 @@
 #pragma once
 // Shared by the tests that run anascan-field (and anascan) as processes: run a command line
 // and collect its output, compare screenshot pixels with the view's background.
+#include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <opencv2/core.hpp>
 #include <string>
 
@@ -43,6 +46,21 @@ inline double fraction_not(const cv::Mat& bgr, cv::Rect rect, cv::Vec3b rgb) {
         }
     }
     return static_cast<double>(differing) / rect.area();
+}
+
+/// Why a test that needs a display skips without one.
+inline constexpr const char* kNoDisplay =
+    "no DISPLAY: this test runs under xvfb-run (Debian xvfb, installed by scripts/setup.sh); "
+    "reconfigure after installing it";
+
+/// An empty folder for the running test: TMP/PREFIX_PID_TESTNAME.
+inline std::filesystem::path fresh_test_dir(const std::string& prefix) {
+    const auto dir = std::filesystem::temp_directory_path() /
+                     (prefix + std::to_string(::getpid()) + "_" +
+                      ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    return dir;
 }
 
 inline const cv::Vec3b kClearRgb{41, 46, 56};  // glClearColor(0.16, 0.18, 0.22) of the view

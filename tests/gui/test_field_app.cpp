@@ -31,14 +31,8 @@ RunResult run(const std::string& args) {
 class FieldApp : public ::testing::Test {
 protected:
     void SetUp() override {
-        if (std::getenv("DISPLAY") == nullptr) {
-            GTEST_SKIP() << "no DISPLAY: this test runs under xvfb-run (Debian xvfb, installed "
-                            "by scripts/setup.sh); reconfigure after installing it";
-        }
-        dir_ = fs::temp_directory_path() /
-               ("anascan_field_test_" + std::to_string(::getpid()) + "_" +
-                ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::create_directories(dir_);
+        if (std::getenv("DISPLAY") == nullptr) GTEST_SKIP() << anascan::test::kNoDisplay;
+        dir_ = anascan::test::fresh_test_dir("anascan_field_test_");
     }
     void TearDown() override {
         std::error_code ec;

@@ -40,15 +40,8 @@ const std::string kDevice = "--device sim:tof/small-block --angular-step-deg 0.5
 class FieldSession : public ::testing::Test {
 protected:
     void SetUp() override {
-        if (std::getenv("DISPLAY") == nullptr) {
-            GTEST_SKIP() << "no DISPLAY: this test runs under xvfb-run (Debian xvfb, installed "
-                            "by scripts/setup.sh); reconfigure after installing it";
-        }
-        dir_ = fs::temp_directory_path() /
-               ("anascan_field_session_" + std::to_string(::getpid()) + "_" +
-                ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
+        if (std::getenv("DISPLAY") == nullptr) GTEST_SKIP() << anascan::test::kNoDisplay;
+        dir_ = anascan::test::fresh_test_dir("anascan_field_session_");
     }
     void TearDown() override {
         std::error_code ec;
