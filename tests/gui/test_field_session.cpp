@@ -66,8 +66,10 @@ int registered_rows(const json& state) {
 
 TEST_F(FieldSession, ShowsASessionAsSessionInfoAndCoverageReportIt) {
     const fs::path session = dir_ / "session";
+    // Two structured-light views of the small block (about 7 s): a coverage figure, holes.
     const RunResult captured =
-        cli("capture " + kDevice + " --session " + session.string() + " --views 4 --flip-after 0");
+        cli("capture --device sim:structured-light --scene small-block --session " +
+            session.string() + " --views 2 --flip-after 0");
     ASSERT_EQ(captured.exit_code, 0) << captured.output;
     const fs::path png = dir_ / "out.png", state_file = dir_ / "state.json";
     const RunResult r = field("--session " + session.string() + " --screenshot " + png.string() +
@@ -90,6 +92,7 @@ TEST_F(FieldSession, ShowsASessionAsSessionInfoAndCoverageReportIt) {
     const json cov = cli_json("coverage " + session.string() + " --json");
     ASSERT_TRUE(cov.is_object());
     ASSERT_TRUE(state["coverage_fraction"].is_number()) << state.dump();
+    EXPECT_GT(cov["fraction"].get<double>(), 0.0) << "a session with coverage";
     EXPECT_NEAR(state["coverage_fraction"].get<double>(), cov["fraction"].get<double>(), 1e-4);
 
     const cv::Mat image = cv::imread(png.string(), cv::IMREAD_COLOR);
