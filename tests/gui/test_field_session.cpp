@@ -100,6 +100,15 @@ TEST_F(FieldSession, ShowsASessionAsSessionInfoAndCoverageReportIt) {
     // The view lies between the scan list (450 px) and the device panel (360 px).
     EXPECT_GT(fraction_not(image, cv::Rect(500, 150, 370, 450), kClearRgb), 0.05)
         << "no model drawn in the view";
+
+    // After a "crash" that damaged a scan file, reopening shows what `session check` found.
+    fs::resize_file(session / "scans" / "scan_000002.ply", 200);
+    const RunResult reopened =
+        field("--session " + session.string() + " --frames 1 --dump-state " + state_file.string());
+    ASSERT_EQ(reopened.exit_code, 0) << reopened.output;
+    const std::string check = read_json(state_file)["session_check"];
+    EXPECT_NE(check.find("scan_000002.ply"), std::string::npos) << check;
+    EXPECT_NE(check.find("--repair"), std::string::npos) << check;
 }
 
 TEST_F(FieldSession, CapturesFromTheCaptureActionRegisterLive) {
