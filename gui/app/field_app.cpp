@@ -16,6 +16,8 @@
 #include "field_window.hpp"
 #include "frame_times.hpp"
 #include "screenshot.hpp"
+#include "session_link.hpp"
+#include "state_dump.hpp"
 
 namespace anascan::field {
 namespace {
@@ -31,7 +33,12 @@ struct AppState {
     std::unique_ptr<gui::ProgressiveView> view_image;
     gui::ThemeConfig theme;
     bool fit_pending = true;  ///< Fit the camera in the next frame (its aspect is known there).
+    std::unique_ptr<SessionLink> link;  ///< With --session.
 };
+
+/// A headless run with a session: capture (--capture-views), wait until the session has
+/// settled (registration done, points loaded), then count the --frames.
+enum class Phase { kCapturing, kSettling, kCounting };
 
 /// Loads the PLY files and the synthetic stone into the renderer and the scan list; the
 /// renderer keeps the only copy of the points (on the GPU).
@@ -97,10 +104,11 @@ void apply_actions(const gui::UiActions& actions, AppState& app, bool font_scale
             gui::apply_view_action(app.view, action);
             app.theme.high_contrast = app.view.high_contrast;
             gui::apply_theme(app.theme, font_scaled);
-        } else if (!gui::apply_view_action(app.view, action)) {
+        } else if (gui::apply_view_action(app.view, action)) {
+        } else if (app.link && app.link->apply(action, app.view)) {
+        } else {
             app.view.status.last_error =
-                "no capture session attached: open one with --session (scans and devices "
-                "arrive with the capture session)";
+                "no capture session: start anascan-field with --session DIR to capture";
         }
     }
 }
@@ -153,35 +161,97 @@ void report(const std::vector<double>& frame_ms, const std::vector<bool>& drew,
                  last.points_visible, budget, renderer_name.c_str());
 }
 
+Phase initial_phase(const FieldAppConfig& config, const AppState& app) {
+    if (!app.link || config.frames == 0) return Phase::kCounting;
+    return config.capture_views > 0 ? Phase::kCapturing : Phase::kSettling;
+}
+
+/// The capture action, as the button gives it, whenever no capture runs, until
+/// `capture_views` captures have finished; then wait for registration and the view.
+Phase drive_session(const FieldAppConfig& config, AppState& app, Phase phase,
+                    gui::UiActions& actions) {
+    if (phase == Phase::kCapturing) {
+        if (app.link->captures_finished() >= config.capture_views) {
+            app.link->request_idle();
+            return Phase::kSettling;
+        }
+        if (!app.link->capturing()) actions.push_back({.kind = gui::UiActionKind::kCapture});
+        return phase;
+    }
+    if (phase == Phase::kSettling && app.link->settled()) {
+        app.fit_pending = true;  // the whole model in the screenshot
+        return Phase::kCounting;
+    }
+    return phase;
+}
+
+/// Events, futures and new points of the session; fit the view to the first points.
+void poll_session(AppState& app) {
+    if (!app.link) return;
+    const bool had_points = app.renderer->total_points() > 0;
+    app.link->poll(app.view, *app.renderer);
+    if (!had_points && app.renderer->total_points() > 0) app.fit_pending = true;
+}
+
+/// Frame times while a capture or registrations were pending (the figure).
+void report_busy(const std::vector<double>& busy_ms, std::size_t points) {
+    if (busy_ms.empty()) return;
+    const FrameTimeSummary b = summarize_frame_times(busy_ms);
+    std::fprintf(stderr,
+                 "anascan-field: %zu frames while capturing or registering: frame time median "
+                 "%.1f ms, p95 %.1f ms, max %.1f ms (%zu points in the view at the end)\n",
+                 busy_ms.size(), b.median_ms, b.p95_ms, b.max_ms, points);
+}
+
+struct FrameLog {
+    std::vector<double> frame_ms, busy_ms;
+    std::vector<bool> drew;
+};
+
+/// Draws one frame; returns its stats. `counting`: the frame counts toward --frames.
+gui::DrawStats draw_frame(const FieldAppConfig& config, FieldWindow& window, AppState& app,
+                          gui::UiActions& actions, std::size_t budget) {
+    const gui::PanelLayout layout = current_layout(config.font_scale);
+    app.camera.orbit(config.orbit_px_per_frame, 0.0);  // simulated operator (measuring)
+    gui::draw_field_panels(app.view, layout, actions);
+    apply_actions(actions, app, window.font_scaled());
+    update_styles(app);
+    int fb_w = 0, fb_h = 0;
+    window.framebuffer_size(fb_w, fb_h);
+    const gui::DrawStats stats = draw_scene(app, layout, fb_w, fb_h,
+                                            {.color_mode = app.view.color_mode,
+                                             .budget_points = budget,
+                                             .base_point_size_px = config.point_size_px});
+    window.render_ui();
+    return stats;
+}
+
 /// init → loop (poll, new frame, panels, scene, UI, screenshot, swap) as Dear ImGui's
 /// example; the LOD budget follows the measured frame time unless fixed.
 int run_loop(const FieldAppConfig& config, FieldWindow& window, AppState& app) {
     gui::LodController lod({.target_frame_ms = config.target_frame_ms});
-    std::vector<double> frame_ms;
-    std::vector<bool> drew;
+    FrameLog log;
     gui::DrawStats stats;
-    for (int frame = 0; config.frames == 0 || frame < config.frames; ++frame) {
+    Phase phase = initial_phase(config, app);
+    const auto started = std::chrono::steady_clock::now();
+    int counted = 0;
+    for (int frame = 0; config.frames == 0 || counted < config.frames; ++frame) {
         if (window.should_close()) break;
         const auto start = std::chrono::steady_clock::now();
         // Interactive and nothing left to refine: sleep until input (or 50 ms, for live
         // updates) instead of spinning; measurement runs (--frames) never wait.
         const bool idle = config.frames == 0 && stats.complete && !ImGui::IsAnyMouseDown();
         window.begin_frame(idle ? 0.05 : 0.0);
-        const gui::PanelLayout layout = current_layout(config.font_scale);
-        app.camera.orbit(config.orbit_px_per_frame, 0.0);  // simulated operator (measuring)
+        poll_session(app);
         gui::UiActions actions;
-        gui::draw_field_panels(app.view, layout, actions);
-        apply_actions(actions, app, window.font_scaled());
-        update_styles(app);
-        int fb_w = 0, fb_h = 0;
-        window.framebuffer_size(fb_w, fb_h);
+        if (app.link) phase = drive_session(config, app, phase, actions);
+        const bool counting = phase == Phase::kCounting;
+        const bool busy = app.link && app.link->busy(app.view);
         const std::size_t budget = config.point_budget > 0 ? config.point_budget : lod.budget();
-        stats = draw_scene(app, layout, fb_w, fb_h,
-                           {.color_mode = app.view.color_mode,
-                            .budget_points = budget,
-                            .base_point_size_px = config.point_size_px});
-        window.render_ui();
-        if (config.screenshot_png && frame + 1 == config.frames) {
+        stats = draw_frame(config, window, app, actions, budget);
+        if (config.screenshot_png && counting && counted + 1 == config.frames) {
+            int fb_w = 0, fb_h = 0;
+            window.framebuffer_size(fb_w, fb_h);
             if (auto written = write_screenshot(*config.screenshot_png, fb_w, fb_h); !written) {
                 std::fprintf(stderr, "anascan-field: error: %s\n", written.error().message.c_str());
                 return 1;
@@ -190,18 +260,43 @@ int run_loop(const FieldAppConfig& config, FieldWindow& window, AppState& app) {
         window.swap();
         const std::chrono::duration<double, std::milli> took =
             std::chrono::steady_clock::now() - start;
-        frame_ms.push_back(took.count());
+        if (counting) {
+            log.frame_ms.push_back(took.count());
+            log.drew.push_back(stats.points_drawn > 0);
+            ++counted;
+        }
+        if (busy && frame > 0) log.busy_ms.push_back(took.count());
         // Only frames that drew points tell the cost of a budget (cached frames are copies).
         if (frame > 0 && stats.points_drawn > 0) {
             lod.update(took.count(), app.renderer->total_points());
         }
-        drew.push_back(stats.points_drawn > 0);
+        const std::chrono::duration<double> waited = std::chrono::steady_clock::now() - started;
+        if (!counting && waited.count() > config.session_timeout_s) {
+            std::fprintf(stderr,
+                         "anascan-field: error: the session did not settle within %.0f s "
+                         "(captures or registration still running)\n",
+                         config.session_timeout_s);
+            return 1;
+        }
     }
     if (config.frames > 0) {
-        report(frame_ms, drew, stats, config.point_budget > 0 ? config.point_budget : lod.budget(),
+        report(log.frame_ms, log.drew, stats,
+               config.point_budget > 0 ? config.point_budget : lod.budget(),
                window.renderer_name());
+        report_busy(log.busy_ms, app.renderer->total_points());
     }
     return 0;
+}
+
+SessionLinkConfig session_link_config(const FieldAppConfig& config) {
+    SessionLinkConfig link{
+        .dir = *config.session,
+        .device_uri = config.device,
+        .tour = {.views = config.tour_views,
+                 .flip_after = config.flip_after < 0 ? config.tour_views / 2 : config.flip_after},
+        .sim_unplug_after = config.sim_unplug_after};
+    link.settings.angular_step_deg = config.angular_step_deg;
+    return link;
 }
 
 }  // namespace
@@ -236,7 +331,20 @@ int run_field_app(const FieldAppConfig& config) {
     app.view.high_contrast = config.high_contrast;
     app.theme = {.high_contrast = config.high_contrast, .font_scale = config.font_scale};
     gui::apply_theme(app.theme, (*window)->font_scaled());
-    return run_loop(config, **window, app);
+    if (config.session) {
+        app.link = std::make_unique<SessionLink>(session_link_config(config));
+        app.link->open(app.view);
+    }
+    const int code = run_loop(config, **window, app);
+    if (config.dump_state_json) {
+        const ViewFigures figures{.points_total = app.renderer->total_points(),
+                                  .chunks = app.link ? app.link->shown_scans() : 0};
+        if (auto ok = write_state_json(*config.dump_state_json, app.view, figures); !ok) {
+            std::fprintf(stderr, "anascan-field: error: %s\n", ok.error().message.c_str());
+            return 1;
+        }
+    }
+    return code;
 }
 
 }  // namespace anascan::field

@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "anascan/gui/field_view_state.hpp"
@@ -26,6 +27,15 @@ struct FieldAppConfig {
     float font_scale = 1.5f;
     bool high_contrast = false;
     gui::ColorMode color_mode = gui::ColorMode::kByScan;
+    std::optional<std::filesystem::path> session;  ///< Session folder (opened or created).
+    std::string device = "sim:structured-light/small-block";  ///< Active device at start.
+    int capture_views = 0;  ///< Headless: this many captures through the capture action.
+    int tour_views = 24;    ///< The simulated operator's tour around the block.
+    int flip_after = -1;    ///< Turned over after this many views (-1: half the tour).
+    std::optional<double> angular_step_deg;  ///< Terrestrial scanner setting, degrees.
+    int sim_unplug_after = -1;               ///< Fault injection (simulated scanners).
+    std::optional<std::filesystem::path> dump_state_json;  ///< The view state at the end.
+    double session_timeout_s = 600.0;  ///< Headless: give up waiting for the session.
 };
 
 /// Runs the app; returns the process exit code (errors are printed on stderr).

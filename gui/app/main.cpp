@@ -7,11 +7,40 @@
 
 namespace {
 
-void add_options(CLI::App& app, anascan::field::FieldAppConfig& config,
-                 std::optional<std::string>& session) {
-    app.add_option("--session", session,
-                   "Session folder (attaching to a capture session "
-                   "arrives with the live capture session)");
+/// The session: open or create, capture from the GUI (and headless, --capture-views).
+void add_session_options(CLI::App& app, anascan::field::FieldAppConfig& config) {
+    app.add_option("--session", config.session,
+                   "Session folder: shows its scans; the capture action records into it "
+                   "(created at the first capture when absent)");
+    app.add_option("--device", config.device,
+                   "Device chosen at start (default sim:structured-light/small-block; "
+                   "anascan devices lists them)");
+    app.add_option("--capture-views", config.capture_views,
+                   "Headless: this many captures through the capture action, rendering while "
+                   "they run, then wait for registration (needs --session and --frames)")
+        ->check(CLI::NonNegativeNumber);
+    app.add_option("--tour-views", config.tour_views,
+                   "Simulated operator: views of the walk around the block (default 24)")
+        ->check(CLI::Range(1, 10000));
+    app.add_option("--flip-after", config.flip_after,
+                   "Simulated operator turns the stone over after this many views "
+                   "(default: half the tour; 0: never)")
+        ->check(CLI::Range(0, 10000));
+    app.add_option("--angular-step-deg", config.angular_step_deg,
+                   "Terrestrial scanner angular step, degrees")
+        ->check(CLI::PositiveNumber);
+    app.add_option("--dump-state", config.dump_state_json,
+                   "Write the view state (scan rows, coverage, status) as JSON at the end");
+    app.add_option("--session-timeout-s", config.session_timeout_s,
+                   "Headless: give up when the session has not settled after this long, s")
+        ->check(CLI::PositiveNumber);
+    // Fault injection for the tests: hidden (empty group).
+    app.add_option("--sim-unplug-after", config.sim_unplug_after,
+                   "Simulated device unplugged during the capture after this many")
+        ->group("");
+}
+
+void add_options(CLI::App& app, anascan::field::FieldAppConfig& config) {
     app.add_option("--cloud", config.clouds, "PLY file(s) to show, one scan each")
         ->check(CLI::ExistingFile);
     app.add_option("--synthetic-points", config.synthetic_points,
@@ -57,16 +86,15 @@ int main(int argc, char** argv) {
         "status). Units are metres.",
         "anascan-field"};
     anascan::field::FieldAppConfig config;
-    std::optional<std::string> session;
-    add_options(app, config, session);
+    add_options(app, config);
+    add_session_options(app, config);
     CLI11_PARSE(app, argc, argv);
-    if (session) {
+    if (config.screenshot_png && config.frames == 0) config.frames = 5;
+    if (config.capture_views > 0 && (!config.session || config.frames == 0)) {
         std::fprintf(stderr,
-                     "anascan-field: error: --session %s: attaching to a capture session is not "
-                     "built yet; show the scans' PLY files with --cloud\n",
-                     session->c_str());
+                     "anascan-field: error: --capture-views needs --session and --frames "
+                     "(or --screenshot)\n");
         return 2;
     }
-    if (config.screenshot_png && config.frames == 0) config.frames = 5;
     return anascan::field::run_field_app(config);
 }

@@ -63,7 +63,7 @@ void draw_device_panel(const FieldViewState& state, const PanelLayout& layout, U
         ImGui::TextWrapped("Session: %s", state.session_dir.c_str());
     }
     if (!state.session_check.empty()) {
-        ImGui::TextColored(detail::kColorWarn, "Reopened: %s", state.session_check.c_str());
+        ImGui::TextColored(detail::kColorWarn, "%s", state.session_check.c_str());
     }
     ImGui::Separator();
     draw_devices(state.device, actions);

@@ -2,10 +2,8 @@
 // Mesa llvmpipe): the screenshot shows the points in the view and the panels around it;
 // a bad file gets a clear message naming it.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
-#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -16,40 +14,25 @@
 #include <string>
 
 #include "anascan/processing/io/ply.hpp"
+#include "field_app_run.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-struct RunResult {
-    int exit_code = -1;
-    std::string output;  // stdout and stderr
-};
+using anascan::test::fraction_not;
+using anascan::test::kClearRgb;
+using anascan::test::RunResult;
 
 RunResult run(const std::string& args) {
-    const std::string command = std::string(ANASCAN_FIELD) + " " + args + " 2>&1";
-    RunResult result;
-    FILE* pipe = popen(command.c_str(), "r");
-    if (pipe == nullptr) return result;
-    std::array<char, 4096> buffer{};
-    while (std::fgets(buffer.data(), buffer.size(), pipe) != nullptr)
-        result.output += buffer.data();
-    const int status = pclose(pipe);
-    result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return result;
+    return anascan::test::run_command(std::string(ANASCAN_FIELD) + " " + args);
 }
 
 class FieldApp : public ::testing::Test {
 protected:
     void SetUp() override {
-        if (std::getenv("DISPLAY") == nullptr) {
-            GTEST_SKIP() << "no DISPLAY: this test runs under xvfb-run (Debian xvfb, installed "
-                            "by scripts/setup.sh); reconfigure after installing it";
-        }
-        dir_ = fs::temp_directory_path() /
-               ("anascan_field_test_" + std::to_string(::getpid()) + "_" +
-                ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::create_directories(dir_);
+        if (std::getenv("DISPLAY") == nullptr) GTEST_SKIP() << anascan::test::kNoDisplay;
+        dir_ = anascan::test::fresh_test_dir("anascan_field_test_");
     }
     void TearDown() override {
         std::error_code ec;
@@ -72,20 +55,6 @@ protected:
     fs::path dir_;
 };
 
-/// Fraction of pixels in the rectangle that differ from `rgb` by more than 24 in a channel.
-double fraction_not(const cv::Mat& bgr, cv::Rect rect, cv::Vec3b rgb) {
-    int differing = 0;
-    for (int y = rect.y; y < rect.y + rect.height; ++y) {
-        for (int x = rect.x; x < rect.x + rect.width; ++x) {
-            const cv::Vec3b p = bgr.at<cv::Vec3b>(y, x);
-            const bool same = std::abs(p[2] - rgb[0]) <= 24 && std::abs(p[1] - rgb[1]) <= 24 &&
-                              std::abs(p[0] - rgb[2]) <= 24;
-            if (!same) ++differing;
-        }
-    }
-    return static_cast<double>(differing) / rect.area();
-}
-
 /// Fraction of bright pixels (text) in the rectangle.
 double fraction_bright(const cv::Mat& bgr, cv::Rect rect) {
     int bright = 0;
@@ -97,8 +66,6 @@ double fraction_bright(const cv::Mat& bgr, cv::Rect rect) {
     }
     return static_cast<double>(bright) / rect.area();
 }
-
-const cv::Vec3b kClearRgb{41, 46, 56};  // glClearColor(0.16, 0.18, 0.22) of the view
 
 TEST_F(FieldApp, ScreenshotShowsThePointsAndThePanels) {
     const fs::path ply = write_sphere_ply();

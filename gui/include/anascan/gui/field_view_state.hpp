@@ -61,7 +61,7 @@ enum class ColorMode { kByScan, kByQuality, kByCoverage };
 /// The whole view state of the field app.
 struct FieldViewState {
     std::string session_dir;         ///< Shown in the title line; empty when no session.
-    std::string session_check;       ///< What `session check` found on reopening, or empty.
+    std::string session_check;       ///< `session check` findings, "new session", or empty.
     std::vector<ScanRow> scans;      ///< In capture order (ascending seq).
     std::int64_t selected_seq = -1;  ///< Highlighted scan, -1 when none.
     DevicePanelState device;

@@ -1,0 +1,255 @@
+#include "session_link.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "anascan/gui/session_view.hpp"
+
+namespace anascan::field {
+namespace {
+
+using acquisition::SessionEventKind;
+
+template <typename T>
+bool ready(const std::optional<std::future<T>>& future) {
+    return future && future->wait_for(std::chrono::seconds(0)) == std::future_status::ready;
+}
+
+}  // namespace
+
+void EventQueue::push(acquisition::SessionEvent event) {
+    std::lock_guard lock(mutex_);
+    events_.push_back(std::move(event));
+}
+
+std::deque<acquisition::SessionEvent> EventQueue::take() {
+    std::lock_guard lock(mutex_);
+    return std::exchange(events_, {});
+}
+
+SessionLink::SessionLink(SessionLinkConfig config) : config_(std::move(config)) {}
+
+SessionLink::~SessionLink() = default;
+
+const acquisition::SessionStore* SessionLink::store() const {
+    if (session_) return &session_->store();
+    return read_store_.get();
+}
+
+void SessionLink::open(gui::FieldViewState& view) {
+    view.session_dir = config_.dir.string();
+    for (const acquisition::ScannerListing& s : acquisition::list_scanners()) {
+        view.device.devices.push_back({.id = s.uri,
+                                       .kind = s.model,
+                                       .connected = true,
+                                       .status = s.simulated ? "simulated, ready" : "ready"});
+    }
+    auto active = std::find_if(view.device.devices.begin(), view.device.devices.end(),
+                               [&](const gui::DeviceRow& d) { return d.id == config_.device_uri; });
+    if (active == view.device.devices.end()) {
+        view.device.devices.push_back(
+            {.id = config_.device_uri, .kind = "scanner", .connected = true, .status = "ready"});
+        active = view.device.devices.end() - 1;
+    }
+    view.device.active_device = static_cast<int>(active - view.device.devices.begin());
+    if (!std::filesystem::exists(config_.dir / "session.sqlite")) {
+        view.session_check = "new session: created at the first capture";
+        return;
+    }
+    auto store =
+        acquisition::SessionStore::open(config_.dir, acquisition::SessionOpenMode::kReadOnly);
+    if (!store) {
+        view.status.last_error = store.error().message;
+        return;
+    }
+    read_store_ = std::move(*store);
+    pending_check_ = std::async(std::launch::async,
+                                [dir = config_.dir] { return acquisition::check_session(dir); });
+}
+
+void SessionLink::poll(gui::FieldViewState& view, gui::PointRenderer& renderer) {
+    drain_events(view);
+    poll_futures(view);
+    const auto now = std::chrono::steady_clock::now();
+    if (now >= next_timed_refresh_) {
+        // Another process may be capturing into the session (no events then): look again.
+        if (!session_) dirty_ = coverage_dirty_ = true;
+        std::error_code ec;
+        const auto space = std::filesystem::space(
+            std::filesystem::exists(config_.dir) ? config_.dir : config_.dir.parent_path(), ec);
+        if (!ec) view.status.disk_free_bytes = space.available;
+        next_timed_refresh_ = now + std::chrono::seconds(1);
+    }
+    if (dirty_) refresh(view, renderer);
+    if (!load_error_.empty()) view.status.last_error = std::exchange(load_error_, {});
+    if (coverage_dirty_) refresh_coverage(view, renderer);
+    poll_load(renderer);
+}
+
+void SessionLink::drain_events(gui::FieldViewState& view) {
+    for (const acquisition::SessionEvent& event : events_->take()) {
+        switch (event.kind) {
+            case SessionEventKind::kSaved:
+            case SessionEventKind::kRegistered:
+            case SessionEventKind::kRegistrationFailed:
+            case SessionEventKind::kPosesRefined:
+                dirty_ = true;
+                break;
+            case SessionEventKind::kCoverage:
+                view.status.coverage_percent = event.coverage_fraction * 100.0;
+                coverage_dirty_ = true;
+                break;
+            case SessionEventKind::kDeviceError:
+                view.status.last_error = event.message;
+                set_device_status(view, false, "error: " + event.message);
+                break;
+            case SessionEventKind::kDeviceBack:
+                set_device_status(view, true, "back: " + event.message);
+                break;
+            case SessionEventKind::kSaveFailed:
+                view.status.last_error = event.message;
+                dirty_ = true;
+                break;
+        }
+    }
+}
+
+void SessionLink::poll_futures(gui::FieldViewState& view) {
+    if (ready(pending_capture_)) {
+        const Expected<std::int64_t> acknowledged = pending_capture_->get();
+        pending_capture_.reset();
+        ++captures_finished_;
+        if (acknowledged) {
+            ++acknowledged_;
+        } else {
+            const Error& error = acknowledged.error();
+            const bool away =
+                error.code == ErrorCode::kDisconnected || error.code == ErrorCode::kTimeout;
+            view.status.last_error =
+                "capture failed: " + error.message +
+                (away ? " (unplugged or silent: plug it in, then capture again)" : "");
+            if (away) set_device_status(view, false, "unplugged or silent");
+        }
+        dirty_ = true;
+    }
+    view.device.capturing = pending_capture_.has_value();
+    if (ready(pending_check_)) {
+        const auto report = pending_check_->get();
+        pending_check_.reset();
+        if (!report)
+            view.session_check = "session check failed: " + report.error().message;
+        else
+            view.session_check = gui::check_summary(*report);
+    }
+    if (ready(pending_idle_)) {
+        pending_idle_->get();
+        pending_idle_.reset();
+        dirty_ = coverage_dirty_ = true;
+    }
+}
+
+void SessionLink::set_device_status(gui::FieldViewState& view, bool connected, std::string status) {
+    const int i = view.device.active_device;
+    if (i < 0 || i >= static_cast<int>(view.device.devices.size())) return;
+    view.device.devices[static_cast<std::size_t>(i)].connected = connected;
+    view.device.devices[static_cast<std::size_t>(i)].status = std::move(status);
+}
+
+void SessionLink::refresh(gui::FieldViewState& view, gui::PointRenderer& renderer) {
+    dirty_ = false;
+    if (store() == nullptr) return;
+    auto scans = store()->scans();
+    if (!scans) {
+        view.status.last_error = scans.error().message;
+        return;
+    }
+    view.scans.clear();
+    view.status.queued_registrations = 0;
+    for (const acquisition::ScanRecord& record : *scans) {
+        view.scans.push_back(gui::scan_row(record));
+        if (record.state == acquisition::ScanState::kQueued && !record.excluded)
+            ++view.status.queued_registrations;
+    }
+    update_chunks(*scans, renderer);
+}
+
+/// Registered scans of the model's group are drawn at their poses; others are removed.
+void SessionLink::update_chunks(const std::vector<acquisition::ScanRecord>& scans,
+                                gui::PointRenderer& renderer) {
+    const int group = gui::model_group(scans);
+    std::map<std::int64_t, Pose>& wanted = wanted_;
+    wanted.clear();
+    for (const auto& record : scans)
+        if (gui::drawn_in_view(record, group)) wanted.emplace(record.seq, *record.pose);
+    for (auto it = shown_.begin(); it != shown_.end();) {
+        const auto w = wanted.find(it->first);
+        if (w == wanted.end()) {
+            renderer.remove_chunk(it->first);
+            it = shown_.erase(it);
+            continue;
+        }
+        if (!w->second.isApprox(it->second, 1e-12)) {
+            renderer.set_pose(it->first, w->second);
+            it->second = w->second;
+        }
+        ++it;
+    }
+    to_load_.clear();
+    for (const auto& [seq, pose] : wanted)
+        if (!shown_.contains(seq) && seq != loading_seq_ && !unloadable_.contains(seq))
+            to_load_.push_back(seq);
+}
+
+/// One scan read at a time, off the UI thread; its points go to the renderer (the only
+/// copy) and the cloud is freed.
+void SessionLink::poll_load(gui::PointRenderer& renderer) {
+    if (ready(pending_load_)) {
+        Expected<Scan> scan = pending_load_->get();
+        pending_load_.reset();
+        const std::int64_t seq = std::exchange(loading_seq_, -1);
+        const auto wanted = wanted_.find(seq);
+        if (scan && wanted != wanted_.end()) {
+            renderer.add_chunk(seq, std::move(scan->cloud), wanted->second);
+            shown_[seq] = wanted->second;
+        } else if (!scan) {
+            load_error_ = scan.error().message;
+            unloadable_.insert(seq);
+        }
+        dirty_ = true;  // the pose may have moved meanwhile; the row may have gone
+    }
+    if (pending_load_ || to_load_.empty() || store() == nullptr) return;
+    loading_seq_ = to_load_.front();
+    to_load_.erase(to_load_.begin());
+    pending_load_ = std::async(std::launch::async, [store = store(), seq = loading_seq_] {
+        return store->load_scan(seq);
+    });
+}
+
+void SessionLink::refresh_coverage(gui::FieldViewState& view, gui::PointRenderer& renderer) {
+    coverage_dirty_ = false;
+    if (store() == nullptr) return;
+    const auto json = store()->value("coverage");
+    if (!json || !*json) return;
+    const gui::StoredCoverage coverage = gui::parse_coverage_json(**json);
+    if (coverage.fraction) view.status.coverage_percent = *coverage.fraction * 100.0;
+    renderer.set_hole_markers(coverage.holes);
+}
+
+bool SessionLink::settled() const {
+    return !pending_capture_ && !pending_load_ && !pending_check_ && !pending_idle_ && !dirty_ &&
+           to_load_.empty();
+}
+
+bool SessionLink::busy(const gui::FieldViewState& view) const {
+    return pending_capture_.has_value() || pending_idle_.has_value() ||
+           view.status.queued_registrations > 0;
+}
+
+void SessionLink::request_idle() {
+    if (!session_ || pending_idle_) return;
+    pending_idle_ =
+        std::async(std::launch::async, [session = session_.get()] { session->wait_until_idle(); });
+}
+
+}  // namespace anascan::field

@@ -1,0 +1,118 @@
+#pragma once
+/// \file
+/// The field app attached to a capture session (acquisition only). Viewing opens the store
+/// read-only (it works alongside an `anascan capture` that holds the session); the first
+/// capture opens it for writing and runs a CaptureSession inside the app. Session events
+/// arrive on acquisition's threads and go into a queue that the UI thread drains each frame;
+/// captures, scan loads, the crash check and "wait until idle" are futures the UI polls, so
+/// the UI thread never waits for capture, registration or disk.
+
+#include <chrono>
+#include <cstdint>
+#include <deque>
+#include <filesystem>
+#include <future>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "anascan/acquisition/capture_session.hpp"
+#include "anascan/acquisition/scanner_source.hpp"
+#include "anascan/acquisition/session_check.hpp"
+#include "anascan/gui/field_view_state.hpp"
+#include "anascan/gui/point_renderer.hpp"
+#include "anascan/gui/ui_action.hpp"
+
+namespace anascan::field {
+
+struct SessionLinkConfig {
+    std::filesystem::path dir;
+    std::string device_uri = "sim:structured-light/small-block";  ///< Active at start.
+    acquisition::SimulatedTour tour;                              ///< For simulated scanners.
+    acquisition::ScannerSettings settings;
+    int sim_unplug_after = -1;  ///< Fault injection (simulated scanners), -1: never.
+};
+
+/// Session events, pushed by acquisition's threads, drained by the UI thread.
+class EventQueue {
+public:
+    void push(acquisition::SessionEvent event);
+    std::deque<acquisition::SessionEvent> take();
+
+private:
+    std::mutex mutex_;
+    std::deque<acquisition::SessionEvent> events_;
+};
+
+class SessionLink {
+public:
+    explicit SessionLink(SessionLinkConfig config);
+    /// Saves what was captured and finishes the registration in progress (CaptureSession).
+    ~SessionLink();
+    SessionLink(const SessionLink&) = delete;
+    SessionLink& operator=(const SessionLink&) = delete;
+
+    /// Opens the session read-only when the folder exists (else it is created at the first
+    /// capture), starts the crash check and lists the devices.
+    void open(gui::FieldViewState& view);
+    /// Once per frame on the UI thread: events, finished futures, scan rows, the points of
+    /// newly registered scans, moved poses, coverage and free disk. Never blocks.
+    void poll(gui::FieldViewState& view, gui::PointRenderer& renderer);
+    /// Session actions (capture, exclude, include, re-register, turned over, device);
+    /// false for others.
+    bool apply(const gui::UiAction& action, gui::FieldViewState& view);
+
+    /// Starts waiting (on another thread) until registration has caught up.
+    void request_idle();
+    /// Nothing pending: no capture, load, check or wait; rows up to date; idle reached
+    /// when it was requested.
+    bool settled() const;
+    /// Registration or a capture in progress (for the frame-time report).
+    bool busy(const gui::FieldViewState& view) const;
+    int captures_finished() const { return captures_finished_; }
+    bool capturing() const { return pending_capture_.has_value(); }
+    std::size_t shown_scans() const { return shown_.size(); }
+
+private:
+    const acquisition::SessionStore* store() const;
+    bool start_session(gui::FieldViewState& view);
+    void capture(gui::FieldViewState& view);
+    bool attach(const std::string& uri, gui::FieldViewState& view);
+    void set_excluded(std::int64_t seq, bool excluded, gui::FieldViewState& view);
+    void drain_events(gui::FieldViewState& view);
+    void poll_futures(gui::FieldViewState& view);
+    void refresh(gui::FieldViewState& view, gui::PointRenderer& renderer);
+    void update_chunks(const std::vector<acquisition::ScanRecord>& scans,
+                       gui::PointRenderer& renderer);
+    void poll_load(gui::PointRenderer& renderer);
+    void refresh_coverage(gui::FieldViewState& view, gui::PointRenderer& renderer);
+    void set_device_status(gui::FieldViewState& view, bool connected, std::string status);
+
+    SessionLinkConfig config_;
+    std::shared_ptr<EventQueue> events_ = std::make_shared<EventQueue>();
+    std::unique_ptr<acquisition::SessionStore> read_store_;
+    std::unique_ptr<acquisition::CaptureSession> session_;
+    std::string attached_uri_;
+    int acknowledged_ = 0;  ///< Scans in the session: the tour's next view.
+    int captures_finished_ = 0;
+    bool turned_over_pending_ = false;
+    bool dirty_ = true, coverage_dirty_ = true;
+    std::chrono::steady_clock::time_point next_timed_refresh_{};
+    std::map<std::int64_t, Pose> shown_;   ///< Chunks in the renderer and their poses.
+    std::map<std::int64_t, Pose> wanted_;  ///< Scans the view should show, at these poses.
+    std::vector<std::int64_t> to_load_;    ///< Registered scans whose points are not shown yet.
+    std::set<std::int64_t> unloadable_;    ///< Scans whose file could not be read.
+    std::string load_error_;               ///< For the status bar.
+    // Futures last: destroyed (and waited for) before the session they use.
+    std::optional<std::future<Expected<std::int64_t>>> pending_capture_;
+    std::optional<std::future<Expected<Scan>>> pending_load_;
+    std::int64_t loading_seq_ = -1;
+    std::optional<std::future<Expected<acquisition::SessionCheckReport>>> pending_check_;
+    std::optional<std::future<void>> pending_idle_;
+};
+
+}  // namespace anascan::field

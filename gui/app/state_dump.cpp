@@ -1,0 +1,80 @@
+#include "state_dump.hpp"
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+namespace anascan::field {
+namespace {
+
+const char* state_name(gui::ScanRowState state) {
+    switch (state) {
+        case gui::ScanRowState::kQueued:
+            return "queued";
+        case gui::ScanRowState::kRegistered:
+            return "registered";
+        case gui::ScanRowState::kFailed:
+            return "failed";
+        case gui::ScanRowState::kExcluded:
+            return "excluded";
+    }
+    return "queued";
+}
+
+template <typename T>
+nlohmann::json optional_json(const std::optional<T>& value) {
+    return value ? nlohmann::json(*value) : nlohmann::json(nullptr);
+}
+
+nlohmann::json scans_json(const gui::FieldViewState& view) {
+    nlohmann::json scans = nlohmann::json::array();
+    for (const gui::ScanRow& row : view.scans) {
+        scans.push_back({{"seq", row.seq},
+                         {"device_id", row.device_id},
+                         {"state", state_name(row.state)},
+                         {"group", row.group},
+                         {"rms_mm", optional_json(row.rms_mm)},
+                         {"overlap_percent", optional_json(row.overlap_percent)},
+                         {"message", row.message}});
+    }
+    return scans;
+}
+
+nlohmann::json devices_json(const gui::FieldViewState& view) {
+    nlohmann::json devices = nlohmann::json::array();
+    for (const gui::DeviceRow& d : view.device.devices) {
+        devices.push_back(
+            {{"id", d.id}, {"kind", d.kind}, {"connected", d.connected}, {"status", d.status}});
+    }
+    return devices;
+}
+
+}  // namespace
+
+Expected<void> write_state_json(const std::filesystem::path& file, const gui::FieldViewState& view,
+                                const ViewFigures& figures) {
+    const auto banner = gui::failure_banner(view);
+    const auto& status = view.status;
+    const nlohmann::json doc{
+        {"session", view.session_dir},
+        {"session_check", view.session_check},
+        {"scans", scans_json(view)},
+        {"coverage_percent", optional_json(status.coverage_percent)},
+        {"coverage_fraction", status.coverage_percent
+                                  ? nlohmann::json(*status.coverage_percent / 100.0)
+                                  : nlohmann::json(nullptr)},
+        {"queued_registrations", status.queued_registrations},
+        {"disk_free_bytes", optional_json(status.disk_free_bytes)},
+        {"last_error", status.last_error},
+        {"banner", banner ? nlohmann::json(banner->message) : nlohmann::json(nullptr)},
+        {"devices", devices_json(view)},
+        {"active_device", view.device.active_device},
+        {"points_total", figures.points_total},
+        {"chunks", figures.chunks}};
+    std::ofstream out(file);
+    out << doc.dump(2) << "\n";
+    out.close();
+    if (!out) return fail(ErrorCode::kIo, file.string() + ": cannot write the state file");
+    return {};
+}
+
+}  // namespace anascan::field

@@ -1,0 +1,28 @@
+#pragma once
+/// \file
+/// `--dump-state FILE.json`: the field app's view state as JSON, so that a test can compare
+/// what the app shows with `anascan session info --json` and `anascan coverage --json`.
+
+#include <cstddef>
+#include <filesystem>
+
+#include "anascan/gui/field_view_state.hpp"
+#include "anascan/processing/expected.hpp"
+
+namespace anascan::field {
+
+/// What the 3D view holds besides the state.
+struct ViewFigures {
+    std::size_t points_total = 0;  ///< Points of the chunks in the renderer.
+    std::size_t chunks = 0;
+};
+
+/// {"session", "session_check", "scans": [{"seq", "device_id", "state" (queued|registered|
+/// failed|excluded), "group", "rms_mm" | null, "overlap_percent" | null, "message"}],
+/// "coverage_percent" | null, "coverage_fraction" | null, "queued_registrations",
+/// "disk_free_bytes" | null, "last_error", "banner" | null, "devices": [{"id", "kind",
+/// "connected", "status"}], "active_device", "points_total", "chunks"}.
+Expected<void> write_state_json(const std::filesystem::path& file, const gui::FieldViewState& view,
+                                const ViewFigures& figures);
+
+}  // namespace anascan::field

@@ -1,0 +1,113 @@
+#include "anascan/gui/session_view.hpp"
+
+#include <fmt/format.h>
+
+#include <map>
+#include <nlohmann/json.hpp>
+
+namespace anascan::gui {
+namespace {
+
+ScanRowState row_state(acquisition::ScanState state) {
+    switch (state) {
+        case acquisition::ScanState::kQueued:
+            return ScanRowState::kQueued;
+        case acquisition::ScanState::kRegistered:
+            return ScanRowState::kRegistered;
+        case acquisition::ScanState::kFailed:
+            return ScanRowState::kFailed;
+        case acquisition::ScanState::kExcluded:
+            return ScanRowState::kExcluded;
+    }
+    return ScanRowState::kQueued;
+}
+
+std::optional<double> number(const nlohmann::json& object, const char* key) {
+    const auto it = object.find(key);
+    if (it == object.end() || !it->is_number()) return std::nullopt;
+    return it->get<double>();
+}
+
+std::optional<Eigen::Vector3d> vector3(const nlohmann::json& object, const char* key) {
+    const auto it = object.find(key);
+    if (it == object.end() || !it->is_array() || it->size() != 3) return std::nullopt;
+    for (const auto& v : *it)
+        if (!v.is_number()) return std::nullopt;
+    return Eigen::Vector3d((*it)[0].get<double>(), (*it)[1].get<double>(), (*it)[2].get<double>());
+}
+
+void fill_quality(const std::string& quality_json, ScanRow& row) {
+    if (quality_json.empty()) return;
+    const nlohmann::json q = nlohmann::json::parse(quality_json, nullptr, false);
+    if (!q.is_object()) return;
+    if (const auto rms = number(q, "rms_m")) row.rms_mm = *rms * 1000.0;
+    if (const auto overlap = number(q, "overlap_fraction")) row.overlap_percent = *overlap * 100.0;
+    for (const char* key : {"message", "reason"}) {
+        const auto it = q.find(key);
+        if (it != q.end() && it->is_string() && row.message.empty()) row.message = *it;
+    }
+}
+
+}  // namespace
+
+ScanRow scan_row(const acquisition::ScanRecord& record) {
+    ScanRow row{
+        .seq = record.seq,
+        .device_id = record.device_id,
+        .captured_at = record.captured_at,
+        .state = row_state(record.excluded ? acquisition::ScanState::kExcluded : record.state),
+        .group = record.group};
+    fill_quality(record.quality_json, row);
+    if (!record.file_problem.empty()) row.message = record.file + ": " + record.file_problem;
+    return row;
+}
+
+StoredCoverage parse_coverage_json(std::string_view json) {
+    StoredCoverage coverage;
+    const nlohmann::json doc = nlohmann::json::parse(json, nullptr, false);
+    if (!doc.is_object()) return coverage;
+    coverage.fraction = number(doc, "fraction");
+    const auto holes = doc.find("holes");
+    if (holes == doc.end() || !holes->is_array()) return coverage;
+    for (const auto& hole : *holes) {
+        if (!hole.is_object()) continue;
+        const auto centre = vector3(hole, "centre_m");
+        const auto normal = vector3(hole, "normal");
+        const auto area = number(hole, "area_m2");
+        if (!centre || !normal || !area) continue;
+        coverage.holes.push_back({.centre_m = *centre, .normal = *normal, .area_m2 = *area});
+    }
+    return coverage;
+}
+
+bool drawn_in_view(const acquisition::ScanRecord& record, int group) {
+    return record.state == acquisition::ScanState::kRegistered && !record.excluded &&
+           record.pose.has_value() && record.group == group && group >= 0;
+}
+
+int model_group(const std::vector<acquisition::ScanRecord>& scans) {
+    std::map<int, int> sizes;
+    for (const auto& s : scans)
+        if (s.state == acquisition::ScanState::kRegistered && !s.excluded && s.pose)
+            ++sizes[s.group];
+    int best = -1, best_size = 0;
+    for (const auto& [group, size] : sizes)
+        if (size > best_size) best = group, best_size = size;
+    return best;
+}
+
+std::string check_summary(const acquisition::SessionCheckReport& report) {
+    if (report.issues.empty() && report.integrity == "ok") return {};
+    std::string text = fmt::format("Reopened: session check: {} of {} scans ok, {} finding(s)",
+                                   report.scans_ok, report.scans_checked, report.issues.size());
+    for (const auto& issue : report.issues) {
+        text += fmt::format("; {}: {}", issue.file.filename().string(), issue.problem);
+    }
+    if (report.integrity != "ok") text += "; database: " + report.integrity;
+    if (!report.clean()) {
+        text += fmt::format("; run `anascan session check {} --repair`", report.dir.string());
+    }
+    return text;
+}
+
+}  // namespace anascan::gui

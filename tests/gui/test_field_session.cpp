@@ -1,0 +1,166 @@
+// anascan-field attached to capture sessions, under a virtual X server (xvfb-run, Mesa
+// llvmpipe): a session made by `anascan capture` is shown as `anascan session info` and
+// `anascan coverage` report it; captures driven from the app's capture action register;
+// an unplugged simulated scanner and an unwritable folder give a message, not a crash.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <string>
+
+#include "field_app_run.hpp"
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+using anascan::test::fraction_not;
+using anascan::test::kClearRgb;
+using anascan::test::RunResult;
+
+RunResult run(const std::string& program, const std::string& args, bool stderr_too = true) {
+    return anascan::test::run_command(program + " " + args, stderr_too);
+}
+
+json read_json(const fs::path& file) {
+    std::ifstream in(file);
+    return json::parse(in, nullptr, false);
+}
+
+/// A fast simulated device: the terrestrial (time-of-flight) scanner at a coarse step.
+const std::string kDevice = "--device sim:tof/small-block --angular-step-deg 0.5";
+
+class FieldSession : public ::testing::Test {
+protected:
+    void SetUp() override {
+        if (std::getenv("DISPLAY") == nullptr) GTEST_SKIP() << anascan::test::kNoDisplay;
+        dir_ = anascan::test::fresh_test_dir("anascan_field_session_");
+    }
+    void TearDown() override {
+        std::error_code ec;
+        if (!dir_.empty()) fs::remove_all(dir_, ec);
+    }
+    RunResult field(const std::string& args) const { return run(ANASCAN_FIELD, args); }
+    RunResult cli(const std::string& args) const { return run(ANASCAN_CLI, args); }
+    /// A command's JSON document (stdout); null when it failed.
+    json cli_json(const std::string& args) const {
+        const RunResult r = run(ANASCAN_CLI, args, false);
+        EXPECT_EQ(r.exit_code, 0) << args << ": " << r.output;
+        return json::parse(r.output, nullptr, false);
+    }
+    fs::path dir_;
+};
+
+int registered_rows(const json& state) {
+    int n = 0;
+    for (const auto& row : state["scans"]) n += row["state"] == "registered";
+    return n;
+}
+
+TEST_F(FieldSession, ShowsASessionAsSessionInfoAndCoverageReportIt) {
+    const fs::path session = dir_ / "session";
+    // Two structured-light views of the small block (about 7 s): a coverage figure, holes.
+    const RunResult captured =
+        cli("capture --device sim:structured-light --scene small-block --session " +
+            session.string() + " --views 2 --flip-after 0");
+    ASSERT_EQ(captured.exit_code, 0) << captured.output;
+    const fs::path png = dir_ / "out.png", state_file = dir_ / "state.json";
+    const RunResult r = field("--session " + session.string() + " --screenshot " + png.string() +
+                              " --frames 5 --dump-state " + state_file.string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+
+    const json state = read_json(state_file);
+    ASSERT_TRUE(state.is_object()) << state_file;
+    const json expected = cli_json("session info " + session.string() + " --json");
+    ASSERT_TRUE(expected.is_object());
+    ASSERT_EQ(state["scans"].size(), expected["scans"].size());
+    for (std::size_t i = 0; i < state["scans"].size(); ++i) {
+        EXPECT_EQ(state["scans"][i]["seq"], expected["scans"][i]["seq"]);
+        EXPECT_EQ(state["scans"][i]["state"], expected["scans"][i]["state"]);
+        EXPECT_EQ(state["scans"][i]["group"], expected["scans"][i]["group"]);
+    }
+    ASSERT_GT(registered_rows(state), 0);
+    EXPECT_GT(state["points_total"].get<double>(), 0.0);
+
+    const json cov = cli_json("coverage " + session.string() + " --json");
+    ASSERT_TRUE(cov.is_object());
+    ASSERT_TRUE(state["coverage_fraction"].is_number()) << state.dump();
+    EXPECT_GT(cov["fraction"].get<double>(), 0.0) << "a session with coverage";
+    EXPECT_NEAR(state["coverage_fraction"].get<double>(), cov["fraction"].get<double>(), 1e-4);
+
+    const cv::Mat image = cv::imread(png.string(), cv::IMREAD_COLOR);
+    ASSERT_FALSE(image.empty()) << png;
+    // The view lies between the scan list (450 px) and the device panel (360 px).
+    EXPECT_GT(fraction_not(image, cv::Rect(500, 150, 370, 450), kClearRgb), 0.05)
+        << "no model drawn in the view";
+
+    // After a "crash" that damaged a scan file, reopening shows what `session check` found.
+    fs::resize_file(session / "scans" / "scan_000002.ply", 200);
+    const RunResult reopened =
+        field("--session " + session.string() + " --frames 1 --dump-state " + state_file.string());
+    ASSERT_EQ(reopened.exit_code, 0) << reopened.output;
+    const std::string check = read_json(state_file)["session_check"];
+    EXPECT_NE(check.find("scan_000002.ply"), std::string::npos) << check;
+    EXPECT_NE(check.find("--repair"), std::string::npos) << check;
+}
+
+TEST_F(FieldSession, CapturesFromTheCaptureActionRegisterLive) {
+    const fs::path session = dir_ / "live", state_file = dir_ / "state.json";
+    const RunResult r = field("--session " + session.string() + " " + kDevice +
+                              " --capture-views 3 --tour-views 12 --flip-after 0 --frames 5 "
+                              "--dump-state " +
+                              state_file.string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("frames while capturing or registering"), std::string::npos)
+        << r.output;
+    const json state = read_json(state_file);
+    ASSERT_TRUE(state.is_object()) << state_file;
+    EXPECT_EQ(state["scans"].size(), 3u) << state.dump(2);
+    EXPECT_GE(registered_rows(state), 2) << state.dump(2);
+    EXPECT_EQ(state["queued_registrations"], 0);
+    EXPECT_GT(state["points_total"].get<double>(), 0.0);
+    // The session on disk holds what the app showed.
+    const json stored = cli_json("session info " + session.string() + " --json");
+    ASSERT_TRUE(stored.is_object());
+    EXPECT_EQ(stored["scans"].size(), 3u);
+}
+
+TEST_F(FieldSession, AnUnpluggedScannerIsReportedAndTheAppGoesOn) {
+    const fs::path session = dir_ / "unplug", state_file = dir_ / "state.json";
+    const RunResult r = field("--session " + session.string() + " " + kDevice +
+                              " --sim-unplug-after 1 --capture-views 3 --tour-views 12 "
+                              "--flip-after 0 --frames 3 --dump-state " +
+                              state_file.string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const json state = read_json(state_file);
+    ASSERT_TRUE(state.is_object()) << state_file;
+    const std::string error = state["last_error"];
+    EXPECT_NE(error.find("unplugged"), std::string::npos) << error;
+    EXPECT_NE(error.find("sim:tof"), std::string::npos) << "the message names the device";
+    // The capture after the unplug reopened the device: two scans, nothing lost.
+    EXPECT_EQ(state["scans"].size(), 2u) << state.dump(2);
+}
+
+TEST_F(FieldSession, AnUnwritableFolderIsReportedAndTheAppGoesOn) {
+    // Even root cannot create a folder in /proc.
+    const std::string session = "/proc/anascan_field_no_such_session";
+    const fs::path state_file = dir_ / "state.json";
+    const RunResult r = field("--session " + session + " " + kDevice +
+                              " --capture-views 1 --frames 2 --dump-state " + state_file.string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const json state = read_json(state_file);
+    ASSERT_TRUE(state.is_object()) << state_file;
+    const std::string error = state["last_error"];
+    EXPECT_NE(error.find("cannot open session"), std::string::npos) << error;
+    EXPECT_NE(error.find(session), std::string::npos) << error;
+    EXPECT_TRUE(state["scans"].empty());
+}
+
+}  // namespace

@@ -1,0 +1,98 @@
+// The session as the field app shows it: rows from ScanRecords, the stored coverage JSON,
+// the group drawn, the crash-check summary.
+#include <gtest/gtest.h>
+
+#include "anascan/gui/session_view.hpp"
+
+namespace {
+
+using anascan::Pose;
+using anascan::acquisition::ScanRecord;
+using anascan::acquisition::ScanState;
+namespace gui = anascan::gui;
+
+ScanRecord record(std::int64_t seq, ScanState state, int group, bool with_pose = true) {
+    ScanRecord r;
+    r.seq = seq;
+    r.file = anascan::acquisition::scan_file_name(seq);
+    r.device_id = "sim:tof/small-block";
+    r.state = state;
+    r.group = group;
+    if (with_pose) r.pose = Pose::Identity();
+    return r;
+}
+
+TEST(SessionView, RowTakesTheRegistrarsFiguresInMillimetresAndPercent) {
+    ScanRecord r = record(3, ScanState::kRegistered, 0);
+    r.quality_json = R"({"method": "motion-prior", "rms_m": 0.00042, "overlap_fraction": 0.61})";
+    const gui::ScanRow row = gui::scan_row(r);
+    EXPECT_EQ(row.seq, 3);
+    EXPECT_EQ(row.state, gui::ScanRowState::kRegistered);
+    EXPECT_EQ(row.group, 0);
+    ASSERT_TRUE(row.rms_mm && row.overlap_percent);
+    EXPECT_NEAR(*row.rms_mm, 0.42, 1e-9);
+    EXPECT_NEAR(*row.overlap_percent, 61.0, 1e-9);
+}
+
+TEST(SessionView, ExcludedFailedAndDamagedRowsSayWhy) {
+    ScanRecord excluded = record(1, ScanState::kRegistered, 0);
+    excluded.excluded = true;
+    EXPECT_EQ(gui::scan_row(excluded).state, gui::ScanRowState::kExcluded);
+
+    ScanRecord failed = record(2, ScanState::kFailed, -1, false);
+    failed.quality_json = R"({"reason": "no overlap with any scan"})";
+    EXPECT_EQ(gui::scan_row(failed).message, "no overlap with any scan");
+    failed.quality_json = "not json";
+    EXPECT_FALSE(gui::scan_row(failed).rms_mm.has_value());
+
+    ScanRecord damaged = record(4, ScanState::kFailed, -1, false);
+    damaged.file_problem = "truncated";
+    EXPECT_NE(gui::scan_row(damaged).message.find("scan_000004.ply"), std::string::npos);
+}
+
+TEST(SessionView, CoverageJsonGivesTheFractionAndTheHoles) {
+    const auto c = gui::parse_coverage_json(
+        R"({"status": "ok", "fraction": 0.83125, "holes": [
+            {"area_m2": 0.0125, "sample_count": 40, "centre_m": [0.1, 0.2, 0.0],
+             "normal": [0.0, 0.0, -1.0]},
+            {"area_m2": 0.002, "centre_m": [1, 2], "normal": [0, 0, 1]}]})");
+    ASSERT_TRUE(c.fraction);
+    EXPECT_DOUBLE_EQ(*c.fraction, 0.83125);
+    ASSERT_EQ(c.holes.size(), 1u);  // the second hole's centre is malformed
+    EXPECT_DOUBLE_EQ(c.holes[0].area_m2, 0.0125);
+    EXPECT_DOUBLE_EQ(c.holes[0].centre_m.y(), 0.2);
+    EXPECT_DOUBLE_EQ(c.holes[0].normal.z(), -1.0);
+    EXPECT_FALSE(gui::parse_coverage_json("{broken").fraction.has_value());
+}
+
+TEST(SessionView, TheViewDrawsTheLargestGroupsRegisteredScans) {
+    std::vector<ScanRecord> scans{
+        record(1, ScanState::kRegistered, 1), record(2, ScanState::kRegistered, 0),
+        record(3, ScanState::kRegistered, 0), record(4, ScanState::kFailed, -1, false),
+        record(5, ScanState::kQueued, -1, false)};
+    EXPECT_EQ(gui::model_group(scans), 0);
+    EXPECT_FALSE(gui::drawn_in_view(scans[0], 0));
+    EXPECT_TRUE(gui::drawn_in_view(scans[1], 0));
+    EXPECT_FALSE(gui::drawn_in_view(scans[3], 0));
+    scans[1].excluded = scans[2].excluded = true;
+    EXPECT_EQ(gui::model_group(scans), 1);
+    EXPECT_FALSE(gui::drawn_in_view(scans[1], 0));
+    EXPECT_EQ(gui::model_group({}), -1);
+}
+
+TEST(SessionView, CheckSummaryIsEmptyWhenCleanAndNamesTheFileOtherwise) {
+    anascan::acquisition::SessionCheckReport report;
+    report.dir = "/data/block7";
+    report.scans_checked = report.scans_ok = 5;
+    EXPECT_TRUE(gui::check_summary(report).empty());
+    report.scans_ok = 4;
+    report.issues.push_back({.kind = anascan::acquisition::CheckIssueKind::kDamagedFile,
+                             .seq = 3,
+                             .file = "/data/block7/scans/scan_000003.ply",
+                             .problem = "truncated after 812 bytes"});
+    const std::string text = gui::check_summary(report);
+    EXPECT_NE(text.find("scan_000003.ply: truncated"), std::string::npos) << text;
+    EXPECT_NE(text.find("--repair"), std::string::npos) << text;
+}
+
+}  // namespace
