@@ -39,7 +39,7 @@ const acquisition::SessionStore* SessionLink::store() const {
 
 void SessionLink::open(gui::FieldViewState& view) {
     view.session_dir = config_.dir.string();
-    for (const acquisition::ScannerListing& s : acquisition::list_scanners()) {
+    for (const runtime::ScannerListing& s : runtime::list_scanners()) {
         view.device.devices.push_back({.id = s.uri,
                                        .kind = s.model,
                                        .connected = true,

@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "anascan/acquisition/capture_session.hpp"
-#include "anascan/acquisition/scanner_source.hpp"
+#include "anascan/runtime/scanner_source.hpp"
 #include "anascan/acquisition/session_check.hpp"
 #include "anascan/gui/field_view_state.hpp"
 #include "anascan/gui/point_renderer.hpp"
@@ -32,8 +32,8 @@ namespace anascan::field {
 struct SessionLinkConfig {
     std::filesystem::path dir;
     std::string device_uri = "sim:structured-light/small-block";  ///< Active at start.
-    acquisition::SimulatedTour tour;                              ///< For simulated scanners.
-    acquisition::ScannerSettings settings;
+    runtime::SimulatedTour tour;                              ///< For simulated scanners.
+    runtime::ScannerSettings settings;
     int sim_unplug_after = -1;  ///< Fault injection (simulated scanners), -1: never.
 };
 

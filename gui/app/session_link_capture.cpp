@@ -46,9 +46,9 @@ bool SessionLink::attach(const std::string& uri, gui::FieldViewState& view) {
                         attached_uri_);
         return false;
     }
-    const acquisition::ScannerSource source{
+    const runtime::ScannerSource source{
         .uri = uri, .settings = config_.settings, .sim_unplug_after = config_.sim_unplug_after};
-    if (auto ok = session_->attach_scanner(uri, acquisition::make_scanner_opener(source)); !ok) {
+    if (auto ok = session_->attach_scanner(uri, runtime::make_scanner_opener(source)); !ok) {
         view.status.last_error = ok.error().message;
         return false;
     }
@@ -70,8 +70,8 @@ void SessionLink::capture(gui::FieldViewState& view) {
         return;
     }
     acquisition::CaptureRequest request;
-    if (acquisition::is_simulated(uri))
-        request = acquisition::tour_request(config_.tour, acknowledged_);
+    if (runtime::is_simulated(uri))
+        request = runtime::tour_request(config_.tour, acknowledged_);
     request.turned_over = request.turned_over || std::exchange(turned_over_pending_, false);
     pending_capture_ = session_->capture(std::move(request));
     view.device.capturing = true;
