@@ -5,9 +5,7 @@
 #include "anascan/processing/voxel_grid.hpp"
 
 namespace anascan::acquisition {
-namespace {
 
-/// The group with the most registered, non-excluded scans (lowest id on a tie); -1: none.
 int largest_group(const std::vector<ScanRecord>& scans) {
     std::map<int, std::size_t> sizes;
     for (const ScanRecord& s : scans)
@@ -18,8 +16,6 @@ int largest_group(const std::vector<ScanRecord>& scans) {
         if (size > best_size) best = group, best_size = size;
     return best;
 }
-
-}  // namespace
 
 CoverageCopy make_coverage_copy(const Scan& scan, double voxel_size_m) {
     CoverageCopy copy;

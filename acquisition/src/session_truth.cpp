@@ -1,20 +1,9 @@
 #include "anascan/acquisition/session_truth.hpp"
 
-#include <map>
+#include "anascan/acquisition/session_coverage.hpp"
 
 namespace anascan::acquisition {
 namespace {
-
-int largest_registered_group(const std::vector<ScanRecord>& scans) {
-    std::map<int, std::size_t> sizes;
-    for (const ScanRecord& s : scans)
-        if (s.state == ScanState::kRegistered && s.pose) ++sizes[s.group];
-    int best = -1;
-    std::size_t best_size = 0;
-    for (const auto& [group, size] : sizes)
-        if (size > best_size) best = group, best_size = size;
-    return best;
-}
 
 Eigen::Vector3d centroid(const PointCloud& cloud) {
     Eigen::Vector3d sum = Eigen::Vector3d::Zero();
@@ -30,7 +19,7 @@ Eigen::Vector3d centroid(const PointCloud& cloud) {
 Expected<std::optional<PoseEvaluation>> evaluate_session_truth(const SessionStore& store) {
     auto scans = store.scans();
     if (!scans) return fail(scans.error());
-    const int group = largest_registered_group(*scans);
+    const int group = largest_group(*scans);
     std::vector<NamedPose> estimated, truth;
     for (const ScanRecord& s : *scans) {
         if (!s.true_pose || s.excluded) continue;

@@ -5,6 +5,8 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
+#include "anascan/acquisition/session_coverage.hpp"
+
 namespace anascan::gui {
 namespace {
 
@@ -86,14 +88,7 @@ bool drawn_in_view(const acquisition::ScanRecord& record, int group) {
 }
 
 int model_group(const std::vector<acquisition::ScanRecord>& scans) {
-    std::map<int, int> sizes;
-    for (const auto& s : scans)
-        if (s.state == acquisition::ScanState::kRegistered && !s.excluded && s.pose)
-            ++sizes[s.group];
-    int best = -1, best_size = 0;
-    for (const auto& [group, size] : sizes)
-        if (size > best_size) best = group, best_size = size;
-    return best;
+    return acquisition::largest_group(scans);  // the group coverage is measured on
 }
 
 std::string check_summary(const acquisition::SessionCheckReport& report) {

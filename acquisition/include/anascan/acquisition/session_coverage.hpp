@@ -26,6 +26,10 @@ struct CoverageCopy {
     std::optional<Eigen::Vector3d> sensor_origin_scan_m;
 };
 
+/// The group with the most registered, non-excluded scans (lowest id on a tie); -1: none.
+/// Coverage, the truth comparison and the field app all show this group.
+int largest_group(const std::vector<ScanRecord>& scans);
+
 CoverageCopy make_coverage_copy(const Scan& scan, double voxel_size_m);
 
 /// Coverage from the registered, non-excluded scans of the session's largest group, in that
