@@ -56,7 +56,7 @@ void LiveRegistrar::State::probe_slides(const ScanEntry& entry, const PointCloud
     const Eigen::Vector3d weak = v.fine.degeneracy.weakest_direction.tail<3>();
     if (config.slide_probe_m <= 0.0 || weak.norm() < 0.7) return;
     const Pose T_found = v.fine.T_target_source;
-    for (const double k : {-2.0, -1.0, 1.0, 2.0}) {
+    for (const double k : {-1.0, 1.0}) {
         const Pose T_start =
             Eigen::Translation3d(k * config.slide_probe_m * weak.normalized()) * T_found;
         FineRegistrationResult fine = register_fine(entry.cloud, model, tree, T_start, config.fine);
@@ -115,9 +115,10 @@ const live::ModelCache& LiveRegistrar::State::model_of(
     std::vector<Pose> poses;
     for (std::size_t i : candidates) poses.push_back(scans[i].T_group_scan);
     live::ModelCache& cache = model_cache;
-    const bool same = cache.tree && cache.group == group && cache.scans == candidates &&
-                      std::equal(poses.begin(), poses.end(), cache.poses.begin(),
-                                 [](const Pose& a, const Pose& b) { return a.matrix() == b.matrix(); });
+    const bool same =
+        cache.tree && cache.group == group && cache.scans == candidates &&
+        std::equal(poses.begin(), poses.end(), cache.poses.begin(),
+                   [](const Pose& a, const Pose& b) { return a.matrix() == b.matrix(); });
     if (same) return cache;
     cache = {};
     for (std::size_t i : candidates)
@@ -167,14 +168,13 @@ live::VerificationLimits LiveRegistrar::State::limits() const {
     live::VerificationLimits out{.max_rms_m = config.max_rms_voxel_factor * config.voxel_size_m,
                                  .max_normal_deviation_deg = config.max_normal_deviation_deg};
     if (accepted_rms_m.size() < config.min_accepted_for_limits) return out;
-    out.max_rms_m = std::min(out.max_rms_m, std::max(config.min_rms_limit_m,
-                                                     config.accepted_rms_median_factor *
-                                                         median_of(accepted_rms_m)));
-    out.max_normal_deviation_deg =
-        std::min(out.max_normal_deviation_deg,
-                 std::max(config.min_normal_deviation_limit_deg,
-                          config.accepted_normal_median_factor *
-                              median_of(accepted_normal_deviation)));
+    out.max_rms_m =
+        std::min(out.max_rms_m, std::max(config.min_rms_limit_m, config.accepted_rms_median_factor *
+                                                                     median_of(accepted_rms_m)));
+    out.max_normal_deviation_deg = std::min(
+        out.max_normal_deviation_deg,
+        std::max(config.min_normal_deviation_limit_deg,
+                 config.accepted_normal_median_factor * median_of(accepted_normal_deviation)));
     return out;
 }
 

@@ -72,7 +72,8 @@ std::size_t LiveRegistrar::State::make_links() {
             }
             link_tried[{t, s}] = initial;
             // A link computed from other poses is replaced by the new attempt (or dropped).
-            std::erase_if(links, [&](const live::Link& l) { return l.target == t && l.source == s; });
+            std::erase_if(links,
+                          [&](const live::Link& l) { return l.target == t && l.source == s; });
             if (forecast_overlap(scans[s], scans[t], tree_of(t), initial,
                                  config.link_fine.overlap_distance_m) <
                 config.min_link_overlap_fraction) {
@@ -142,10 +143,10 @@ Pose LiveRegistrar::State::refined_merge(int into, int from, const Pose& T_into_
     const PointCloud source = group_cloud(from);
     if (target.empty() || source.empty()) return T_into_from;
     const KdTree tree(target.positions);
-    const FineRegistrationResult fine = register_fine(source, target, tree, T_into_from, config.fine);
-    const bool agrees = live::poses_agree(T_into_from, fine.T_target_source,
-                                          group_centroid(source), config.vote_rotation_deg,
-                                          config.vote_displacement_m);
+    const FineRegistrationResult fine =
+        register_fine(source, target, tree, T_into_from, config.fine);
+    const bool agrees = live::poses_agree(T_into_from, fine.T_target_source, group_centroid(source),
+                                          config.vote_rotation_deg, config.vote_displacement_m);
     const live::VerificationLimits absolute{
         .max_rms_m = config.max_rms_voxel_factor * config.voxel_size_m,
         .max_normal_deviation_deg = config.max_normal_deviation_deg};

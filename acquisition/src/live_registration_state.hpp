@@ -92,8 +92,8 @@ struct LiveRegistrar::State {
     /// when the poses moved (see LiveRegistrationConfig::link_retry_m).
     std::map<std::pair<std::size_t, std::size_t>, Pose> link_tried;
     LiveRefineReport report;
-    std::vector<double> link_rms_m;  ///< RMS of every multi-view link (the session's noise).
-    std::vector<double> accepted_rms_m;             ///< Of every accepted add() decision.
+    std::vector<double> link_rms_m;      ///< RMS of every multi-view link (the session's noise).
+    std::vector<double> accepted_rms_m;  ///< Of every accepted add() decision.
     std::vector<double> accepted_normal_deviation;  ///< Degrees, same.
     /// Verification bounds from the config and the session's accepted figures.
     live::VerificationLimits limits() const;

@@ -180,16 +180,5 @@ TEST_F(LiveRegistrationSession, ReducedCloudsAreStoneOnly) {
     }
 }
 
-TEST_F(LiveRegistrationSession, ExcludedScansLeaveTheModelAndComeBack) {
-    LiveRegistrar& r = *registrar_;
-    r.exclude(3, true);
-    std::vector<LiveModelScan> model = r.model();
-    EXPECT_EQ(model.size(), scans_->size() - 1);
-    EXPECT_TRUE(std::none_of(model.begin(), model.end(),
-                             [](const LiveModelScan& m) { return m.seq == 3; }));
-    r.exclude(3, false);
-    EXPECT_EQ(r.model().size(), scans_->size());
-}
-
 }  // namespace
 }  // namespace anascan::acquisition

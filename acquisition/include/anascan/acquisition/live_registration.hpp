@@ -76,9 +76,10 @@ struct LiveRegistrationConfig {
     double max_prior_correction_deg = 15.0;
     double max_prior_correction_m = 0.15;
     std::size_t model_scans = 5;
-    /// A verified pose is probed by restarts shifted ±1 and ±2 times this (metres) along
-    /// its weakest direction (an ornament band repeats every few centimetres); a restart
-    /// whose overlap is larger by `slide_overlap_margin` replaces it. 0 = no probes.
+    /// A verified pose is probed by restarts shifted ± this (metres) along its weakest
+    /// direction (an ornament band repeats every few centimetres: a start 3 cm off a slide
+    /// of one period lies in the right basin); a restart whose overlap is larger by
+    /// `slide_overlap_margin` replaces it. 0 = no probes.
     double slide_probe_m = 0.03;
     double slide_overlap_margin =
         0.01;  ///< Registered scans merged into the model of a hypothesis.
