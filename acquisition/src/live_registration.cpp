@@ -22,11 +22,13 @@ void copy_figures(const FineRegistrationResult& fine, LiveDecision& decision) {
 }
 
 std::string summary(const LiveDecision& d) {
-    char text[200];
+    char text[240];
     std::snprintf(text, sizeof(text),
-                  "scan %lld: %s, group %d, rms %.3f mm, overlap %.1f %%, %zu attempts, %.3f s",
+                  "scan %lld: %s, group %d, rms %.3f mm, overlap %.1f %%, normals %.2f deg, "
+                  "degeneracy %.4f, %zu attempts, %.3f s",
                   static_cast<long long>(d.seq), d.method.c_str(), d.group, d.rms_m * 1e3,
-                  d.overlap_fraction * 100.0, d.attempts.size(), d.time_s);
+                  d.overlap_fraction * 100.0, d.normal_deviation_deg, d.degeneracy,
+                  d.attempts.size(), d.time_s);
     return text;
 }
 
@@ -78,6 +80,8 @@ LiveDecision LiveRegistrar::add(LiveScanInput scan) {
     if (accepted) {
         copy_figures(accepted->fine, decision);
         decision.group = group;
+        s.accepted_rms_m.push_back(decision.rms_m);
+        s.accepted_normal_deviation.push_back(decision.normal_deviation_deg);
     } else {
         decision.method = first ? "first" : "new-group";
         decision.group = s.next_group++;

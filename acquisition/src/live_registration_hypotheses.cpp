@@ -56,11 +56,11 @@ void LiveRegistrar::State::probe_slides(const ScanEntry& entry, const PointCloud
     const Eigen::Vector3d weak = v.fine.degeneracy.weakest_direction.tail<3>();
     if (config.slide_probe_m <= 0.0 || weak.norm() < 0.7) return;
     const Pose T_found = v.fine.T_target_source;
-    for (const double k : {-2.0, -1.0, 1.0, 2.0}) {
+    for (const double k : {-1.0, 1.0}) {
         const Pose T_start =
             Eigen::Translation3d(k * config.slide_probe_m * weak.normalized()) * T_found;
         FineRegistrationResult fine = register_fine(entry.cloud, model, tree, T_start, config.fine);
-        if (!live::rejection(fine, config).empty()) continue;
+        if (!live::rejection(fine, config, limits()).empty()) continue;
         if (fine.overlap_fraction > v.fine.overlap_fraction + config.slide_overlap_margin) {
             v.fine = std::move(fine);
         }
@@ -108,6 +108,28 @@ const ScanFeatures& LiveRegistrar::State::features(std::size_t i) {
     return *entry.features;
 }
 
+const live::ModelCache& LiveRegistrar::State::model_of(
+    int group, const std::vector<std::size_t>& candidates) const {
+    // Hypotheses of one scan, and consecutive scans, mostly share their model: rebuild it
+    // (and its k-d tree) only when the scans or their poses changed.
+    std::vector<Pose> poses;
+    for (std::size_t i : candidates) poses.push_back(scans[i].T_group_scan);
+    live::ModelCache& cache = model_cache;
+    const bool same =
+        cache.tree && cache.group == group && cache.scans == candidates &&
+        std::equal(poses.begin(), poses.end(), cache.poses.begin(),
+                   [](const Pose& a, const Pose& b) { return a.matrix() == b.matrix(); });
+    if (same) return cache;
+    cache = {};
+    for (std::size_t i : candidates)
+        append(cache.cloud, transformed(scans[i].cloud, scans[i].T_group_scan));
+    cache.tree = std::make_unique<KdTree>(cache.cloud.positions);
+    cache.group = group;
+    cache.scans = candidates;
+    cache.poses = std::move(poses);
+    return cache;
+}
+
 live::Verified LiveRegistrar::State::verify_hypothesis(const ScanEntry& entry, int group,
                                                        const Pose& T_group_scan) const {
     // The model: the group's scans whose sensors stood nearest the hypothesis's sensor.
@@ -118,19 +140,42 @@ live::Verified LiveRegistrar::State::verify_hypothesis(const ScanEntry& entry, i
                (sensor_in_group(scans[b], scans[b].T_group_scan) - sensor).squaredNorm();
     });
     if (candidates.size() > config.model_scans) candidates.resize(config.model_scans);
-    PointCloud model;
-    for (std::size_t i : candidates)
-        append(model, transformed(scans[i].cloud, scans[i].T_group_scan));
+    std::sort(candidates.begin(), candidates.end());  // The same set: the same cached model.
     Verified v;
-    if (model.empty()) {
+    if (candidates.empty()) {
         v.rejection = "empty model";
         return v;
     }
-    const KdTree tree(model.positions);
+    const live::ModelCache& cache = model_of(group, candidates);
+    const PointCloud& model = cache.cloud;
+    const KdTree& tree = *cache.tree;
     v.fine = register_fine(entry.cloud, model, tree, T_group_scan, config.fine);
-    v.rejection = live::rejection(v.fine, config);
+    v.rejection = live::rejection(v.fine, config, limits());
     if (v.rejection.empty()) probe_slides(entry, model, tree, v);
     return v;
+}
+
+namespace {
+
+double median_of(std::vector<double> values) {
+    std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+    return values[values.size() / 2];
+}
+
+}  // namespace
+
+live::VerificationLimits LiveRegistrar::State::limits() const {
+    live::VerificationLimits out{.max_rms_m = config.max_rms_voxel_factor * config.voxel_size_m,
+                                 .max_normal_deviation_deg = config.max_normal_deviation_deg};
+    if (accepted_rms_m.size() < config.min_accepted_for_limits) return out;
+    out.max_rms_m =
+        std::min(out.max_rms_m, std::max(config.min_rms_limit_m, config.accepted_rms_median_factor *
+                                                                     median_of(accepted_rms_m)));
+    out.max_normal_deviation_deg = std::min(
+        out.max_normal_deviation_deg,
+        std::max(config.min_normal_deviation_limit_deg,
+                 config.accepted_normal_median_factor * median_of(accepted_normal_deviation)));
+    return out;
 }
 
 double LiveRegistrar::State::rms_gate() const {
@@ -178,9 +223,11 @@ std::optional<live::Verified> LiveRegistrar::State::try_cheap(const ScanEntry& e
                                                               LiveDecision& decision) const {
     const auto hypotheses = priors(entry.seq, group);
     for (const auto& [name, T] : hypotheses) {
+        const Clock::time_point start = Clock::now();
         Verified v = verify_hypothesis(entry, group, T);
         if (v.rejection.empty()) v.rejection = correction_problem(entry, T, v.fine, config);
         decision.attempts.push_back(attempt_of(name, v, scans[members(group)[0]].seq, group));
+        decision.attempts.back().time_s = seconds_since(start);  // Model, fine and probes.
         if (v.rejection.empty()) {
             method = name == "previous-pose" ? name : "motion-prior";
             last_prior = name;

@@ -114,16 +114,23 @@ Prepared prepare_scan(LiveScanInput input, const LiveRegistrationConfig& config)
     return out;
 }
 
-std::string rejection(const FineRegistrationResult& fine, const LiveRegistrationConfig& config) {
+std::string rejection(const FineRegistrationResult& fine, const LiveRegistrationConfig& config,
+                      const VerificationLimits& limits) {
     if (fine.status != FineRegistrationStatus::kConverged &&
         fine.status != FineRegistrationStatus::kMaxIterations) {
         return "fine registration: " + std::string(to_string(fine.status));
     }
-    if (fine.degeneracy.eigenvalue_ratio < config.fine.degeneracy_threshold) return "degenerate";
-    if (fine.rms_m > config.max_rms_voxel_factor * config.voxel_size_m) return "rms too large";
+    if (fine.degeneracy.eigenvalue_ratio <
+        std::max(config.fine.degeneracy_threshold, config.min_degeneracy_ratio)) {
+        return "degenerate (" + std::to_string(fine.degeneracy.eigenvalue_ratio) + ")";
+    }
+    if (fine.rms_m > limits.max_rms_m) {
+        return "rms too large (limit " + std::to_string(limits.max_rms_m * 1e3) + " mm)";
+    }
     if (fine.overlap_fraction < config.min_overlap_fraction) return "overlap too small";
-    if (fine.normal_deviation_deg.value_or(0.0) > config.max_normal_deviation_deg) {
-        return "normal deviation too large";
+    if (fine.normal_deviation_deg.value_or(0.0) > limits.max_normal_deviation_deg) {
+        return "normal deviation too large (" +
+               std::to_string(fine.normal_deviation_deg.value_or(0.0)) + " deg)";
     }
     return {};
 }

@@ -4,6 +4,7 @@
 #include <map>
 
 #include "anascan/processing/kdtree.hpp"
+#include "anascan/processing/voxel_grid.hpp"
 #include "live_registration_state.hpp"
 #include "live_registration_votes.hpp"
 
@@ -12,6 +13,12 @@ namespace {
 
 using live::ScanEntry;
 using Clock = std::chrono::steady_clock;
+
+Eigen::Vector3d group_centroid(const PointCloud& cloud) {
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    for (std::size_t i = 0; i < cloud.size(); ++i) sum += cloud.world_position(i);
+    return cloud.empty() ? sum : Eigen::Vector3d(sum / static_cast<double>(cloud.size()));
+}
 
 /// Fraction of (about `samples`) source points that land within `distance_m` of the target
 /// under `T_target_source`: a cheap forecast of a pair's overlap.
@@ -46,19 +53,27 @@ bool active(const ScanEntry& e) { return e.registered && !e.excluded; }
 }  // namespace
 
 std::size_t LiveRegistrar::State::make_links() {
-    std::map<std::size_t, KdTree> trees;
     const auto tree_of = [&](std::size_t i) -> const KdTree& {
-        auto it = trees.find(i);
-        if (it == trees.end()) it = trees.emplace(i, KdTree(scans[i].cloud.positions)).first;
-        return it->second;
+        std::shared_ptr<const KdTree>& tree = scans[i].tree;  // Kept: the cloud never changes.
+        if (!tree) tree = std::make_shared<const KdTree>(scans[i].cloud.positions);
+        return *tree;
     };
     std::size_t added = 0;
     for (std::size_t s = 0; s < scans.size(); ++s) {
         for (std::size_t t = 0; t < s; ++t) {
             if (!active(scans[s]) || !active(scans[t]) || scans[s].group != scans[t].group)
                 continue;
-            if (!link_tried.insert({t, s}).second) continue;
             const Pose initial = scans[t].T_group_scan.inverse() * scans[s].T_group_scan;
+            const auto tried = link_tried.find({t, s});
+            if (tried != link_tried.end() &&
+                live::poses_agree(tried->second, initial, scans[s].centroid_m,
+                                  config.link_retry_deg, config.link_retry_m)) {
+                continue;
+            }
+            link_tried[{t, s}] = initial;
+            // A link computed from other poses is replaced by the new attempt (or dropped).
+            std::erase_if(links,
+                          [&](const live::Link& l) { return l.target == t && l.source == s; });
             if (forecast_overlap(scans[s], scans[t], tree_of(t), initial,
                                  config.link_fine.overlap_distance_m) <
                 config.min_link_overlap_fraction) {
@@ -114,7 +129,36 @@ std::vector<PoseUpdate> LiveRegistrar::State::refine_groups() {
     return updates;
 }
 
-std::vector<PoseUpdate> LiveRegistrar::State::merge(int into, int from, const Pose& T_into_from) {
+PointCloud LiveRegistrar::State::group_cloud(int group) const {
+    PointCloud merged;
+    for (std::size_t i : members(group))
+        append(merged, transformed(scans[i].cloud, scans[i].T_group_scan));
+    return voxel_downsample(merged, {.voxel_size_m = config.voxel_size_m});
+}
+
+Pose LiveRegistrar::State::refined_merge(int into, int from, const Pose& T_into_from) const {
+    // The voted transform agrees within the votes' tolerance (a centimetre): fine register
+    // the whole groups (stone only) so that the merged scans' links form at once.
+    const PointCloud target = group_cloud(into);
+    const PointCloud source = group_cloud(from);
+    if (target.empty() || source.empty()) return T_into_from;
+    const KdTree tree(target.positions);
+    const FineRegistrationResult fine =
+        register_fine(source, target, tree, T_into_from, config.fine);
+    const bool agrees = live::poses_agree(T_into_from, fine.T_target_source, group_centroid(source),
+                                          config.vote_rotation_deg, config.vote_displacement_m);
+    const live::VerificationLimits absolute{
+        .max_rms_m = config.max_rms_voxel_factor * config.voxel_size_m,
+        .max_normal_deviation_deg = config.max_normal_deviation_deg};
+    LiveRegistrationConfig relaxed = config;
+    relaxed.min_overlap_fraction = config.min_link_overlap_fraction;  // Other faces too.
+    if (!agrees || !live::rejection(fine, relaxed, absolute).empty()) return T_into_from;
+    return orthonormalized(fine.T_target_source);
+}
+
+std::vector<PoseUpdate> LiveRegistrar::State::merge(int into, int from,
+                                                    const Pose& T_into_from_voted) {
+    const Pose T_into_from = refined_merge(into, from, T_into_from_voted);
     std::vector<PoseUpdate> updates;
     for (ScanEntry& e : scans) {
         if (e.group != from) continue;

@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <optional>
 #include <set>
 #include <string>
@@ -25,6 +26,7 @@ struct ScanEntry {
     Eigen::Vector3d centroid_m = Eigen::Vector3d::Zero();       ///< Scan frame.
     double radius_m = 0.0;                 ///< Of the bounding sphere around the centroid.
     std::optional<ScanFeatures> features;  ///< Computed on demand, kept.
+    std::shared_ptr<const KdTree> tree;    ///< Over cloud.positions, built on first use.
     bool registered = false;
     bool excluded = false;
     int group = -1;
@@ -52,8 +54,24 @@ struct Prepared {
 /// Reduces a scan (see LiveRegistrationConfig): the stone-only down-sampled cloud.
 Prepared prepare_scan(LiveScanInput input, const LiveRegistrationConfig& config);
 
+/// The merged model a hypothesis was last verified against, with its k-d tree.
+struct ModelCache {
+    int group = -1;
+    std::vector<std::size_t> scans;  ///< Entries merged, in order.
+    std::vector<Pose> poses;         ///< Their poses when merged.
+    PointCloud cloud;                ///< Group frame.
+    std::unique_ptr<KdTree> tree;    ///< Over cloud.positions.
+};
+
+/// The session's current verification bounds (see LiveRegistrationConfig).
+struct VerificationLimits {
+    double max_rms_m = 0.0;
+    double max_normal_deviation_deg = 0.0;
+};
+
 /// Why a fine registration is not acceptable (issue 3's verification); empty when it is.
-std::string rejection(const FineRegistrationResult& fine, const LiveRegistrationConfig& config);
+std::string rejection(const FineRegistrationResult& fine, const LiveRegistrationConfig& config,
+                      const VerificationLimits& limits);
 
 /// Seconds since `start`.
 double seconds_since(std::chrono::steady_clock::time_point start);
@@ -70,9 +88,15 @@ struct LiveRegistrar::State {
     int next_group = 0;
     bool awaiting_turn = false;  ///< Turned over: no cheap hypothesis until one is placed.
     std::set<std::pair<std::size_t, std::size_t>> merge_tried;  ///< Global pairs tried (a, b).
-    std::set<std::pair<std::size_t, std::size_t>> link_tried;   ///< Link pairs tried (t, s).
+    /// Link pairs tried (t, s) and the relative pose T_t_s they were tried from: tried again
+    /// when the poses moved (see LiveRegistrationConfig::link_retry_m).
+    std::map<std::pair<std::size_t, std::size_t>, Pose> link_tried;
     LiveRefineReport report;
-    std::vector<double> link_rms_m;  ///< RMS of every multi-view link (the session's noise).
+    std::vector<double> link_rms_m;      ///< RMS of every multi-view link (the session's noise).
+    std::vector<double> accepted_rms_m;  ///< Of every accepted add() decision.
+    std::vector<double> accepted_normal_deviation;  ///< Degrees, same.
+    /// Verification bounds from the config and the session's accepted figures.
+    live::VerificationLimits limits() const;
     /// Largest RMS a global hypothesis may have to count (see global_rms_median_factor).
     double rms_gate() const;
     mutable std::string last_prior;  ///< The motion prior that verified last.
@@ -86,6 +110,9 @@ struct LiveRegistrar::State {
     /// Features of entry i (computed at the session's radii and levels on first use).
     const ScanFeatures& features(std::size_t i);
 
+    mutable live::ModelCache model_cache;
+    /// The merged model of `candidates` (group frame), cached while they and their poses stay.
+    const live::ModelCache& model_of(int group, const std::vector<std::size_t>& candidates) const;
     /// Fine registration of `entry` from `T_group_scan` against the group's model.
     live::Verified verify_hypothesis(const live::ScanEntry& entry, int group,
                                      const Pose& T_group_scan) const;
@@ -109,6 +136,11 @@ struct LiveRegistrar::State {
     std::size_t make_links();
     std::vector<PoseUpdate> refine_groups();
     std::vector<PoseUpdate> merge_groups();
+    /// The group's stone-only clouds in its frame, merged and voxel down-sampled.
+    PointCloud group_cloud(int group) const;
+    /// The voted transform between two groups refined by fine registration of the groups'
+    /// clouds (unchanged when that does not verify or leaves the votes' tolerance).
+    Pose refined_merge(int into, int from, const Pose& T_into_from) const;
     /// Moves every scan of group `from` into `into` (T_into_from); returns the updates.
     std::vector<PoseUpdate> merge(int into, int from, const Pose& T_into_from);
 };

@@ -1,15 +1,15 @@
-// LiveRegistrar on a ray-cast session of the small block (turned over halfway), and on bad
-// input. Poses are checked against the truth in the block frame of the first placement.
+// LiveRegistrar on a ray-cast session of the small block (turned over halfway), integration
+// label (a minute or more); the quick unit part (bad input, a short walk, an unrelated
+// object) is test_live_registration_quick.cpp. Poses are checked against the truth in the
+// block frame of the first placement.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <limits>
 #include <map>
 #include <memory>
-#include <random>
 
 #include "anascan/acquisition/live_registration.hpp"
 #include "live_session_sim.hpp"
@@ -178,68 +178,6 @@ TEST_F(LiveRegistrationSession, ReducedCloudsAreStoneOnly) {
         EXPECT_LT(near_ground, m.cloud->size() / 100 + 5) << "scan " << m.seq;
         break;  // One scan suffices (the scene is rebuilt per check).
     }
-}
-
-TEST_F(LiveRegistrationSession, ExcludedScansLeaveTheModelAndComeBack) {
-    LiveRegistrar& r = *registrar_;
-    r.exclude(3, true);
-    std::vector<LiveModelScan> model = r.model();
-    EXPECT_EQ(model.size(), scans_->size() - 1);
-    EXPECT_TRUE(std::none_of(model.begin(), model.end(),
-                             [](const LiveModelScan& m) { return m.seq == 3; }));
-    r.exclude(3, false);
-    EXPECT_EQ(r.model().size(), scans_->size());
-}
-
-TEST(LiveRegistration, UnusableScansAreReportedAndNotPlaced) {
-    LiveRegistrar registrar;
-    const LiveDecision empty = registrar.add({.seq = 1});
-    EXPECT_FALSE(empty.registered);
-    EXPECT_EQ(empty.method, "unusable");
-    EXPECT_NE(empty.message.find("empty"), std::string::npos) << empty.message;
-
-    PointCloud nan_cloud;
-    const float nan = std::numeric_limits<float>::quiet_NaN();
-    nan_cloud.positions.assign(100, Eigen::Vector3f(nan, 0.0f, 1.0f));
-    const LiveDecision all_nan = registrar.add({.seq = 2, .cloud = nan_cloud});
-    EXPECT_FALSE(all_nan.registered);
-    EXPECT_NE(all_nan.message.find("non-finite"), std::string::npos) << all_nan.message;
-
-    PointCloud few;
-    for (int i = 0; i < 20; ++i) few.positions.emplace_back(0.01f * i, 0.0f, 1.0f);
-    const LiveDecision tiny = registrar.add({.seq = 3, .cloud = few});
-    EXPECT_FALSE(tiny.registered);
-    EXPECT_NE(tiny.message.find("stone points"), std::string::npos) << tiny.message;
-    EXPECT_EQ(registrar.group_count(), 0u);
-    EXPECT_FALSE(registrar.pose(1).has_value());
-}
-
-/// A sphere of radius 0.15 m seen from 1 m (sensor frame): nothing like the block.
-PointCloud sphere_scan() {
-    PointCloud cloud;
-    std::mt19937 rng(3);
-    std::normal_distribution<float> g(0.0f, 1.0f);
-    for (int i = 0; i < 20000; ++i) {
-        Eigen::Vector3f d(g(rng), g(rng), g(rng));
-        d.normalize();
-        if (d.z() > 0.0f) d.z() = -d.z();  // The half facing the sensor.
-        cloud.positions.push_back(Eigen::Vector3f(0, 0, 1.0f) + 0.15f * d);
-    }
-    return cloud;
-}
-
-TEST_F(LiveRegistrationSession, AScanThatMatchesNothingOpensANewGroup) {
-    LiveRegistrar registrar;
-    const LiveDecision first = registrar.add({.seq = 1, .cloud = (*scans_)[0].cloud});
-    EXPECT_EQ(first.method, "first");
-    const LiveDecision other = registrar.add({.seq = 2, .cloud = sphere_scan()});
-    EXPECT_TRUE(other.registered) << other.message;
-    EXPECT_EQ(other.method, "new-group") << other.message;
-    EXPECT_EQ(other.group, 1);
-    EXPECT_FALSE(other.attempts.empty());
-    EXPECT_EQ(registrar.group_count(), 2u);
-    EXPECT_TRUE(registrar.refine().empty());  // Nothing to merge: the sphere stays apart.
-    EXPECT_EQ(registrar.group_count(), 2u);
 }
 
 }  // namespace

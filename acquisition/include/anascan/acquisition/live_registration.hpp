@@ -76,14 +76,30 @@ struct LiveRegistrationConfig {
     double max_prior_correction_deg = 15.0;
     double max_prior_correction_m = 0.15;
     std::size_t model_scans = 5;
-    /// A verified pose is probed by restarts shifted ±1 and ±2 times this (metres) along
-    /// its weakest direction (an ornament band repeats every few centimetres); a restart
-    /// whose overlap is larger by `slide_overlap_margin` replaces it. 0 = no probes.
+    /// A verified pose is probed by restarts shifted ± this (metres) along its weakest
+    /// direction (an ornament band repeats every few centimetres: a start 3 cm off a slide
+    /// of one period lies in the right basin); a restart whose overlap is larger by
+    /// `slide_overlap_margin` replaces it. 0 = no probes.
     double slide_probe_m = 0.03;
     double slide_overlap_margin =
         0.01;  ///< Registered scans merged into the model of a hypothesis.
     /// Verification (issue 3): RMS at most this many voxel sizes ...
     double max_rms_voxel_factor = 0.75;
+    /// ... and, once `min_accepted_for_limits` scans were accepted, at most this multiple of
+    /// the session's median accepted RMS (not below `min_rms_limit_m`): a scan slid along a
+    /// weak direction keeps an RMS within the voxel but several times the session's noise ...
+    double accepted_rms_median_factor = 2.5;
+    double min_rms_limit_m = 0.0002;
+    /// ... a normal deviation at most this multiple of the session's median accepted one
+    /// (not below `min_normal_deviation_limit_deg`) ...
+    double accepted_normal_median_factor = 2.0;
+    double min_normal_deviation_limit_deg = 3.0;
+    std::size_t min_accepted_for_limits = 3;
+    /// ... and a degeneracy figure (smallest / largest eigenvalue) at least this (and at
+    /// least fine.degeneracy_threshold). 0: only the latter. Measured on the small block's
+    /// structured-light tour, right alignments have 0.0016-0.016 (views of two faces at 30°
+    /// steps are weakly constrained), so no fixed bound separates a slide from them.
+    double min_degeneracy_ratio = 0.0;
     double min_overlap_fraction = 0.3;       ///< ... overlap of the new scan at least this ...
     double max_normal_deviation_deg = 20.0;  ///< ... and mean normal angle at most this.
     /// Global registration (features at radii fixed for the session, see `radii_m`).
@@ -115,6 +131,11 @@ struct LiveRegistrationConfig {
                                      .max_iterations = 30,
                                      .overlap_distance_m = 0.003,
                                      .keep_correspondences = true};
+    /// A tried pair is tried again when its scans' relative pose moved by more than these
+    /// since (degrees, metres at the source's centroid): a scan corrected by the refinement
+    /// gets links to its true neighbours, and links computed from a wrong pose are redone.
+    double link_retry_deg = 0.05;
+    double link_retry_m = 0.0005;
     /// A link needs an RMS within this many voxel sizes (looser than the verification:
     /// its correspondences reach farther).
     double max_link_rms_voxel_factor = 1.0;

@@ -1,0 +1,190 @@
+// LiveRegistrar, the quick part (unit): a short ray-cast walk of small steps around the
+// small block (cheap hypotheses only), unusable scans, and a scan of an unrelated object.
+// The whole turned-over session is test_live_registration.cpp (integration).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <limits>
+#include <memory>
+#include <random>
+
+#include "anascan/acquisition/live_registration.hpp"
+#include "live_session_sim.hpp"
+
+namespace anascan::acquisition {
+namespace {
+
+struct QuickScan {
+    PointCloud cloud;
+    Pose T_true = Pose::Identity();
+};
+
+/// Five views 12° apart (elevation 35°), 300×225 px: every step is a cheap hypothesis.
+std::vector<QuickScan> capture_walk() {
+    sim::SceneConfig config = sim::named_scene("small-block").value();
+    config.block.grid_step_m = 0.003;
+    config.with_tent = false;
+    const sim::Scene scene = sim::make_scene(config);
+    const sim::RayCaster caster = sim::RayCaster::create(scene.mesh).value();
+    std::vector<QuickScan> scans;
+    for (int k = 0; k < 5; ++k) {
+        const sim::Viewpoint view{.azimuth_deg = 30.0 + 12.0 * k,
+                                  .elevation_deg = 35.0 + (k % 2 == 0 ? 0.0 : 4.0),
+                                  .distance_m = 1.1};
+        const Pose T_world_sensor =
+            sim::sensor_looking_at(anascan::testing::aim_point(scene), view);
+        QuickScan scan;
+        scan.cloud = anascan::testing::pinhole_scan(
+            caster, T_world_sensor, {.width_px = 300, .height_px = 225, .focal_px = 510.0},
+            static_cast<std::uint32_t>(k + 1));
+        scan.T_true = T_world_sensor;
+        scans.push_back(std::move(scan));
+    }
+    return scans;
+}
+
+/// No background features (no global registration is needed on this walk).
+LiveRegistrationConfig quick_config() { return {.max_features_per_refine = 0}; }
+
+class LiveRegistrationWalk : public ::testing::Test {
+protected:
+    static void SetUpTestSuite() {
+        scans_ = new std::vector<QuickScan>(capture_walk());
+        registrar_ = new LiveRegistrar(quick_config());
+        decisions_ = new std::vector<LiveDecision>();
+        for (std::size_t i = 0; i < scans_->size(); ++i) {
+            decisions_->push_back(registrar_->add(
+                {.seq = static_cast<std::int64_t>(i + 1), .cloud = (*scans_)[i].cloud}));
+            registrar_->refine();
+        }
+        registrar_->refine();
+    }
+    static void TearDownTestSuite() {
+        delete decisions_;
+        delete registrar_;
+        delete scans_;
+    }
+
+    static inline std::vector<QuickScan>* scans_ = nullptr;
+    static inline LiveRegistrar* registrar_ = nullptr;
+    static inline std::vector<LiveDecision>* decisions_ = nullptr;
+};
+
+TEST_F(LiveRegistrationWalk, SmallStepsTakeTheCheapHypotheses) {
+    const std::vector<LiveDecision>& d = *decisions_;
+    EXPECT_EQ(d[0].method, "first");
+    for (std::size_t i = 1; i < d.size(); ++i) {
+        EXPECT_TRUE(d[i].method == "motion-prior" || d[i].method == "previous-pose")
+            << d[i].message;
+        EXPECT_EQ(d[i].group, 0) << d[i].message;
+    }
+    EXPECT_EQ(registrar_->group_count(), 1u);
+}
+
+TEST_F(LiveRegistrationWalk, PosesMatchTheTruth) {
+    const Pose& T_true_first = scans_->front().T_true;
+    for (std::size_t i = 0; i < scans_->size(); ++i) {
+        const std::optional<PoseUpdate> pose = registrar_->pose(static_cast<std::int64_t>(i + 1));
+        ASSERT_TRUE(pose.has_value());
+        const anascan::testing::PoseError e =
+            anascan::testing::pose_error(pose->T_group_scan, T_true_first, (*scans_)[i].T_true,
+                                         anascan::testing::centroid_of((*scans_)[i].cloud));
+        EXPECT_LT(e.rotation_deg, 0.05) << (*decisions_)[i].message;
+        EXPECT_LT(e.translation_m, 0.0002) << (*decisions_)[i].message;
+    }
+}
+
+TEST_F(LiveRegistrationWalk, DecisionsCarryTheirFigures) {
+    for (const LiveDecision& d : *decisions_) {
+        if (d.method == "first") continue;
+        EXPECT_GT(d.overlap_fraction, 0.3) << d.message;
+        EXPECT_GT(d.rms_m, 0.0) << d.message;
+        EXPECT_LT(d.rms_m, 0.001) << d.message;
+        EXPECT_GT(d.degeneracy, 0.0) << d.message;
+        EXPECT_GT(d.time_s, 0.0) << d.message;
+        ASSERT_FALSE(d.attempts.empty()) << d.message;
+        EXPECT_EQ(d.attempts.back().status, "verified") << d.message;
+    }
+}
+
+TEST_F(LiveRegistrationWalk, ReducedCloudsAreStoneOnly) {
+    sim::SceneConfig config = sim::named_scene("small-block").value();
+    config.with_tent = false;
+    const sim::Scene scene = sim::make_scene(config);
+    for (const LiveModelScan& m : registrar_->model()) {
+        const Pose T_block_scan =
+            scene.T_world_block.inverse() * (*scans_)[static_cast<std::size_t>(m.seq - 1)].T_true;
+        std::size_t off_stone = 0;
+        for (std::size_t i = 0; i < m.cloud->size(); ++i) {
+            const Eigen::Vector3d p = T_block_scan * m.cloud->world_position(i);
+            const Eigen::Vector3d outside = (p.cwiseAbs() - 0.5 * scene.block_size_m).cwiseMax(0.0);
+            off_stone += outside.norm() > 0.02;  // Farther than any relief from the block.
+        }
+        EXPECT_LT(off_stone, m.cloud->size() / 100 + 5) << "scan " << m.seq;
+    }
+}
+
+TEST_F(LiveRegistrationWalk, ExcludedScansLeaveTheModelAndComeBack) {
+    LiveRegistrar& r = *registrar_;
+    r.exclude(3, true);
+    const std::vector<LiveModelScan> model = r.model();
+    EXPECT_EQ(model.size(), scans_->size() - 1);
+    EXPECT_TRUE(std::none_of(model.begin(), model.end(),
+                             [](const LiveModelScan& m) { return m.seq == 3; }));
+    r.exclude(3, false);
+    EXPECT_EQ(r.model().size(), scans_->size());
+}
+
+TEST(LiveRegistration, UnusableScansAreReportedAndNotPlaced) {
+    LiveRegistrar registrar;
+    const LiveDecision empty = registrar.add({.seq = 1});
+    EXPECT_FALSE(empty.registered);
+    EXPECT_EQ(empty.method, "unusable");
+    EXPECT_NE(empty.message.find("empty"), std::string::npos) << empty.message;
+
+    PointCloud nan_cloud;
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    nan_cloud.positions.assign(100, Eigen::Vector3f(nan, 0.0f, 1.0f));
+    const LiveDecision all_nan = registrar.add({.seq = 2, .cloud = nan_cloud});
+    EXPECT_FALSE(all_nan.registered);
+    EXPECT_NE(all_nan.message.find("non-finite"), std::string::npos) << all_nan.message;
+
+    PointCloud few;
+    for (int i = 0; i < 20; ++i) few.positions.emplace_back(0.01f * i, 0.0f, 1.0f);
+    const LiveDecision tiny = registrar.add({.seq = 3, .cloud = few});
+    EXPECT_FALSE(tiny.registered);
+    EXPECT_NE(tiny.message.find("stone points"), std::string::npos) << tiny.message;
+    EXPECT_EQ(registrar.group_count(), 0u);
+    EXPECT_FALSE(registrar.pose(1).has_value());
+}
+
+/// A sphere of radius 0.15 m seen from 1 m (sensor frame): nothing like the block.
+PointCloud sphere_scan() {
+    PointCloud cloud;
+    std::mt19937 rng(3);
+    std::normal_distribution<float> g(0.0f, 1.0f);
+    for (int i = 0; i < 20000; ++i) {
+        Eigen::Vector3f d(g(rng), g(rng), g(rng));
+        d.normalize();
+        if (d.z() > 0.0f) d.z() = -d.z();  // The half facing the sensor.
+        cloud.positions.push_back(Eigen::Vector3f(0, 0, 1.0f) + 0.15f * d);
+    }
+    return cloud;
+}
+
+TEST_F(LiveRegistrationWalk, AScanThatMatchesNothingOpensANewGroup) {
+    LiveRegistrar registrar(quick_config());
+    const LiveDecision first = registrar.add({.seq = 1, .cloud = (*scans_)[0].cloud});
+    EXPECT_EQ(first.method, "first");
+    const LiveDecision other = registrar.add({.seq = 2, .cloud = sphere_scan()});
+    EXPECT_TRUE(other.registered) << other.message;
+    EXPECT_EQ(other.method, "new-group") << other.message;
+    EXPECT_EQ(other.group, 1);
+    EXPECT_FALSE(other.attempts.empty());
+    EXPECT_EQ(registrar.group_count(), 2u);
+    EXPECT_TRUE(registrar.refine().empty());  // Nothing to merge: the sphere stays apart.
+    EXPECT_EQ(registrar.group_count(), 2u);
+}
+
+}  // namespace
+}  // namespace anascan::acquisition
