@@ -11,8 +11,8 @@
 #include <thread>
 
 #include "anascan/acquisition/capture_session.hpp"
-#include "anascan/runtime/scanner_source.hpp"
 #include "anascan/acquisition/session_coverage.hpp"
+#include "anascan/runtime/scanner_source.hpp"
 #include "capture_summary.hpp"
 #include "commands.hpp"
 
@@ -48,15 +48,18 @@ std::string device_uri(const CaptureOptions& o) {
     return o.device + "/" + o.scene;
 }
 
-/// Prints the session's events, one line each, as they arrive (stdout is a log here).
+/// Prints the session's events, one line each, as they arrive: progress on stdout (a log a
+/// script can follow: "saved scan N"), failures once, as errors on stderr.
 acquisition::SessionEventSink printing_sink() {
     auto mutex = std::make_shared<std::mutex>();
     return [mutex](const acquisition::SessionEvent& event) {
         std::lock_guard lock(*mutex);
         using K = acquisition::SessionEventKind;
         if (event.kind == K::kDeviceError || event.kind == K::kSaveFailed ||
-            event.kind == K::kRegistrationFailed)
+            event.kind == K::kRegistrationFailed) {
             spdlog::error("{}", event.message);
+            return;
+        }
         std::printf("%s\n", event.message.c_str());
         std::fflush(stdout);
     };
@@ -112,11 +115,10 @@ void run_capture(const CaptureOptions& o) {
     if (!existing) fail_command(existing.error());
     const int already = static_cast<int>(existing->size());
 
-    const runtime::SimulatedTour tour{
-        .views = o.views,
-        .flip_after = o.flip_after < 0 ? o.views / 2 : o.flip_after,
-        .distance_m = o.distance_m,
-        .seed = o.tour_seed};
+    const runtime::SimulatedTour tour{.views = o.views,
+                                      .flip_after = o.flip_after < 0 ? o.views / 2 : o.flip_after,
+                                      .distance_m = o.distance_m,
+                                      .seed = o.tour_seed};
     acquisition::CaptureSessionConfig config{.register_live = !o.no_register,
                                              .coverage_live = !o.no_coverage};
     auto session = CaptureSession::start(std::move(*store), config, printing_sink());
@@ -134,8 +136,7 @@ void run_capture(const CaptureOptions& o) {
         if (!simulated && !operator_ready(i, o.views)) break;
         if (runtime::tour_turns_over_before(tour, i))
             std::printf("the stone is turned over before view %d\n", i + 1);
-        stopped =
-            capture_view(**session, runtime::tour_request(tour, i), o.reconnect_timeout_s);
+        stopped = capture_view(**session, runtime::tour_request(tour, i), o.reconnect_timeout_s);
     }
     spdlog::info("capture done; waiting for registration to catch up");
     (*session)->wait_until_idle();

@@ -21,18 +21,18 @@
 #include <vector>
 
 #include "anascan/acquisition/capture_session.hpp"
-#include "anascan/runtime/scanner_source.hpp"
 #include "anascan/acquisition/session_check.hpp"
 #include "anascan/gui/field_view_state.hpp"
 #include "anascan/gui/point_renderer.hpp"
 #include "anascan/gui/ui_action.hpp"
+#include "anascan/runtime/scanner_source.hpp"
 
 namespace anascan::field {
 
 struct SessionLinkConfig {
     std::filesystem::path dir;
     std::string device_uri = "sim:structured-light/small-block";  ///< Active at start.
-    runtime::SimulatedTour tour;                              ///< For simulated scanners.
+    runtime::SimulatedTour tour;                                  ///< For simulated scanners.
     runtime::ScannerSettings settings;
     int sim_unplug_after = -1;  ///< Fault injection (simulated scanners), -1: never.
 };

@@ -70,8 +70,7 @@ void SessionLink::capture(gui::FieldViewState& view) {
         return;
     }
     acquisition::CaptureRequest request;
-    if (runtime::is_simulated(uri))
-        request = runtime::tour_request(config_.tour, acknowledged_);
+    if (runtime::is_simulated(uri)) request = runtime::tour_request(config_.tour, acknowledged_);
     request.turned_over = request.turned_over || std::exchange(turned_over_pending_, false);
     pending_capture_ = session_->capture(std::move(request));
     view.device.capturing = true;

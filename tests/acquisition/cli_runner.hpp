@@ -16,9 +16,9 @@ struct CliRun {
     std::string output;  // stdout and stderr together
 };
 
-inline CliRun run_cli(const std::string& args) {
+/// Runs a shell command line; its stdout (and whatever it redirects there) is the output.
+inline CliRun run_shell(const std::string& command) {
     CliRun run;
-    const std::string command = std::string(ANASCAN_CLI) + " " + args + " 2>&1";
     FILE* pipe = ::popen(command.c_str(), "r");
     if (pipe == nullptr) return run;
     std::array<char, 4096> buffer{};
@@ -26,6 +26,16 @@ inline CliRun run_cli(const std::string& args) {
     const int status = ::pclose(pipe);
     run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     return run;
+}
+
+/// `anascan ARGS`, stdout and stderr together.
+inline CliRun run_cli(const std::string& args) {
+    return run_shell(std::string(ANASCAN_CLI) + " " + args + " 2>&1");
+}
+
+/// `anascan ARGS`, stdout only (e.g. JSON), stderr dropped.
+inline CliRun run_cli_stdout(const std::string& args) {
+    return run_shell(std::string(ANASCAN_CLI) + " " + args + " 2>/dev/null");
 }
 
 class Cli : public ::testing::Test {

@@ -74,17 +74,6 @@ KilledRun run_and_kill(const std::vector<std::string>& args, std::chrono::millis
     return run;
 }
 
-/// stdout only (JSON), stderr dropped.
-std::string run_stdout(const std::string& args) {
-    std::string out;
-    FILE* pipe = ::popen((std::string(ANASCAN_CLI) + " " + args + " 2>/dev/null").c_str(), "r");
-    if (pipe == nullptr) return out;
-    char buffer[4096];
-    while (std::fgets(buffer, sizeof(buffer), pipe) != nullptr) out += buffer;
-    ::pclose(pipe);
-    return out;
-}
-
 class CaptureCrash : public testing_util::Cli {};
 
 TEST_F(CaptureCrash, EveryAcknowledgedScanSurvivesSigkillAndCaptureResumes) {
@@ -110,7 +99,8 @@ TEST_F(CaptureCrash, EveryAcknowledgedScanSurvivesSigkillAndCaptureResumes) {
 
     const auto clean = run_cli("session check " + session);
     EXPECT_EQ(clean.exit_code, 0) << clean.output;
-    const std::string info = run_stdout("session info " + session + " --json");
+    const std::string info =
+        testing_util::run_cli_stdout("session info " + session + " --json").output;
     const auto j = nlohmann::json::parse(info, nullptr, false);
     ASSERT_TRUE(j.is_object()) << info;
     std::map<std::int64_t, std::string> files;

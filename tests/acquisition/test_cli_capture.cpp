@@ -21,15 +21,9 @@ protected:
     }
 
     nlohmann::json info(const std::string& session) {
-        std::string out;
-        FILE* pipe = ::popen(
-            (std::string(ANASCAN_CLI) + " session info " + session + " --json 2>/dev/null").c_str(),
-            "r");
-        char buffer[4096];
-        while (pipe != nullptr && std::fgets(buffer, sizeof(buffer), pipe) != nullptr)
-            out += buffer;
-        if (pipe != nullptr) ::pclose(pipe);
-        return nlohmann::json::parse(out, nullptr, false);
+        return nlohmann::json::parse(
+            testing_util::run_cli_stdout("session info " + session + " --json").output, nullptr,
+            false);
     }
 };
 
@@ -88,13 +82,9 @@ TEST_F(CliCapture, FullDiskIsAClearErrorAndNothingIsHalfRecorded) {
     const std::string command = "bash -c \"trap '' XFSZ; ulimit -f 64; exec " +
                                 std::string(ANASCAN_CLI) + " " + capture(session, "--views 2") +
                                 "\" 2>&1";
-    std::string out;
-    FILE* pipe = ::popen(command.c_str(), "r");
-    ASSERT_NE(pipe, nullptr);
-    char buffer[4096];
-    while (std::fgets(buffer, sizeof(buffer), pipe) != nullptr) out += buffer;
-    const int status = ::pclose(pipe);
-    EXPECT_EQ(WEXITSTATUS(status), 1) << out;
+    const auto run = testing_util::run_shell(command);
+    EXPECT_EQ(run.exit_code, 1) << run.output;
+    const std::string& out = run.output;
     EXPECT_NE(out.find("NOT saved"), std::string::npos) << out;
     EXPECT_EQ(out.find("saved scan 1 "), std::string::npos) << out;
     const auto check = run_cli("session check " + session);
