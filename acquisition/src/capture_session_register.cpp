@@ -103,10 +103,15 @@ void CaptureSession::Impl::register_one(const SavedScan& saved) {
     }
     if (config.coverage_live)
         coverage_copies[saved.seq] = make_coverage_copy(*scan, config.coverage_voxel_size_m);
-    LiveDecision decision = registrar.add({.seq = saved.seq,
-                                           .cloud = scan->cloud,
-                                           .sensor_origin_scan_m = scan->meta.sensor_origin_scan_m,
-                                           .turned_over_before = saved.turned_over});
+    LiveScanInput input{.seq = saved.seq,
+                        .cloud = scan->cloud,
+                        .sensor_origin_scan_m = scan->meta.sensor_origin_scan_m,
+                        .turned_over_before = saved.turned_over};
+    record_decision(saved, saved.reregister ? registrar.reregister(std::move(input))
+                                            : registrar.add(std::move(input)));
+}
+
+void CaptureSession::Impl::record_decision(const SavedScan& saved, const LiveDecision& decision) {
     const double latency_s = seconds_since(saved.acknowledged_at);
     const std::optional<double> recorded_latency =
         saved.resumed ? saved.previous_latency_s : std::optional<double>(latency_s);
