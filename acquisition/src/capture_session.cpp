@@ -133,8 +133,10 @@ Expected<void> CaptureSession::reregister(std::int64_t seq) {
     (void)impl_->store->add_event("reregister", "",
                                   "scan " + std::to_string(seq) + ": registered again");
     impl_->begin_work();
-    impl_->to_register.push(SavedScan{
-        .seq = seq, .acknowledged_at = std::chrono::system_clock::now(), .reregister = true});
+    // Like a scan of a reopened session, it keeps the latency it was registered with live.
+    SavedScan item{.seq = seq, .resumed = true, .reregister = true};
+    item.previous_latency_s = record->latency_s;
+    impl_->to_register.push(std::move(item));
     return {};
 }
 
