@@ -23,7 +23,25 @@ struct AlignOptions {
     std::string out;
     std::string stats;
     SensorOptions sensor;
+    std::vector<double> source_up, target_up;  ///< A known direction in each scan (3 each).
+    std::vector<double> up_angle_deg;          ///< Admissible angle between them (min, max).
 };
+
+/// The axis constraint of --source-up/--target-up/--up-angle-deg, if given.
+std::optional<AxisConstraint> axis_constraint(const AlignOptions& o) {
+    if (o.source_up.empty() && o.target_up.empty()) return std::nullopt;
+    if (o.source_up.size() != 3 || o.target_up.size() != 3)
+        throw CommandFailed("--source-up and --target-up go together (3 numbers each)");
+    AxisConstraint c{.source_axis = {o.source_up[0], o.source_up[1], o.source_up[2]},
+                     .target_axis = {o.target_up[0], o.target_up[1], o.target_up[2]}};
+    if (c.source_axis.norm() == 0.0 || c.target_axis.norm() == 0.0)
+        throw CommandFailed("--source-up/--target-up: a direction cannot be zero");
+    if (o.up_angle_deg.size() == 2) {
+        c.min_angle_deg = o.up_angle_deg[0];
+        c.max_angle_deg = o.up_angle_deg[1];
+    }
+    return c;
+}
 
 /// Wall-clock seconds of the stages of one `align` run.
 struct AlignStages {
@@ -138,7 +156,9 @@ void run_align(const AlignOptions& o) {
     std::string status = "fine only";
     if (o.init.empty()) {
         spdlog::info("global registration of {} onto {}", o.source, o.target);
-        const GlobalRegistrationResult global = register_global(source, target, {});
+        GlobalRegistrationConfig config;
+        config.axis_constraint = axis_constraint(o);
+        const GlobalRegistrationResult global = register_global(source, target, config);
         stages.global = global.timing;
         stages.global_figures = global_figures(global);
         status = "global " + std::string(to_string(global.status));
@@ -179,6 +199,15 @@ void add_align_command(CLI::App& app) {
         ->check(CLI::ExistingFile);
     cmd->add_option("--out", opts->out, "Result transform (.xf, 4x4 row-major)");
     cmd->add_option("--stats", opts->stats, "Figures (.json)");
+    cmd->add_option("--source-up", opts->source_up,
+                    "A direction known in the source (e.g. up, toward the sensors), X Y Z")
+        ->expected(3);
+    cmd->add_option("--target-up", opts->target_up, "The same direction in the target, X Y Z")
+        ->expected(3);
+    cmd->add_option("--up-angle-deg", opts->up_angle_deg,
+                    "Admissible angle between them after registration, MIN MAX degrees "
+                    "(default 0 180; a stone turned over: 90 180; lying as before: 0 30)")
+        ->expected(2);
     add_sensor_options(cmd, opts->sensor);
     cmd->callback([opts] { run_align(*opts); });
 }

@@ -53,10 +53,12 @@ LiveDecision LiveRegistrar::add(LiveScanInput scan) {
 
 LiveDecision LiveRegistrar::reregister(LiveScanInput scan) {
     State& s = *state_;
+    std::optional<int> side;  // An old scan stays on the side it was captured on.
     if (const auto it = s.index_of_seq.find(scan.seq); it != s.index_of_seq.end()) {
         // The old entry is retired (out of the model, the links and the refinement); the
         // scan comes back as a new entry.
         const std::size_t old = it->second;
+        side = s.scans[old].side;
         s.scans[old] = {.seq = scan.seq, .excluded = true};
         std::erase_if(s.links,
                       [&](const live::Link& l) { return l.target == old || l.source == old; });
@@ -66,10 +68,10 @@ LiveDecision LiveRegistrar::reregister(LiveScanInput scan) {
         s.index_of_seq.erase(it);
     }
     scan.turned_over_before = false;
-    return s.place(std::move(scan), false);
+    return s.place(std::move(scan), false, side);
 }
 
-LiveDecision LiveRegistrar::State::place(LiveScanInput scan, bool newest) {
+LiveDecision LiveRegistrar::State::place(LiveScanInput scan, bool newest, std::optional<int> side) {
     const Clock::time_point start = Clock::now();
     LiveDecision decision{.seq = scan.seq};
     const bool turned = scan.turned_over_before;
@@ -81,7 +83,11 @@ LiveDecision LiveRegistrar::State::place(LiveScanInput scan, bool newest) {
         decision.time_s = seconds_since(start);
         return decision;
     }
-    if (turned) awaiting_turn = true;
+    if (turned) {
+        awaiting_turn = true;
+        ++turn_count;
+    }
+    prepared.entry.side = side.value_or(turn_count);
     const bool first = groups().empty();
     const std::size_t index = scans.size();
     index_of_seq[decision.seq] = index;

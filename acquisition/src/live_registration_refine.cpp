@@ -209,7 +209,9 @@ std::vector<PoseUpdate> LiveRegistrar::refine() {
     State& s = *state_;
     s.report = {};
     std::map<std::int64_t, PoseUpdate> changed;
-    for (const PoseUpdate& u : s.merge_groups()) changed[u.seq] = u;
+    for (const PoseUpdate& u : s.merge_whole_groups()) changed[u.seq] = u;
+    if (s.report.merges == 0)
+        for (const PoseUpdate& u : s.merge_groups()) changed[u.seq] = u;
     std::size_t described = 0;
     for (std::size_t i = 0; i < s.scans.size() && described < s.config.max_features_per_refine;
          ++i) {

@@ -26,7 +26,8 @@ struct ScanEntry {
     Eigen::Vector3d centroid_m = Eigen::Vector3d::Zero();       ///< Scan frame.
     double radius_m = 0.0;                 ///< Of the bounding sphere around the centroid.
     std::optional<ScanFeatures> features;  ///< Computed on demand, kept.
-    std::shared_ptr<const KdTree> tree;    ///< Over cloud.positions, built on first use.
+    int side = 0;  ///< Turn-overs the operator marked before this scan (which side is up).
+    std::shared_ptr<const KdTree> tree;  ///< Over cloud.positions, built on first use.
     bool registered = false;
     bool excluded = false;
     int group = -1;
@@ -96,7 +97,7 @@ struct LiveRegistrar::State {
     std::vector<double> accepted_rms_m;  ///< Of every accepted add() decision.
     std::vector<double> accepted_normal_deviation;  ///< Degrees, same.
     /// Prepares and places a scan (add: `newest`; reregister: not, so no operator priors).
-    LiveDecision place(LiveScanInput scan, bool newest);
+    LiveDecision place(LiveScanInput scan, bool newest, std::optional<int> side = std::nullopt);
     /// Verification bounds from the config and the session's accepted figures.
     live::VerificationLimits limits() const;
     /// Largest RMS a global hypothesis may have to count (see global_rms_median_factor).
@@ -138,6 +139,18 @@ struct LiveRegistrar::State {
     std::size_t make_links();
     std::vector<PoseUpdate> refine_groups();
     std::vector<PoseUpdate> merge_groups();
+    /// Group merges by global registration of the whole groups' clouds under the up
+    /// constraint (live_registration_merge.cpp).
+    std::vector<PoseUpdate> merge_whole_groups();
+    /// Mean viewing direction of a group's scans (its frame): the stone's up; none for a
+    /// group of too few scans or of views that do not agree on a side.
+    std::optional<Eigen::Vector3d> group_up(int group) const;
+    int group_side(int group) const;  ///< Side of its most recent scan.
+    /// Up kept (same side) or turned down (after a turn-over) between two groups, if known.
+    std::optional<AxisConstraint> up_constraint(int target, int source) const;
+    int turn_count = 0;  ///< Turn-overs marked so far.
+    /// Group pairs tried whole (lower id first) and their scans then.
+    std::map<std::pair<int, int>, std::size_t> whole_merge_tried;
     /// The group's stone-only clouds in its frame, merged and voxel down-sampled.
     PointCloud group_cloud(int group) const;
     /// The voted transform between two groups refined by fine registration of the groups'

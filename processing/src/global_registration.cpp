@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <numbers>
 #include <optional>
 
 #include "anascan/processing/kdtree.hpp"
@@ -43,6 +44,9 @@ std::string rejection(const FineRegistrationResult& fine, double spacing_m,
         return "fine registration: " + std::string(to_string(fine.status));
     }
     if (fine.degeneracy.eigenvalue_ratio < config.fine.degeneracy_threshold) return "degenerate";
+    if (config.axis_constraint && !config.axis_constraint->admits(fine.T_target_source)) {
+        return "outside the axis constraint";
+    }
     if (fine.rms_m > config.max_rms_spacing_factor * spacing_m) return "rms too large";
     if (fine.overlap_fraction < config.min_overlap_fraction) return "overlap too small";
     if (fine.normal_deviation_deg && *fine.normal_deviation_deg > config.max_normal_deviation_deg) {
@@ -66,6 +70,8 @@ std::vector<HypothesisOutcome> rank_by_site_overlap(const IntegralInvariantResul
     const double distance_m = config.site_overlap_spacing_factor * target.site_spacing_m;
     std::vector<HypothesisOutcome> ranked;
     for (const PoseHypothesis& hypothesis : matching.hypotheses) {
+        if (config.axis_constraint && !config.axis_constraint->admits(hypothesis.T_target_source))
+            continue;
         HypothesisOutcome outcome;
         outcome.hypothesis = hypothesis;
         outcome.site_overlap = detail::site_overlap_fraction(
@@ -147,6 +153,13 @@ void decide(const GlobalRegistrationConfig& config, GlobalRegistrationResult& re
 }
 
 }  // namespace
+
+bool AxisConstraint::admits(const Eigen::Isometry3d& T_target_source) const {
+    const Eigen::Vector3d turned = (T_target_source.linear() * source_axis).normalized();
+    const double c = std::clamp(turned.dot(target_axis.normalized()), -1.0, 1.0);
+    const double angle_deg = std::acos(c) * 180.0 / std::numbers::pi;
+    return angle_deg >= min_angle_deg && angle_deg <= max_angle_deg;
+}
 
 namespace detail {
 

@@ -6,6 +6,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <numbers>
 #include <random>
 #include <vector>
 
@@ -94,6 +95,40 @@ TEST(GlobalRegistration, TwofoldSymmetricSurfaceIsAmbiguous) {
     const GlobalRegistrationResult result =
         register_global(transformed(source, random_pose(6, 0.5)), target, {});
     EXPECT_EQ(result.status, GlobalRegistrationStatus::kAmbiguous) << result.message;
+}
+
+TEST(GlobalRegistration, AnAxisConstraintPicksOneOfTwoSymmetricPoses) {
+    // The surface above is the same turned by 180° about z; a direction known in both
+    // frames (here x, as "up" is for a stone on the ground) leaves only the true pose.
+    std::vector<Bump> bumps = random_bumps(31, 8);
+    for (std::size_t i = 0, n = bumps.size(); i < n; ++i)
+        bumps.push_back({-bumps[i].centre_m, bumps[i].height_m, bumps[i].width_m});
+    const PointCloud target = bumpy_surface(bumps, -0.1, 0.1, 0.001, 0.0);
+    const PointCloud source = bumpy_surface(bumps, -0.08, 0.08, 0.001, 0.0005);
+    const Pose moved = random_pose(6, 0.5);
+    GlobalRegistrationConfig config;
+    config.axis_constraint =
+        AxisConstraint{.source_axis = moved.linear() * Eigen::Vector3d::UnitX(),
+                       .target_axis = Eigen::Vector3d::UnitX(),
+                       .max_angle_deg = 30.0};
+    const GlobalRegistrationResult result =
+        register_global(transformed(source, moved), target, config);
+    ASSERT_EQ(result.status, GlobalRegistrationStatus::kSuccess) << result.message;
+    const PoseDifference d = pose_difference(result.T_target_source, moved.inverse());
+    EXPECT_LT(d.rotation_deg, 0.5);
+    EXPECT_LT(d.translation_m, 0.001);
+    for (const HypothesisOutcome& h : result.hypotheses)
+        EXPECT_TRUE(config.axis_constraint->admits(h.hypothesis.T_target_source));
+}
+
+TEST(AxisConstraint, AdmitsAnglesWithinItsBounds) {
+    const AxisConstraint turned{.min_angle_deg = 90.0, .max_angle_deg = 180.0};
+    const Pose flip(Eigen::AngleAxisd(std::numbers::pi, Eigen::Vector3d::UnitX()));
+    EXPECT_TRUE(turned.admits(flip));
+    EXPECT_FALSE(turned.admits(Pose::Identity()));
+    const AxisConstraint kept{.max_angle_deg = 30.0};
+    EXPECT_TRUE(kept.admits(Pose(Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitY()))));   // 23°
+    EXPECT_FALSE(kept.admits(Pose(Eigen::AngleAxisd(0.6, Eigen::Vector3d::UnitY()))));  // 34°
 }
 
 TEST(GlobalRegistration, MissingNormalsOrEmptyCloudsAreInvalidInput) {

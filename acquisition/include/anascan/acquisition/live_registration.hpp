@@ -140,7 +140,16 @@ struct LiveRegistrationConfig {
     /// its correspondences reach farther).
     double max_link_rms_voxel_factor = 1.0;
     MultiviewRefinementConfig multiview{};  ///< fixed_scan_index is set per group.
-    std::size_t max_merge_attempts = 4;     ///< Global pair attempts per refine() for merges.
+    /// Group merges by global registration of the whole groups' clouds, with the stone's up
+    /// (each group's mean viewing direction) kept within `max_same_side_up_deg` on the same
+    /// side and turned by at least 90° across a turn-over; tried again when the two groups
+    /// together have doubled their scans.
+    bool whole_group_merges = true;
+    std::size_t min_group_scans_for_up = 3;
+    double max_same_side_up_deg = 30.0;
+    /// With fewer scans in a group its up is one viewing direction: the bounds widen by this.
+    double few_scans_up_slack_deg = 45.0;
+    std::size_t max_merge_attempts = 4;  ///< Global pair attempts per refine() for merges.
     /// Scans whose features (for a later global registration) refine() computes per call.
     std::size_t max_features_per_refine = 2;
 };
@@ -199,6 +208,7 @@ struct LiveRefineReport {
     std::size_t new_links = 0;
     std::size_t groups_refined = 0;
     std::size_t merges = 0;
+    std::size_t merge_attempts = 0;  ///< Whole-group global registrations tried.
     double time_s = 0.0;
 };
 

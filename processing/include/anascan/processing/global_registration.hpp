@@ -14,6 +14,7 @@
 /// results do not depend on the number of threads.
 
 #include <cstddef>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -73,6 +74,18 @@ FeatureMatchingResult match_features(const FeaturePatchResult& source,
                                      const FeaturePatchResult& target,
                                      const FeatureMatchingConfig& config);
 
+/// A direction known in both scans (e.g. "up": toward the sensors above a stone on the
+/// ground). A pose is admissible when it turns `source_axis` to an angle with `target_axis`
+/// within [min_angle_deg, max_angle_deg]: a stone that lies as before keeps its up (small
+/// angles), one turned over has it turned down (large angles).
+struct AxisConstraint {
+    Eigen::Vector3d source_axis = Eigen::Vector3d::UnitZ();  ///< Source frame, any length.
+    Eigen::Vector3d target_axis = Eigen::Vector3d::UnitZ();  ///< Target frame, any length.
+    double min_angle_deg = 0.0;
+    double max_angle_deg = 180.0;
+    bool admits(const Eigen::Isometry3d& T_target_source) const;
+};
+
 /// Settings of `register_global`.
 struct GlobalRegistrationConfig {
     /// Descriptor radii; all zero = `radii_for_object_size_m` of the larger scan diagonal.
@@ -101,6 +114,8 @@ struct GlobalRegistrationConfig {
     /// Another verified pose (distinct, see matching) whose overlap reaches this fraction of
     /// the best one's makes the result ambiguous.
     double ambiguity_overlap_ratio = 0.8;
+    /// Inadmissible hypotheses are dropped before refinement and rejected after it.
+    std::optional<AxisConstraint> axis_constraint;
 };
 
 enum class GlobalRegistrationStatus {
