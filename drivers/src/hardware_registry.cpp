@@ -1,6 +1,7 @@
 #include "anascan/drivers/device_registry.hpp"
 #include "anascan/drivers/ptx_station_scanner.hpp"
 #include "anascan/drivers/recording.hpp"
+#include "anascan/drivers/structured_light_scanner.hpp"
 #include "anascan/drivers/usb_devices.hpp"
 #include "anascan/drivers/v4l2_camera.hpp"
 
@@ -12,6 +13,11 @@ DeviceRegistry make_hardware_registry() {
          {make_v4l2_backend(), make_usb_backend(), make_ptx_backend(), make_playback_backend()}) {
         (void)registry.add(std::move(b));  // distinct schemes: cannot fail
     }
+    // The cameras a structured-light scanner (`sl:`) is composed of.
+    auto cameras = std::make_shared<DeviceRegistry>();
+    for (Backend b : {make_v4l2_backend(), make_usb_backend(), make_playback_backend()})
+        (void)cameras->add(std::move(b));
+    (void)registry.add(make_structured_light_backend(std::move(cameras)));
     return registry;
 }
 

@@ -5,6 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <stop_token>
+#include <string>
+#include <vector>
 
 #include "anascan/drivers/recording.hpp"
 #include "anascan/drivers/settings.hpp"
@@ -203,6 +206,72 @@ TEST(SimStructuredLightDevice, DecodedScanLiesOnTheTrueSurfaceAtItsTruePose) {
     EXPECT_LT(p90_mm, 3.0);
     // The next capture is from the next viewpoint.
     EXPECT_FALSE(device->rig().cam1.T_world_device.isApprox(T_world_cam1));
+}
+
+// The sync rule of drivers::StructuredLightScanner: a frame exposed before its pattern was
+// shown is never used. Cameras that deliver one such stale frame after every switch give
+// the same scan as cameras that do not.
+TEST(SimStructuredLightDevice, StaleFramesAfterAPatternSwitchAreDropped) {
+    auto fresh = SimStructuredLightScanner::open(small_sl_config());
+    SimStructuredLightConfig queued_config = small_sl_config();
+    queued_config.stale_frame_after_switch = true;
+    auto queued = SimStructuredLightScanner::open(queued_config);
+    auto a = fresh->capture_scan({});
+    auto b = queued->capture_scan({});
+    ASSERT_TRUE(a) << a.error().message;
+    ASSERT_TRUE(b) << b.error().message;
+    const std::size_t patterns = fresh->last_capture().patterns_shown;
+    EXPECT_EQ(fresh->last_capture().stale_frames, 0u);
+    // Each camera: one stale frame per switch after its first frame.
+    EXPECT_EQ(queued->last_capture().stale_frames, 2 * (patterns - 1));
+    EXPECT_EQ(queued->last_capture().frames_used, 2 * patterns);
+    ASSERT_EQ(a->cloud.size(), b->cloud.size());
+    EXPECT_EQ(a->cloud.positions, b->cloud.positions);
+}
+
+TEST(SimStructuredLightDevice, CancelDuringThePatternsStopsAndTheDeviceStaysUsable) {
+    auto device = SimStructuredLightScanner::open(small_sl_config());
+    std::stop_source stop;
+    std::vector<std::string> stages;
+    auto cancelled = device->capture_scan({.on_progress =
+                                               [&](const drivers::CaptureProgress& p) {
+                                                   stages.push_back(p.stage);
+                                                   if (stages.size() == 5) stop.request_stop();
+                                               },
+                                           .stop = stop.get_token()});
+    ASSERT_FALSE(cancelled);
+    EXPECT_EQ(cancelled.error().code, ErrorCode::kCancelled) << cancelled.error().message;
+    EXPECT_EQ(device->last_capture().patterns_shown, 5u);
+    ASSERT_FALSE(stages.empty());
+    EXPECT_NE(stages.front().find("projecting pattern 1/"), std::string::npos) << stages.front();
+    auto next = device->capture_scan({});
+    EXPECT_TRUE(next) << next.error().message;
+}
+
+TEST(SimStructuredLightDevice, ASilentCameraIsATimeoutNamingIt) {
+    auto device = SimStructuredLightScanner::open(small_sl_config());
+    device->part_faults(SlPart::kCam2)->stalled = true;
+    auto none = device->capture_scan({.timeout = std::chrono::milliseconds(300)});
+    ASSERT_FALSE(none);
+    EXPECT_EQ(none.error().code, ErrorCode::kTimeout);
+    EXPECT_NE(none.error().message.find("sim:structured-light/small-block#cam2"), std::string::npos)
+        << none.error().message;
+    device->part_faults(SlPart::kCam2)->stalled = false;
+    auto again = device->capture_scan({});  // a silent camera is not a lost one
+    EXPECT_TRUE(again) << again.error().message;
+}
+
+TEST(SimStructuredLightDevice, AProjectorGoneMidCaptureIsADisconnectNamingIt) {
+    auto device = SimStructuredLightScanner::open(small_sl_config());
+    device->part_faults(SlPart::kProjector)->unplug_after_captures = 7;
+    auto gone = device->capture_scan({});
+    ASSERT_FALSE(gone);
+    EXPECT_EQ(gone.error().code, ErrorCode::kDisconnected);
+    EXPECT_NE(gone.error().message.find("#projector"), std::string::npos) << gone.error().message;
+    EXPECT_EQ(device->last_capture().patterns_shown, 7u);
+    auto later = device->capture_scan({});
+    ASSERT_FALSE(later);
+    EXPECT_EQ(later.error().code, ErrorCode::kDisconnected);
 }
 
 }  // namespace
