@@ -1,5 +1,7 @@
 // StructuredLightScanner::capture_scan: show each pattern, take each camera's first frame
 // exposed after it, decode.
+#include <tbb/parallel_invoke.h>
+
 #include <algorithm>
 
 #include "anascan/drivers/structured_light_scanner.hpp"
@@ -119,9 +121,13 @@ Expected<void> StructuredLightScanner::acquire(const CaptureControl& control,
         ++stats_.patterns_shown;
         const FrameWait wait{control, deadline, *shown, parts_.frame_latency, parts_.frame_timeout,
                              what};
-        auto a = fresh_frame(*parts_.cam1, "cam1", wait, stats_.stale_frames);
+        // Both cameras at once (each on one thread, as Camera requires).
+        std::size_t stale1 = 0, stale2 = 0;
+        Expected<cv::Mat> a = cv::Mat(), b = cv::Mat();
+        tbb::parallel_invoke([&] { a = fresh_frame(*parts_.cam1, "cam1", wait, stale1); },
+                             [&] { b = fresh_frame(*parts_.cam2, "cam2", wait, stale2); });
+        stats_.stale_frames += stale1 + stale2;
         if (!a) return fail(gone(a.error()));
-        auto b = fresh_frame(*parts_.cam2, "cam2", wait, stats_.stale_frames);
         if (!b) return fail(gone(b.error()));
         images1.push_back(std::move(*a));
         images2.push_back(std::move(*b));

@@ -174,45 +174,45 @@ struct PatternArea {
     }
 };
 
-// The pattern's level at each lit pixel, box-filtered over the pixel's footprint widened
-// by the projector blur. Stripes (every row alike: column patterns; every column alike:
-// row patterns) go through a 1-D profile, any other image through its summed-area table.
-cv::Mat pattern_levels(const CameraSurface& surface, const StructuredLightRenderConfig& config,
-                       const cv::Mat& projector_image) {
+// The radiance (DN) of each pixel: ambient plus the pattern's level, box-filtered over the
+// pixel's footprint widened by the projector blur, where lit. Stripes (every row alike:
+// column patterns; every column alike: row patterns) go through a 1-D profile, any other
+// image through its summed-area table.
+cv::Mat radiance_of(const CameraSurface& surface, const StructuredLightRenderConfig& config,
+                    const cv::Mat& projector_image) {
     const double blur_var = 12.0 * config.projector_blur_sigma_px * config.projector_blur_sigma_px;
     auto width = [&](double w) { return std::clamp(std::sqrt(w * w + blur_var), 0.05, 16.0); };
-    cv::Mat levels(surface.albedo.size(), CV_32F, cv::Scalar(0));
-    if (projector_image.empty()) return levels;  // a dark projector
-    const Stripes stripes = stripes_of(projector_image);
-    const PatternProfile profile(projector_image, stripes != Stripes::kRows);
+    const bool dark = projector_image.empty();
+    const Stripes stripes = dark ? Stripes::kColumns : stripes_of(projector_image);
+    const PatternProfile profile(dark ? cv::Mat(1, 1, CV_8UC1, cv::Scalar(0)) : projector_image,
+                                 stripes != Stripes::kRows);
     const PatternArea area(stripes == Stripes::kNone ? projector_image : cv::Mat());
     const int axis = stripes == Stripes::kRows ? 1 : 0;
-    tbb::parallel_for(0, levels.rows, [&](int y) {
-        for (int x = 0; x < levels.cols; ++x) {
-            if (surface.light.at<float>(y, x) <= 0.0f) continue;
-            const cv::Vec2f c = surface.truth.projector_xy.at<cv::Vec2f>(y, x);
-            const cv::Vec2f w = surface.footprint.at<cv::Vec2f>(y, x);
-            levels.at<float>(y, x) = stripes == Stripes::kNone
-                                         ? area.box_filtered(c[0], c[1], width(w[0]), width(w[1]))
-                                         : profile.box_filtered(c[axis], width(w[axis]));
+    cv::Mat radiance(surface.albedo.size(), CV_32F);
+    tbb::parallel_for(0, radiance.rows, [&](int y) {
+        for (int x = 0; x < radiance.cols; ++x) {
+            const float light = surface.light.at<float>(y, x);
+            float level = 0.0f;
+            if (light > 0.0f) {
+                const cv::Vec2f c = surface.truth.projector_xy.at<cv::Vec2f>(y, x);
+                const cv::Vec2f w = surface.footprint.at<cv::Vec2f>(y, x);
+                level = stripes == Stripes::kNone
+                            ? area.box_filtered(c[0], c[1], width(w[0]), width(w[1]))
+                            : profile.box_filtered(c[axis], width(w[axis]));
+            }
+            radiance.at<float>(y, x) =
+                static_cast<float>(config.exposure_dn * surface.albedo.at<float>(y, x) *
+                                   (config.ambient_level + light * level));
         }
     });
-    return levels;
+    return radiance;
 }
 
 }  // namespace
 
 cv::Mat render_camera_image(const CameraSurface& surface, const cv::Mat& projector_image,
                             const StructuredLightRenderConfig& config, std::uint64_t noise_seed) {
-    cv::Mat radiance = pattern_levels(surface, config, projector_image);
-    tbb::parallel_for(0, radiance.rows, [&](int y) {
-        for (int x = 0; x < radiance.cols; ++x) {
-            const float level = radiance.at<float>(y, x);
-            radiance.at<float>(y, x) =
-                static_cast<float>(config.exposure_dn * surface.albedo.at<float>(y, x) *
-                                   (config.ambient_level + surface.light.at<float>(y, x) * level));
-        }
-    });
+    cv::Mat radiance = radiance_of(surface, config, projector_image);
     if (config.camera_blur_sigma_px > 0.0)
         cv::GaussianBlur(radiance, radiance, cv::Size(0, 0), config.camera_blur_sigma_px);
     cv::Mat image(radiance.size(), CV_8UC1);
