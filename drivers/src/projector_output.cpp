@@ -80,10 +80,8 @@ Expected<void> GlfwProjector::load(std::span<const Pattern> patterns) {
 }
 
 Expected<std::chrono::nanoseconds> GlfwProjector::show(std::size_t index) {
-    if (index >= bottom_up_.size())
-        return fail(ErrorCode::kInvalidArgument, name_ + ": pattern " + std::to_string(index) +
-                                                     " of " + std::to_string(bottom_up_.size()) +
-                                                     " loaded");
+    if (auto ok = check_pattern_index(index, bottom_up_.size(), name_); !ok)
+        return fail(ok.error());
     if (glfwWindowShouldClose(window_.get()))
         return fail(ErrorCode::kDisconnected, name_ + ": the window was closed");
     draw(bottom_up_[index]);
@@ -119,6 +117,13 @@ Expected<void> check_patterns(std::span<const Pattern> patterns, int width_px, i
         }
     }
     return {};
+}
+
+Expected<void> check_pattern_index(std::size_t index, std::size_t loaded,
+                                   const std::string& output) {
+    if (index < loaded) return {};
+    return fail(ErrorCode::kInvalidArgument, output + ": pattern " + std::to_string(index) +
+                                                 " of " + std::to_string(loaded) + " loaded");
 }
 
 Expected<void> ProjectorOutput::show_sequence(std::span<const Pattern> patterns,

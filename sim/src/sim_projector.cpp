@@ -36,10 +36,8 @@ Expected<void> SimProjector::load(std::span<const drivers::Pattern> patterns) {
 }
 
 Expected<std::chrono::nanoseconds> SimProjector::show(std::size_t index) {
-    if (index >= images_.size())
-        return fail(ErrorCode::kInvalidArgument, name_ + ": pattern " + std::to_string(index) +
-                                                     " of " + std::to_string(images_.size()) +
-                                                     " loaded");
+    if (auto ok = drivers::check_pattern_index(index, images_.size(), name_); !ok)
+        return fail(ok.error());
     gone_ = gone_ || detail::take_from_budget(faults_.get());
     if (gone_) return fail(ErrorCode::kDisconnected, name_ + ": went away (unplugged)");
     const std::chrono::nanoseconds shown_at = drivers::steady_now();

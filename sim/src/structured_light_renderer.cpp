@@ -274,7 +274,8 @@ Expected<StructuredLightCapture> render_structured_light(
         rig.cam2.height_px <= 0)
         return fail(ErrorCode::kInvalidArgument, "sim:structured-light: empty camera image size");
     const Scenery scenery{caster, albedo_of_triangle, rig.projector, config};
-    StructuredLightCapture capture{.rig = rig, .patterns = pattern_sequence(config.patterns)};
+    StructuredLightCapture capture{
+        .rig = rig, .patterns = pattern_sequence(config.patterns), .layout = config.patterns};
     const std::vector<cv::Mat> projector_images =
         drivers::sl::make_patterns(decoder_sequence(config.patterns));
     if (projector_images.size() != capture.patterns.size())

@@ -55,6 +55,37 @@ TEST(SimTofDevice, ScanCarriesItsTruePoseAndSettings) {
     EXPECT_EQ(off, 0u);
 }
 
+// The sweep is a setting: a narrower field gives a smaller grid of the same step, about
+// the same elevation centre; outside the LMS-Z420i's 360 x 80 degrees it is refused.
+TEST(SimTofDevice, TheSweepFieldIsASetting) {
+    auto device = SimTofScanner::open(small_tof_config());
+    EXPECT_EQ(device->settings().horizontal_field_deg, 360.0);
+    EXPECT_EQ(device->settings().vertical_field_deg, 80.0);
+    auto full = device->capture_scan({});
+    ASSERT_TRUE(full) << full.error().message;
+    ASSERT_TRUE(device->configure({.horizontal_field_deg = 180.0, .vertical_field_deg = 40.0}));
+    auto half = device->capture_scan({});
+    ASSERT_TRUE(half) << half.error().message;
+    auto settings = drivers::settings_from_json(half->meta.settings_json, "scan");
+    ASSERT_TRUE(settings);
+    EXPECT_EQ(settings->horizontal_field_deg, 180.0);
+    // Elevation of the lowest point: the full field reaches -40 degrees, this one -20.
+    auto lowest_deg = [](const Scan& scan) {
+        double lowest = 90.0;
+        for (const Eigen::Vector3f& p : scan.cloud.positions)
+            lowest = std::min(lowest,
+                              std::atan2(double(p.z()), double(p.head<2>().norm())) * 180.0 / M_PI);
+        return lowest;
+    };
+    EXPECT_LT(lowest_deg(*full), -30.0);
+    EXPECT_GE(lowest_deg(*half), -20.0 - 2.0);  // one 2-degree step of slack
+    EXPECT_LT(half->cloud.size(), full->cloud.size() * 3 / 4);
+    auto bad = device->configure({.vertical_field_deg = 120.0});
+    ASSERT_FALSE(bad);
+    EXPECT_EQ(bad.error().code, ErrorCode::kInvalidArgument);
+    EXPECT_NE(bad.error().message.find("vertical_field_deg"), std::string::npos);
+}
+
 TEST(SimTofDevice, EachCaptureIsTheNextStationAndTheBlockCanBeTurnedOver) {
     auto device = SimTofScanner::open(small_tof_config());
     auto first = device->capture_scan({});

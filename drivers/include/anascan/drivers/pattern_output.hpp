@@ -48,6 +48,10 @@ public:
 Expected<void> check_patterns(std::span<const Pattern> patterns, int width_px, int height_px,
                               const std::string& output);
 
+/// kInvalidArgument naming `output` when `index` is not below `loaded`.
+Expected<void> check_pattern_index(std::size_t index, std::size_t loaded,
+                                   const std::string& output);
+
 /// Now on the host steady clock (the clock of show() and Frame::timestamp_ns).
 inline std::chrono::nanoseconds steady_now() {
     return std::chrono::steady_clock::now().time_since_epoch();

@@ -65,6 +65,7 @@ std::uint64_t camera_noise_seed(const StructuredLightRenderConfig& config, int c
 struct StructuredLightCapture {
     StructuredLightRig rig;         ///< The rig with its true poses (T_world_device).
     std::vector<Pattern> patterns;  ///< In projection order.
+    PatternSequenceConfig layout;   ///< The sequence they come from.
     std::vector<cv::Mat> cam1;      ///< CV_8UC1 images, one per pattern.
     std::vector<cv::Mat> cam2;
     CameraTruth truth1, truth2;
@@ -77,7 +78,8 @@ Expected<StructuredLightCapture> render_structured_light(
     const StructuredLightRig& rig, const StructuredLightRenderConfig& config = {});
 
 /// Writes the capture as `dir/pattern_cam{1,2}_imNN.png` (NN from 01, projection order)
-/// and its rig's calibration as `dir/calibration.yml`; creates `dir` if needed.
+/// and its rig's calibration, with the pattern layout, as `dir/calibration.yml` (so that
+/// `anascan sl decode` needs no layout flags); creates `dir` if needed.
 Expected<void> write_structured_light_capture(const std::filesystem::path& dir,
                                               const StructuredLightCapture& capture);
 
