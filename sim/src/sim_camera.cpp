@@ -1,5 +1,7 @@
 #include "anascan/sim/sim_camera.hpp"
 
+#include <tbb/parallel_for.h>
+
 #include <thread>
 
 #include "sim_capture_run.hpp"
@@ -29,6 +31,7 @@ Expected<void> SimCamera::configure(const drivers::DeviceSettings& requested) {
     if (closed_ || gone_) return fail(ErrorCode::kDisconnected, info_.uri + ": gone");
     if (auto ok = drivers::validate_settings(requested, caps_, info_.uri); !ok) return ok;
     settings_ = drivers::merge_settings(settings_, requested);
+    ahead_of_.reset();  // rendered with the old exposure
     return {};
 }
 
@@ -43,6 +46,7 @@ void SimCamera::set_view(SimCameraView view) {
     view_ = std::move(view);
     surface_.reset();
     last_.reset();
+    ahead_of_.reset();
 }
 
 Expected<void> SimCamera::check_usable() {
@@ -90,16 +94,34 @@ Expected<drivers::Frame> SimCamera::next_frame(std::chrono::milliseconds timeout
     return frame;
 }
 
+cv::Mat SimCamera::image_of(const SimProjectorScreen::Showing& showing,
+                            const StructuredLightRenderConfig& render) {
+    if (!surface_)
+        surface_ = trace_camera_surface(view_->world->caster, view_->world->albedos, view_->camera,
+                                        view_->projector, render);
+    const auto loaded = config_.screen->loaded();
+    const bool in_sequence = showing.image && loaded && showing.index < loaded->size() &&
+                             (*loaded)[showing.index] == showing.image;
+    if (!in_sequence)  // dark, or an image from elsewhere: render it now
+        return render_camera_image(*surface_, showing.image ? *showing.image : cv::Mat(), render,
+                                   camera_noise_seed(render, config_.camera_index, rendered_++));
+    if (ahead_of_ != loaded) {
+        ahead_.assign(loaded->size(), cv::Mat());
+        tbb::parallel_for(std::size_t{0}, loaded->size(), [&](std::size_t i) {
+            ahead_[i] = render_camera_image(*surface_, *(*loaded)[i], render,
+                                            camera_noise_seed(render, config_.camera_index, i));
+        });
+        ahead_of_ = loaded;
+    }
+    ++rendered_;
+    return ahead_[showing.index];
+}
+
 drivers::Frame SimCamera::render(std::chrono::nanoseconds start,
                                  const SimProjectorScreen::Showing& showing) {
     StructuredLightRenderConfig render = view_->render;
     render.exposure_dn *= *settings_.exposure_us / kReferenceExposureUs;
-    if (!surface_)
-        surface_ = trace_camera_surface(view_->world->caster, view_->world->albedos, view_->camera,
-                                        view_->projector, render);
-    const cv::Mat image =
-        render_camera_image(*surface_, showing.image ? *showing.image : cv::Mat(), render,
-                            camera_noise_seed(render, config_.camera_index, rendered_++));
+    const cv::Mat image = image_of(showing, render);
     drivers::Frame frame;
     frame.width = image.cols;
     frame.height = image.rows;

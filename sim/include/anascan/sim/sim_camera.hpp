@@ -40,7 +40,10 @@ struct SimCameraView {
 };
 
 /// Not thread-safe (see drivers::Camera). Settings: exposure_us in [1000, 40000], one
-/// grey8 stream of the configured size.
+/// grey8 stream of the configured size. Renders ahead: at the first frame of a view it
+/// renders the projector's whole loaded sequence at once (TBB over the patterns, as a
+/// batch renderer would), then each frame is the image of the pattern on show; the noise of
+/// pattern i is drawn from its index, so the images are those of rendering on demand.
 class SimCamera final : public drivers::Camera {
 public:
     explicit SimCamera(SimCameraConfig config);
@@ -65,6 +68,8 @@ private:
     Expected<void> check_usable();
     bool stalled() const;
     drivers::Frame render(std::chrono::nanoseconds start, const SimProjectorScreen::Showing& s);
+    cv::Mat image_of(const SimProjectorScreen::Showing& showing,
+                     const StructuredLightRenderConfig& render);
 
     SimCameraConfig config_;
     drivers::DeviceInfo info_;
@@ -73,6 +78,8 @@ private:
     std::shared_ptr<SimDeviceFaults> device_faults_;
     std::optional<SimCameraView> view_;
     std::optional<CameraSurface> surface_;  ///< Of view_, traced on first use.
+    std::shared_ptr<const SimProjectorScreen::Images> ahead_of_;  ///< What ahead_ renders.
+    std::vector<cv::Mat> ahead_;  ///< The loaded sequence as this camera sees it.
     std::optional<drivers::Frame> last_;
     std::uint64_t last_serial_ = 0;  ///< Projector serial of last_.
     std::uint64_t sequence_ = 0;

@@ -21,16 +21,22 @@ namespace anascan::sim {
 /// read.
 class SimProjectorScreen {
 public:
+    using Images = std::vector<std::shared_ptr<const cv::Mat>>;
     struct Showing {
         std::shared_ptr<const cv::Mat> image;  ///< CV_8UC1; null: dark.
         std::chrono::nanoseconds shown_at{};   ///< Host steady clock.
         std::uint64_t serial = 0;              ///< Counts the patterns shown.
+        std::size_t index = 0;                 ///< Of `image` in loaded().
     };
-    void show(std::shared_ptr<const cv::Mat> image, std::chrono::nanoseconds shown_at);
+    /// The sequence the projector holds (a camera may render ahead of it).
+    void load(std::shared_ptr<const Images> images);
+    std::shared_ptr<const Images> loaded() const;
+    void show(std::size_t index, std::chrono::nanoseconds shown_at);
     Showing now() const;
 
 private:
     mutable std::mutex mutex_;
+    std::shared_ptr<const Images> loaded_;
     Showing showing_;
 };
 
@@ -54,7 +60,7 @@ private:
     int height_;
     std::shared_ptr<SimProjectorScreen> screen_;
     std::shared_ptr<SimDeviceFaults> faults_;
-    std::vector<std::shared_ptr<const cv::Mat>> images_;
+    std::size_t loaded_count_ = 0;
     bool gone_ = false;
 };
 
