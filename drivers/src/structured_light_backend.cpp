@@ -48,7 +48,8 @@ Expected<StructuredLightParts> sl_parts(const DeviceRegistry& cameras, const std
     for (const auto* v : {&swap, &monitor, &steps, &period, &latency})
         if (!*v) return fail(v->error());
     auto calibration = sl::load_stereo_calibration(t.path, {.swap_cameras = *swap != 0});
-    if (!calibration) return fail(calibration.error());
+    if (!calibration)
+        return fail(calibration.error().code, uri + ": " + calibration.error().message);
     parts.calibration = *calibration;
     auto cam1 = open_camera(cameras, t.values.at("cam1"), calibration->cam1);
     if (!cam1) return fail(cam1.error().code, uri + ": cam1: " + cam1.error().message);
