@@ -48,7 +48,9 @@ json listing_json(const Listing& l) {
                              {"exposure_us", range_json(l.caps->exposure_us)},
                              {"gain", range_json(l.caps->gain)},
                              {"angular_step_deg", range_json(l.caps->angular_step_deg)},
-                             {"range_m", range_json(l.caps->range_m)}};
+                             {"range_m", range_json(l.caps->range_m)},
+                             {"horizontal_field_deg", range_json(l.caps->horizontal_field_deg)},
+                             {"vertical_field_deg", range_json(l.caps->vertical_field_deg)}};
     }
     if (l.open_error)
         j["error"] = {{"code", std::string(to_string(l.open_error->code))},
@@ -83,6 +85,8 @@ void print_listing(const Listing& l) {
     print_range("gain", l.caps->gain, "(device units)");
     print_range("angular step", l.caps->angular_step_deg, "deg");
     print_range("range", l.caps->range_m, "m");
+    print_range("horizontal field", l.caps->horizontal_field_deg, "deg");
+    print_range("vertical field", l.caps->vertical_field_deg, "deg");
     if (l.caps->can_capture_scan) std::printf("    captures scans\n");
 }
 

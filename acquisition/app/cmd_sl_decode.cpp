@@ -31,6 +31,8 @@ struct SlDecodeOptions {
     int projector_height_px = 800;
     int phase_steps = 0;
     int phase_period_px = 16;
+    bool projector_size_given = false;  ///< --projector-width/height on the command line.
+    bool phase_given = false;           ///< --phase-steps/period on the command line.
     int min_contrast = 40;
     int min_bit_contrast = 5;
     double max_ray_gap_mm = 30.0;
@@ -84,7 +86,29 @@ std::vector<cv::Mat> load_all(const std::vector<std::filesystem::path>& files) {
     return std::move(*images);
 }
 
-void run_sl_decode(const SlDecodeOptions& o) {
+/// The pattern layout the calibration file records (the simulator writes it), where the
+/// command line does not set it.
+SlDecodeOptions with_recorded_layout(SlDecodeOptions o) {
+    auto recorded = sl::load_pattern_layout(o.calibration);
+    if (!recorded) fail_command(recorded.error());
+    if (!*recorded) return o;
+    const sl::RecordedPatternLayout& r = **recorded;
+    if (!o.projector_size_given) {
+        o.projector_width_px = r.projector_width_px;
+        o.projector_height_px = r.projector_height_px;
+    }
+    if (!o.phase_given) {
+        o.phase_steps = r.phase_steps;
+        o.phase_period_px = r.phase_period_px > 0 ? r.phase_period_px : o.phase_period_px;
+    }
+    spdlog::info("pattern layout: projector {} x {} px, {} phase steps of period {} px{}",
+                 o.projector_width_px, o.projector_height_px, o.phase_steps, o.phase_period_px,
+                 o.projector_size_given && o.phase_given ? "" : " (from the calibration file)");
+    return o;
+}
+
+void run_sl_decode(const SlDecodeOptions& options) {
+    const SlDecodeOptions o = with_recorded_layout(options);
     const auto t0 = Clock::now();
     std::unique_ptr<tbb::global_control> thread_limit;
     if (o.threads > 0) {
@@ -156,15 +180,20 @@ void add_sl_command(CLI::App& app) {
     cmd->add_option("--calibration-unit", opts->file_unit_m, "Unit of the calibration's T")
         ->transform(CLI::CheckedTransformer(units, CLI::ignore_case))
         ->default_str("mm");
-    cmd->add_option("--projector-width", opts->projector_width_px, "Projector width, px")
-        ->capture_default_str();
-    cmd->add_option("--projector-height", opts->projector_height_px, "Projector height, px")
-        ->capture_default_str();
-    cmd->add_option("--phase-steps", opts->phase_steps,
-                    "Phase-shift images per axis after the Gray code (0: none)")
-        ->capture_default_str();
-    cmd->add_option("--phase-period", opts->phase_period_px, "Sinusoid period, projector px")
-        ->capture_default_str();
+    // Defaults, unless the calibration records the layout (proj_size, pattern_phase_*).
+    auto* width = cmd->add_option("--projector-width", opts->projector_width_px,
+                                  "Projector width, px (default: the calibration's proj_size)")
+                      ->capture_default_str();
+    auto* height =
+        cmd->add_option("--projector-height", opts->projector_height_px, "Projector height, px")
+            ->capture_default_str();
+    auto* steps = cmd->add_option("--phase-steps", opts->phase_steps,
+                                  "Phase-shift images per axis after the Gray code (0: none; "
+                                  "default: the calibration's pattern_phase_steps)")
+                      ->capture_default_str();
+    auto* period =
+        cmd->add_option("--phase-period", opts->phase_period_px, "Sinusoid period, projector px")
+            ->capture_default_str();
     cmd->add_option("--min-contrast", opts->min_contrast, "White - black, grey levels")
         ->capture_default_str();
     cmd->add_option("--min-bit-contrast", opts->min_bit_contrast,
@@ -176,7 +205,11 @@ void add_sl_command(CLI::App& app) {
     cmd->add_option("--threads", opts->threads, "Worker threads (0: all cores)")
         ->capture_default_str()
         ->check(CLI::NonNegativeNumber);
-    cmd->callback([opts] { run_sl_decode(*opts); });
+    cmd->callback([opts, width, height, steps, period] {
+        opts->projector_size_given = width->count() > 0 || height->count() > 0;
+        opts->phase_given = steps->count() > 0 || period->count() > 0;
+        run_sl_decode(*opts);
+    });
 }
 
 }  // namespace anascan::cli

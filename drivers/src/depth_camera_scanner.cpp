@@ -3,17 +3,21 @@
 #include <algorithm>
 #include <chrono>
 
+#include "uri_query.hpp"
+
 namespace anascan::drivers {
 namespace {
 
 /// Not thread-safe (see Scanner).
 class DepthCameraScanner final : public Scanner {
 public:
-    DepthCameraScanner(std::unique_ptr<Camera> camera, const DepthIntrinsics& k)
+    DepthCameraScanner(std::unique_ptr<Camera> camera, const DepthIntrinsics& k,
+                       std::string uri = {})
         : camera_(std::move(camera)),
           intrinsics_(k),
           info_(camera_->info()),
           caps_(camera_->capabilities()) {
+        if (!uri.empty()) info_.uri = std::move(uri);
         info_.kind = DeviceKind::kTimeOfFlight;
         info_.is_scanner = true;
         info_.is_camera = false;
@@ -90,6 +94,50 @@ Expected<Scan> DepthCameraScanner::capture_scan(const CaptureControl& control) {
 std::unique_ptr<Scanner> make_depth_camera_scanner(std::unique_ptr<Camera> camera,
                                                    const DepthIntrinsics& intrinsics) {
     return std::make_unique<DepthCameraScanner>(std::move(camera), intrinsics);
+}
+
+namespace {
+
+Expected<std::unique_ptr<Device>> open_depth_scanner(const DeviceRegistry& cameras,
+                                                     const DeviceUri& uri) {
+    const std::string text = to_string(uri);
+    auto q =
+        parse_uri_query(text, uri.target, {"fx_px", "fy_px", "cx_px", "cy_px", "depth_unit_m"});
+    if (!q) return fail(q.error());
+    DepthIntrinsics k;
+    for (auto [key, out] : {std::pair{"fx_px", &k.fx_px}, std::pair{"fy_px", &k.fy_px},
+                            std::pair{"cx_px", &k.cx_px}, std::pair{"cy_px", &k.cy_px}}) {
+        if (!q->values.contains(key))
+            return fail(
+                ErrorCode::kInvalidArgument,
+                text + ": missing " + key + " (depth:CAMERA_URI?fx_px=F&fy_px=F&cx_px=C&cy_px=C)");
+        auto v = query_double(*q, key, 0.0, text);
+        if (!v) return fail(v.error());
+        *out = *v;
+    }
+    auto unit = query_double(*q, "depth_unit_m", k.depth_unit_m, text);
+    if (!unit) return fail(unit.error());
+    k.depth_unit_m = *unit;
+    if (!(k.fx_px > 0.0) || !(k.fy_px > 0.0) || !(k.depth_unit_m > 0.0))
+        return fail(ErrorCode::kInvalidArgument,
+                    text + ": fx_px, fy_px and depth_unit_m must be positive");
+    auto camera = open_as_camera(cameras, q->path);
+    if (!camera) return fail(camera.error().code, text + ": " + camera.error().message);
+    return std::unique_ptr<Device>(
+        std::make_unique<DepthCameraScanner>(std::move(*camera), k, text));
+}
+
+}  // namespace
+
+Backend make_depth_scanner_backend(std::shared_ptr<const DeviceRegistry> cameras) {
+    return Backend{
+        .scheme = "depth",
+        .description =
+            "depth camera as a scanner: "
+            "depth:v4l2:/dev/video2?fx_px=F&fy_px=F&cx_px=C&cy_px=C"
+            "[&depth_unit_m=0.001]",
+        .enumerate = [] { return std::vector<DeviceInfo>{}; },
+        .open = [cameras](const DeviceUri& uri) { return open_depth_scanner(*cameras, uri); }};
 }
 
 }  // namespace anascan::drivers

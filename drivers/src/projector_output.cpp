@@ -19,14 +19,15 @@ using WindowPtr = std::unique_ptr<GLFWwindow, WindowDeleter>;
 
 class GlfwProjector final : public ProjectorOutput {
 public:
-    explicit GlfwProjector(WindowPtr window) : window_(std::move(window)) {
+    GlfwProjector(WindowPtr window, std::string name)
+        : window_(std::move(window)), name_(std::move(name)) {
         glfwGetFramebufferSize(window_.get(), &width_, &height_);
     }
+    std::string name() const override { return name_; }
     int width_px() const override { return width_; }
     int height_px() const override { return height_; }
-    Expected<void> show_sequence(std::span<const Pattern> patterns,
-                                 const std::function<bool(std::size_t)>& on_shown,
-                                 std::stop_token stop) override;
+    Expected<void> load(std::span<const Pattern> patterns) override;
+    Expected<std::chrono::nanoseconds> show(std::size_t index) override;
     Pattern read_back() const override { return last_; }
 
 private:
@@ -34,8 +35,10 @@ private:
     void read_frame_buffer();
 
     WindowPtr window_;
+    std::string name_;
     int width_ = 0;
     int height_ = 0;
+    std::vector<Pattern> bottom_up_;  ///< The loaded patterns, rows in OpenGL's order.
     std::chrono::milliseconds settle_{0};
     bool keep_read_back_ = false;
     Pattern last_;
@@ -43,12 +46,17 @@ private:
 };
 
 // Row 0 of a pattern is the top of the screen; OpenGL draws pixel rows bottom-up.
-void GlfwProjector::draw(const Pattern& p) {
-    glfwMakeContextCurrent(window_.get());
-    std::vector<std::uint8_t> bottom_up(p.grey.size());
+Pattern flipped(const Pattern& p) {
+    Pattern out{p.width, p.height, std::vector<std::uint8_t>(p.grey.size())};
     for (int r = 0; r < p.height; ++r)
         std::copy_n(p.grey.begin() + static_cast<std::ptrdiff_t>(p.height - 1 - r) * p.width,
-                    p.width, bottom_up.begin() + static_cast<std::ptrdiff_t>(r) * p.width);
+                    p.width, out.grey.begin() + static_cast<std::ptrdiff_t>(r) * p.width);
+    return out;
+}
+
+// `p` is bottom-up (flipped()).
+void GlfwProjector::draw(const Pattern& p) {
+    glfwMakeContextCurrent(window_.get());
     glViewport(0, 0, width_, height_);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     // A raster position on the window's corner may be clipped; set it at the centre, then
@@ -56,7 +64,7 @@ void GlfwProjector::draw(const Pattern& p) {
     glRasterPos2f(0.0f, 0.0f);
     glBitmap(0, 0, 0.0f, 0.0f, -0.5f * static_cast<float>(width_),
              -0.5f * static_cast<float>(height_), nullptr);
-    glDrawPixels(p.width, p.height, GL_LUMINANCE, GL_UNSIGNED_BYTE, bottom_up.data());
+    glDrawPixels(p.width, p.height, GL_LUMINANCE, GL_UNSIGNED_BYTE, p.grey.data());
     glFinish();
     if (keep_read_back_) read_frame_buffer();
     glfwSwapBuffers(window_.get());
@@ -64,31 +72,21 @@ void GlfwProjector::draw(const Pattern& p) {
     glfwPollEvents();
 }
 
-Expected<void> GlfwProjector::show_sequence(std::span<const Pattern> patterns,
-                                            const std::function<bool(std::size_t)>& on_shown,
-                                            std::stop_token stop) {
-    for (std::size_t i = 0; i < patterns.size(); ++i) {
-        const Pattern& p = patterns[i];
-        if (p.width != width_ || p.height != height_ ||
-            p.grey.size() != static_cast<std::size_t>(p.width) * p.height) {
-            return fail(ErrorCode::kInvalidArgument,
-                        "projector: pattern " + std::to_string(i) + " is " +
-                            std::to_string(p.width) + " x " + std::to_string(p.height) +
-                            " px, the output " + std::to_string(width_) + " x " +
-                            std::to_string(height_) + " px");
-        }
-    }
-    for (std::size_t i = 0; i < patterns.size(); ++i) {
-        if (stop.stop_requested())
-            return fail(ErrorCode::kCancelled, "projector: sequence stopped");
-        draw(patterns[i]);
-        if (settle_.count() > 0) std::this_thread::sleep_for(settle_);
-        if (on_shown && !on_shown(i)) {
-            return fail(ErrorCode::kCancelled,
-                        "projector: sequence stopped after pattern " + std::to_string(i));
-        }
-    }
+Expected<void> GlfwProjector::load(std::span<const Pattern> patterns) {
+    if (auto ok = check_patterns(patterns, width_, height_, name_); !ok) return ok;
+    bottom_up_.clear();
+    for (const Pattern& p : patterns) bottom_up_.push_back(flipped(p));
     return {};
+}
+
+Expected<std::chrono::nanoseconds> GlfwProjector::show(std::size_t index) {
+    if (auto ok = check_pattern_index(index, bottom_up_.size(), name_); !ok)
+        return fail(ok.error());
+    if (glfwWindowShouldClose(window_.get()))
+        return fail(ErrorCode::kDisconnected, name_ + ": the window was closed");
+    draw(bottom_up_[index]);
+    if (settle_.count() > 0) std::this_thread::sleep_for(settle_);
+    return steady_now();
 }
 
 void GlfwProjector::read_frame_buffer() {
@@ -104,6 +102,45 @@ void GlfwProjector::read_frame_buffer() {
 }
 
 }  // namespace
+
+Expected<void> check_patterns(std::span<const Pattern> patterns, int width_px, int height_px,
+                              const std::string& output) {
+    for (std::size_t i = 0; i < patterns.size(); ++i) {
+        const Pattern& p = patterns[i];
+        if (p.width != width_px || p.height != height_px ||
+            p.grey.size() != static_cast<std::size_t>(p.width) * p.height) {
+            return fail(ErrorCode::kInvalidArgument,
+                        output + ": pattern " + std::to_string(i) + " is " +
+                            std::to_string(p.width) + " x " + std::to_string(p.height) +
+                            " px, the output " + std::to_string(width_px) + " x " +
+                            std::to_string(height_px) + " px");
+        }
+    }
+    return {};
+}
+
+Expected<void> check_pattern_index(std::size_t index, std::size_t loaded,
+                                   const std::string& output) {
+    if (index < loaded) return {};
+    return fail(ErrorCode::kInvalidArgument, output + ": pattern " + std::to_string(index) +
+                                                 " of " + std::to_string(loaded) + " loaded");
+}
+
+Expected<void> ProjectorOutput::show_sequence(std::span<const Pattern> patterns,
+                                              const std::function<bool(std::size_t)>& on_shown,
+                                              std::stop_token stop) {
+    if (auto ok = load(patterns); !ok) return ok;
+    for (std::size_t i = 0; i < patterns.size(); ++i) {
+        if (stop.stop_requested())
+            return fail(ErrorCode::kCancelled, name() + ": sequence stopped");
+        if (auto shown = show(i); !shown) return fail(shown.error());
+        if (on_shown && !on_shown(i)) {
+            return fail(ErrorCode::kCancelled,
+                        name() + ": sequence stopped after pattern " + std::to_string(i));
+        }
+    }
+    return {};
+}
 
 std::vector<MonitorInfo> ProjectorOutput::monitors() {
     std::vector<MonitorInfo> out;
@@ -145,7 +182,10 @@ Expected<std::unique_ptr<ProjectorOutput>> ProjectorOutput::open(const Projector
     WindowPtr window(raw);
     glfwMakeContextCurrent(raw);
     glfwSwapInterval(1);  // swap on vertical blank: a pattern is whole on screen
-    auto projector = std::make_unique<GlfwProjector>(std::move(window));
+    const std::string name = monitor ? "projector (monitor " + std::to_string(index) + ", " +
+                                           glfwGetMonitorName(monitor) + ")"
+                                     : std::string("projector (window)");
+    auto projector = std::make_unique<GlfwProjector>(std::move(window), name);
     projector->settle_ = config.settle;
     projector->keep_read_back_ = config.keep_read_back;
     return std::unique_ptr<ProjectorOutput>(std::move(projector));

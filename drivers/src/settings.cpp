@@ -57,8 +57,12 @@ Expected<void> validate_settings(const DeviceSettings& requested, const Capabili
         {&requested.gain, &caps.gain},
         {&requested.angular_step_deg, &caps.angular_step_deg},
         {&requested.min_range_m, &caps.range_m},
-        {&requested.max_range_m, &caps.range_m}};
-    const char* names[] = {"exposure_us", "gain", "angular_step_deg", "min_range_m", "max_range_m"};
+        {&requested.max_range_m, &caps.range_m},
+        {&requested.horizontal_field_deg, &caps.horizontal_field_deg},
+        {&requested.vertical_field_deg, &caps.vertical_field_deg}};
+    const char* names[] = {"exposure_us",       "gain",        "angular_step_deg",
+                           "min_range_m",       "max_range_m", "horizontal_field_deg",
+                           "vertical_field_deg"};
     for (std::size_t i = 0; i < std::size(checks); ++i) {
         if (auto ok = check_numeric(*checks[i].first, *checks[i].second, names[i], device_name);
             !ok) {
@@ -80,6 +84,9 @@ DeviceSettings merge_settings(DeviceSettings current, const DeviceSettings& requ
     if (requested.angular_step_deg) current.angular_step_deg = requested.angular_step_deg;
     if (requested.min_range_m) current.min_range_m = requested.min_range_m;
     if (requested.max_range_m) current.max_range_m = requested.max_range_m;
+    if (requested.horizontal_field_deg)
+        current.horizontal_field_deg = requested.horizontal_field_deg;
+    if (requested.vertical_field_deg) current.vertical_field_deg = requested.vertical_field_deg;
     return current;
 }
 
@@ -96,6 +103,8 @@ std::string settings_to_json(const DeviceSettings& settings) {
     if (settings.angular_step_deg) j["angular_step_deg"] = *settings.angular_step_deg;
     if (settings.min_range_m) j["min_range_m"] = *settings.min_range_m;
     if (settings.max_range_m) j["max_range_m"] = *settings.max_range_m;
+    if (settings.horizontal_field_deg) j["horizontal_field_deg"] = *settings.horizontal_field_deg;
+    if (settings.vertical_field_deg) j["vertical_field_deg"] = *settings.vertical_field_deg;
     return j.dump();
 }
 
@@ -128,6 +137,8 @@ Expected<DeviceSettings> settings_from_json(std::string_view json, std::string_v
         read_optional(j, "angular_step_deg", s.angular_step_deg);
         read_optional(j, "min_range_m", s.min_range_m);
         read_optional(j, "max_range_m", s.max_range_m);
+        read_optional(j, "horizontal_field_deg", s.horizontal_field_deg);
+        read_optional(j, "vertical_field_deg", s.vertical_field_deg);
     } catch (const nlohmann::json::exception& e) {
         return fail(ErrorCode::kFormat, std::string(source) + ": settings: " + e.what());
     }

@@ -2,6 +2,9 @@
 // The V4L2 camera class, shared by v4l2_camera.cpp (open, query, configure) and
 // v4l2_stream.cpp (buffers, streaming, dequeue with timeout).
 
+#include <linux/videodev2.h>
+
+#include <chrono>
 #include <cstdint>
 #include <vector>
 
@@ -45,7 +48,10 @@ private:
     Expected<Frame> try_dequeue();
     Expected<Frame> try_read();
     Expected<Frame> try_user_pointer();
-    Frame make_frame(const std::uint8_t* data, std::size_t bytes);
+    std::chrono::nanoseconds exposure_start(const v4l2_buffer& b) const;
+    /// `exposure_start`: from the driver's time stamp; zero: the host's time now.
+    Frame make_frame(const std::uint8_t* data, std::size_t bytes,
+                     std::chrono::nanoseconds exposure_start = {});
 
     V4l2CameraConfig config_;
     UniqueFd fd_;

@@ -69,14 +69,17 @@ void V4l2Camera::stop_stream() {
     buffers_.clear();
 }
 
-Frame V4l2Camera::make_frame(const std::uint8_t* data, std::size_t bytes) {
+Frame V4l2Camera::make_frame(const std::uint8_t* data, std::size_t bytes,
+                             std::chrono::nanoseconds exposure_start) {
     Frame f;
     f.width = settings_.profile ? settings_.profile->width : 0;
     f.height = settings_.profile ? settings_.profile->height : 0;
     f.format = settings_.profile ? settings_.profile->format : PixelFormat::kGrey8;
     f.stride_bytes = f.format == PixelFormat::kMjpeg ? 0 : stride_bytes_;
     f.sequence = sequence_++;
-    f.timestamp_ns = std::chrono::steady_clock::now().time_since_epoch();
+    f.timestamp_ns = exposure_start.count() != 0
+                         ? exposure_start
+                         : std::chrono::steady_clock::now().time_since_epoch();
     f.data.assign(data, data + bytes);
     return f;
 }
@@ -94,6 +97,21 @@ Expected<Frame> V4l2Camera::try_read() {
     return f;
 }
 
+// The start of the frame's exposure from a buffer's CLOCK_MONOTONIC time stamp (the clock of
+// std::chrono::steady_clock): start of exposure as is, end of frame minus one frame
+// interval; zero when the driver gives no monotonic stamp.
+std::chrono::nanoseconds V4l2Camera::exposure_start(const v4l2_buffer& b) const {
+    using namespace std::chrono;
+    if ((b.flags & V4L2_BUF_FLAG_TIMESTAMP_MASK) != V4L2_BUF_FLAG_TIMESTAMP_MONOTONIC ||
+        (b.timestamp.tv_sec == 0 && b.timestamp.tv_usec == 0))
+        return nanoseconds(0);
+    nanoseconds t = seconds(b.timestamp.tv_sec) + microseconds(b.timestamp.tv_usec);
+    const double rate_hz = settings_.profile ? settings_.profile->frame_rate_hz : 0.0;
+    if ((b.flags & V4L2_BUF_FLAG_TSTAMP_SRC_MASK) == V4L2_BUF_FLAG_TSTAMP_SRC_EOF && rate_hz > 0.0)
+        t -= duration_cast<nanoseconds>(duration<double>(1.0 / rate_hz));
+    return t;
+}
+
 Expected<Frame> V4l2Camera::try_user_pointer() {
     v4l2_buffer b{};
     b.type = V4L2_BUF_TYPE_VIDEO_CAPTURE;
@@ -107,7 +125,7 @@ Expected<Frame> V4l2Camera::try_user_pointer() {
                                         std::to_string(b.index) + " with " +
                                         std::to_string(b.bytesused) + " bytes");
     }
-    Frame f = make_frame(buffers_[b.index].data(), b.bytesused);
+    Frame f = make_frame(buffers_[b.index].data(), b.bytesused, exposure_start(b));
     b.m.userptr = reinterpret_cast<unsigned long>(buffers_[b.index].data());
     b.length = static_cast<std::uint32_t>(buffers_[b.index].size());
     if (int e = v4l2::xioctl(fd_.get(), VIDIOC_QBUF, &b)) return fail(fail_os("VIDIOC_QBUF", e));

@@ -6,18 +6,21 @@ namespace anascan::sim::detail {
 
 using std::chrono::steady_clock;
 
+bool take_from_budget(SimDeviceFaults* faults) {
+    // A budget of -1, "never", stays.
+    int left = faults ? faults->unplug_after_captures.load() : -1;
+    while (left >= 0 && !faults->unplug_after_captures.compare_exchange_weak(left, left - 1)) {
+    }
+    return left == 0;
+}
+
 SimCaptureRun::SimCaptureRun(const drivers::CaptureControl& control, std::string uri,
                              const std::shared_ptr<SimDeviceFaults>& faults)
     : control_(control),
       uri_(std::move(uri)),
       faults_(faults),
-      deadline_(steady_clock::now() + control.timeout) {
-    // One capture from the budget (a budget of -1, "never", stays).
-    int left = faults_ ? faults_->unplug_after_captures.load() : -1;
-    while (left >= 0 && !faults_->unplug_after_captures.compare_exchange_weak(left, left - 1)) {
-    }
-    unplug_midway_ = left == 0;
-}
+      deadline_(steady_clock::now() + control.timeout),
+      unplug_midway_(take_from_budget(faults_.get())) {}
 
 bool SimCaptureRun::keep_going(double fraction, std::string_view stage) {
     // A stalled device delivers nothing: wait (in slices, so a stop ends it) for the timeout.

@@ -12,6 +12,10 @@
 
 namespace anascan::sim::detail {
 
+/// Takes one capture (or frame, or pattern) from the fault budget: true when the device is
+/// to go away during this one. Thread-safe; null faults: never.
+bool take_from_budget(SimDeviceFaults* faults);
+
 /// Not thread-safe: lives on the capturing thread.
 class SimCaptureRun {
 public:

@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "anascan/drivers/structured_light/stereo_decoder.hpp"
+#include "anascan/sim/sim_projector.hpp"
 #include "sim_capture_run.hpp"
 #include "sim_scanner_parts.hpp"
 
@@ -12,12 +13,13 @@ namespace {
 using drivers::DeviceSettings;
 
 constexpr double kReferenceExposureUs = 10000.0;  ///< Renders with config.render.exposure_dn.
+constexpr drivers::NumericRange kWorkingRangeM{0.5, 3.0};  // the PT-M 1024's
 
 drivers::Capabilities sl_capabilities() {
     drivers::Capabilities caps;
     caps.can_capture_scan = true;
     caps.exposure_us = drivers::NumericRange{1000.0, 40000.0};
-    caps.range_m = drivers::NumericRange{0.5, 3.0};  // the PT-M 1024's working range
+    caps.range_m = kWorkingRangeM;
     return caps;
 }
 
@@ -36,8 +38,7 @@ drivers::sl::StereoCalibration rig_calibration(const StructuredLightRig& rig) {
             .T_cam1_cam2 = rig.cam1.T_world_device.inverse() * rig.cam2.T_world_device};
 }
 
-drivers::sl::StereoDecodeConfig decode_config(const StructuredLightRenderConfig& render,
-                                              const DeviceSettings& settings) {
+drivers::sl::StereoDecodeConfig decode_config(const StructuredLightRenderConfig& render) {
     drivers::sl::StereoDecodeConfig c;
     c.sequence.gray = {.projector_width_px = render.patterns.width_px,
                        .projector_height_px = render.patterns.height_px};
@@ -45,9 +46,42 @@ drivers::sl::StereoDecodeConfig decode_config(const StructuredLightRenderConfig&
         c.sequence.phase = drivers::sl::PhaseShiftLayout{
             .period_px = static_cast<int>(render.patterns.phase_period_px),
             .steps = render.patterns.phase_steps};
-    c.triangulation.min_depth_m = *settings.min_range_m;
-    c.triangulation.max_depth_m = *settings.max_range_m;
     return c;
+}
+
+/// The head as drivers::StructuredLightScanner composes it, from simulated parts.
+struct SimHead {
+    drivers::StructuredLightParts parts;
+    SimCamera* cam1 = nullptr;
+    SimCamera* cam2 = nullptr;
+};
+
+SimHead sim_head(const SimStructuredLightConfig& c,
+                 const std::shared_ptr<SimDeviceFaults> (&faults)[3]) {
+    auto screen = std::make_shared<SimProjectorScreen>();
+    SimHead head;
+    auto camera = [&](int index) {
+        auto cam = std::make_unique<SimCamera>(
+            SimCameraConfig{.uri = c.uri + "#cam" + std::to_string(index),
+                            .width_px = c.rig.camera_width_px,
+                            .height_px = c.rig.camera_height_px,
+                            .camera_index = index,
+                            .screen = screen,
+                            .faults = faults[index - 1],
+                            .stale_frame_after_switch = c.stale_frame_after_switch});
+        (index == 1 ? head.cam1 : head.cam2) = cam.get();
+        return cam;
+    };
+    head.parts.info = {.uri = c.uri, .model = "simulated PT-M 1024 structured light"};
+    head.parts.cam1 = camera(1);
+    head.parts.cam2 = camera(2);
+    head.parts.projector =
+        std::make_unique<SimProjector>(c.uri + "#projector", c.rig.projector_width_px,
+                                       c.rig.projector_height_px, screen, faults[2]);
+    head.parts.calibration = rig_calibration(make_structured_light_rig(c.rig, Pose::Identity()));
+    head.parts.decode = decode_config(c.render);
+    head.parts.range_m = kWorkingRangeM;
+    return head;
 }
 
 }  // namespace
@@ -66,7 +100,36 @@ SimStructuredLightScanner::SimStructuredLightScanner(SimStructuredLightConfig co
           sl_capabilities(),
           {.exposure_us = kReferenceExposureUs, .min_range_m = 0.5, .max_range_m = 3.0})),
       config_(std::move(config)),
-      station_(config_.station) {}
+      station_(config_.station) {
+    for (auto& f : part_faults_) f = std::make_shared<SimDeviceFaults>();
+    SimHead head = sim_head(config_, part_faults_);
+    cam1_ = head.cam1;
+    cam2_ = head.cam2;
+    // The parts are made for each other: creation cannot fail.
+    head_ = std::move(*drivers::StructuredLightScanner::create(std::move(head.parts)));
+}
+
+const std::shared_ptr<SimDeviceFaults>& SimStructuredLightScanner::part_faults(SlPart part) const {
+    return part_faults_[static_cast<int>(part)];
+}
+
+void SimStructuredLightScanner::close() {
+    SimScanner::close();
+    head_->close();
+}
+
+void SimStructuredLightScanner::place_parts(const StructuredLightRig& head,
+                                            const std::shared_ptr<const SimWorld>& world) {
+    StructuredLightRenderConfig render = config_.render;
+    render.seed += static_cast<std::uint64_t>(sequence());  // new noise each capture
+    cam1_->set_view({world, head.cam1, head.projector, render});
+    cam2_->set_view({world, head.cam2, head.projector, render});
+    cam1_->set_device_faults(faults());
+    // The whole device going away: the projector leaves half-way through the patterns.
+    if (detail::take_from_budget(faults().get()))
+        part_faults(SlPart::kProjector)->unplug_after_captures =
+            static_cast<int>(decode_config(config_.render).sequence.image_count() / 2);
+}
 
 std::string SimStructuredLightScanner::calibration_json() const {
     const StructuredLightRig r = rig();
@@ -90,27 +153,15 @@ StructuredLightRig SimStructuredLightScanner::rig() const {
 Expected<Scan> SimStructuredLightScanner::capture_scan(const drivers::CaptureControl& control) {
     auto world = begin_capture();
     if (!world) return fail(world.error());
-    detail::SimCaptureRun run(control, info().uri, faults());
-    const auto stopped = [&] {
-        if (run.unplugged()) set_unplugged();
-        return fail(run.stop_reason());
-    };
-    const drivers::DeviceSettings now = settings();
     const StructuredLightRig head = rig();
-    StructuredLightRenderConfig render = config_.render;
-    render.exposure_dn *= *now.exposure_us / kReferenceExposureUs;
-    render.seed += static_cast<std::uint64_t>(sequence());  // new noise each capture
-    if (!run.keep_going(0.0, "projecting the patterns")) return stopped();
-    auto images = render_structured_light((*world)->caster, (*world)->albedos, head, render);
-    if (!images) return fail(images.error().code, info().uri + ": " + images.error().message);
-    if (!run.keep_going(0.6, "decoding")) return stopped();
-    auto decoded = drivers::sl::decode_stereo(images->cam1, images->cam2, rig_calibration(head),
-                                              decode_config(render, now));
-    if (!decoded) return fail(decoded.error().code, info().uri + ": " + decoded.error().message);
-    if (!run.keep_going(1.0, "scan complete")) return stopped();
-    Scan scan;
-    scan.cloud = std::move(decoded->cloud);
-    stamp(scan, head.cam1.T_world_device);
+    place_parts(head, *world);
+    if (auto ok = head_->configure(settings()); !ok) return fail(ok.error());
+    auto scan = head_->capture_scan(control);
+    if (!scan) {
+        if (scan.error().code == ErrorCode::kDisconnected) set_unplugged();
+        return fail(scan.error());
+    }
+    stamp(*scan, head.cam1.T_world_device);
     station_.azimuth_deg += config_.advance_deg;
     return scan;
 }

@@ -16,6 +16,8 @@ drivers::Capabilities tof_capabilities() {
     // goes finer, over smaller windows.
     caps.angular_step_deg = drivers::NumericRange{0.02, 5.0};
     caps.range_m = drivers::NumericRange{2.0, 800.0};
+    caps.horizontal_field_deg = drivers::NumericRange{1.0, 360.0};  // the LMS-Z420i's sweep
+    caps.vertical_field_deg = drivers::NumericRange{1.0, 80.0};
     return caps;
 }
 
@@ -30,7 +32,10 @@ SimTofScanner::SimTofScanner(SimTofScannerConfig config)
                                        DeviceKind::kTimeOfFlight, tof_capabilities(),
                                        {.angular_step_deg = config.scanner.angular_step_deg,
                                         .min_range_m = config.scanner.min_range_m,
-                                        .max_range_m = config.scanner.max_range_m})),
+                                        .max_range_m = config.scanner.max_range_m,
+                                        .horizontal_field_deg = config.scanner.azimuth_span_deg,
+                                        .vertical_field_deg = config.scanner.elevation_max_deg -
+                                                              config.scanner.elevation_min_deg})),
       config_(std::move(config)),
       station_(config_.station) {}
 
@@ -60,6 +65,12 @@ Expected<Scan> SimTofScanner::capture_scan(const drivers::CaptureControl& contro
     scanner.angular_step_deg = *now.angular_step_deg;
     scanner.min_range_m = *now.min_range_m;
     scanner.max_range_m = *now.max_range_m;
+    // The sweep: its width from the first azimuth, its height about the configured centre.
+    scanner.azimuth_span_deg = *now.horizontal_field_deg;
+    const double centre_deg =
+        0.5 * (config_.scanner.elevation_min_deg + config_.scanner.elevation_max_deg);
+    scanner.elevation_min_deg = centre_deg - 0.5 * *now.vertical_field_deg;
+    scanner.elevation_max_deg = centre_deg + 0.5 * *now.vertical_field_deg;
     scanner.seed = config_.scanner.seed + static_cast<std::uint64_t>(sequence());  // new noise
     const Pose T_world_scanner = station_pose();
     const TofSweepControl sweep{.keep_going = [&](double f) { return run.keep_going(f, "sweep"); }};

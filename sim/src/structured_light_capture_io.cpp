@@ -35,7 +35,12 @@ Expected<void> write_structured_light_capture(const fs::path& dir,
         return fail(ErrorCode::kIo, dir.string() + ": cannot create the folder: " + ec.message());
     if (auto ok = write_images(dir, "cam1", capture.cam1); !ok) return ok;
     if (auto ok = write_images(dir, "cam2", capture.cam2); !ok) return ok;
-    return write_stereo_calibration(dir / "calibration.yml", capture.rig);
+    return write_stereo_calibration(
+        dir / "calibration.yml", capture.rig,
+        drivers::sl::RecordedPatternLayout{.projector_width_px = capture.layout.width_px,
+                                           .projector_height_px = capture.layout.height_px,
+                                           .phase_steps = capture.layout.phase_steps,
+                                           .phase_period_px = capture.layout.phase_period_px});
 }
 
 }  // namespace anascan::sim

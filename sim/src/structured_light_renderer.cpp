@@ -20,14 +20,6 @@ constexpr float kMaxFootprintPx = 8.0f;
 // Shadow rays start this far from the surface so that they do not hit it again.
 constexpr double kShadowOffsetM = 2e-5;
 
-// Per camera pixel: what the surface seen receives from the projector.
-struct SurfaceImage {
-    cv::Mat albedo;     ///< CV_32F, 0 where nothing is hit.
-    cv::Mat light;      ///< CV_32F: cos(theta) (d_ref / d)^2, 0 where unlit.
-    cv::Mat footprint;  ///< CV_32FC2: extent of the pixel in projector columns and rows.
-    CameraTruth truth;
-};
-
 struct Scenery {
     const RayCaster& caster;
     const std::vector<float>& albedos;
@@ -36,7 +28,7 @@ struct Scenery {
 };
 
 // Fills pixel (x, y) of `image`: the surface point seen, lit if the projector sees it.
-void sample_pixel(const Scenery& s, const PinholeModel& cam, int x, int y, SurfaceImage& image) {
+void sample_pixel(const Scenery& s, const PinholeModel& cam, int x, int y, CameraSurface& image) {
     const Eigen::Vector3d origin = cam.T_world_device.translation();
     const Eigen::Vector3d dir = cam.ray_world(x, y);
     const auto hit = s.caster.cast(origin, dir);
@@ -64,7 +56,7 @@ void sample_pixel(const Scenery& s, const PinholeModel& cam, int x, int y, Surfa
 }
 
 // Extent of each camera pixel in projector pixels, from neighbouring coordinates.
-void estimate_footprints(SurfaceImage& image) {
+void estimate_footprints(CameraSurface& image) {
     const cv::Mat& xy = image.truth.projector_xy;
     auto delta = [&](int y, int x, int dy, int dx) -> cv::Vec2f {
         const int ny = y + dy, nx = x + dx;
@@ -88,13 +80,13 @@ void estimate_footprints(SurfaceImage& image) {
     });
 }
 
-SurfaceImage trace_surface(const Scenery& s, const PinholeModel& cam) {
+CameraSurface trace(const Scenery& s, const PinholeModel& cam) {
     const cv::Size size(cam.width_px, cam.height_px);
-    SurfaceImage image{.albedo = cv::Mat::zeros(size, CV_32F),
-                       .light = cv::Mat::zeros(size, CV_32F),
-                       .footprint = cv::Mat(size, CV_32FC2, cv::Scalar(1, 1)),
-                       .truth = {.projector_xy = cv::Mat(size, CV_32FC2, cv::Scalar(kNaN, kNaN)),
-                                 .depth_m = cv::Mat(size, CV_32F, cv::Scalar(kNaN))}};
+    CameraSurface image{.albedo = cv::Mat::zeros(size, CV_32F),
+                        .light = cv::Mat::zeros(size, CV_32F),
+                        .footprint = cv::Mat(size, CV_32FC2, cv::Scalar(1, 1)),
+                        .truth = {.projector_xy = cv::Mat(size, CV_32FC2, cv::Scalar(kNaN, kNaN)),
+                                  .depth_m = cv::Mat(size, CV_32F, cv::Scalar(kNaN))}};
     tbb::parallel_for(0, size.height, [&](int y) {
         for (int x = 0; x < size.width; ++x) sample_pixel(s, cam, x, y, image);
     });
@@ -136,32 +128,95 @@ struct PatternProfile {
     }
 };
 
-cv::Mat render_pattern(const SurfaceImage& surface, const StructuredLightRenderConfig& config,
-                       const Pattern& pattern, const cv::Mat& projector_image,
-                       std::uint64_t noise_seed) {
-    const PatternProfile profile(projector_image, pattern.columns);
-    const int axis = pattern.columns ? 0 : 1;
+// How a projector image varies: along columns only (every row alike), rows only, or both.
+enum class Stripes { kColumns, kRows, kNone };
+
+Stripes stripes_of(const cv::Mat& image) {
+    bool rows_alike = true, columns_alike = true;
+    for (int y = 1; y < image.rows && rows_alike; ++y)
+        rows_alike = std::equal(image.ptr(y), image.ptr(y) + image.cols, image.ptr(0));
+    if (rows_alike) return Stripes::kColumns;
+    for (int y = 0; y < image.rows && columns_alike; ++y)
+        columns_alike = std::all_of(image.ptr(y), image.ptr(y) + image.cols,
+                                    [&](std::uint8_t v) { return v == image.ptr(y)[0]; });
+    return columns_alike ? Stripes::kRows : Stripes::kNone;
+}
+
+// Any projector image, constant over each projector pixel, with its summed-area table:
+// the integral over [-0.5, x] x [-0.5, y] is bilinear inside each pixel, so the mean over
+// any box is exact.
+struct PatternArea {
+    cv::Mat sat;  ///< CV_64F (rows + 1) x (cols + 1), cv::integral of the levels 0..1.
+
+    explicit PatternArea(const cv::Mat& image) {
+        if (image.empty()) return;
+        cv::Mat levels;
+        image.convertTo(levels, CV_64F, 1.0 / 255.0);
+        cv::integral(levels, sat, CV_64F);
+    }
+
+    double cumulative(double x, double y) const {
+        const double u = std::clamp(x + 0.5, 0.0, static_cast<double>(sat.cols - 1));
+        const double v = std::clamp(y + 0.5, 0.0, static_cast<double>(sat.rows - 1));
+        const int i = std::min(static_cast<int>(u), sat.cols - 2);
+        const int j = std::min(static_cast<int>(v), sat.rows - 2);
+        const double fu = u - i, fv = v - j;
+        return (1 - fv) * ((1 - fu) * sat.at<double>(j, i) + fu * sat.at<double>(j, i + 1)) +
+               fv * ((1 - fu) * sat.at<double>(j + 1, i) + fu * sat.at<double>(j + 1, i + 1));
+    }
+
+    float box_filtered(double cx, double cy, double wx, double wy) const {
+        const double x0 = cx - 0.5 * wx, x1 = cx + 0.5 * wx;
+        const double y0 = cy - 0.5 * wy, y1 = cy + 0.5 * wy;
+        return static_cast<float>(
+            (cumulative(x1, y1) - cumulative(x0, y1) - cumulative(x1, y0) + cumulative(x0, y0)) /
+            (wx * wy));
+    }
+};
+
+// The radiance (DN) of each pixel: ambient plus the pattern's level, box-filtered over the
+// pixel's footprint widened by the projector blur, where lit. Stripes (every row alike:
+// column patterns; every column alike: row patterns) go through a 1-D profile, any other
+// image through its summed-area table.
+cv::Mat radiance_of(const CameraSurface& surface, const StructuredLightRenderConfig& config,
+                    const cv::Mat& projector_image) {
     const double blur_var = 12.0 * config.projector_blur_sigma_px * config.projector_blur_sigma_px;
+    auto width = [&](double w) { return std::clamp(std::sqrt(w * w + blur_var), 0.05, 16.0); };
+    const bool dark = projector_image.empty();
+    const Stripes stripes = dark ? Stripes::kColumns : stripes_of(projector_image);
+    const PatternProfile profile(dark ? cv::Mat(1, 1, CV_8UC1, cv::Scalar(0)) : projector_image,
+                                 stripes != Stripes::kRows);
+    const PatternArea area(stripes == Stripes::kNone ? projector_image : cv::Mat());
+    const int axis = stripes == Stripes::kRows ? 1 : 0;
     cv::Mat radiance(surface.albedo.size(), CV_32F);
-    for (int y = 0; y < radiance.rows; ++y) {
+    tbb::parallel_for(0, radiance.rows, [&](int y) {
         for (int x = 0; x < radiance.cols; ++x) {
             const float light = surface.light.at<float>(y, x);
             float level = 0.0f;
             if (light > 0.0f) {
-                const double centre = surface.truth.projector_xy.at<cv::Vec2f>(y, x)[axis];
-                const double w = surface.footprint.at<cv::Vec2f>(y, x)[axis];
-                level = profile.box_filtered(centre,
-                                             std::clamp(std::sqrt(w * w + blur_var), 0.05, 16.0));
+                const cv::Vec2f c = surface.truth.projector_xy.at<cv::Vec2f>(y, x);
+                const cv::Vec2f w = surface.footprint.at<cv::Vec2f>(y, x);
+                level = stripes == Stripes::kNone
+                            ? area.box_filtered(c[0], c[1], width(w[0]), width(w[1]))
+                            : profile.box_filtered(c[axis], width(w[axis]));
             }
             radiance.at<float>(y, x) =
                 static_cast<float>(config.exposure_dn * surface.albedo.at<float>(y, x) *
                                    (config.ambient_level + light * level));
         }
-    }
+    });
+    return radiance;
+}
+
+}  // namespace
+
+cv::Mat render_camera_image(const CameraSurface& surface, const cv::Mat& projector_image,
+                            const StructuredLightRenderConfig& config, std::uint64_t noise_seed) {
+    cv::Mat radiance = radiance_of(surface, config, projector_image);
     if (config.camera_blur_sigma_px > 0.0)
         cv::GaussianBlur(radiance, radiance, cv::Size(0, 0), config.camera_blur_sigma_px);
     cv::Mat image(radiance.size(), CV_8UC1);
-    for (int y = 0; y < image.rows; ++y) {
+    tbb::parallel_for(0, image.rows, [&](int y) {
         for (int x = 0; x < image.cols; ++x) {
             const double signal = radiance.at<float>(y, x);
             const double sigma = std::sqrt(config.read_noise_dn * config.read_noise_dn +
@@ -171,19 +226,32 @@ cv::Mat render_pattern(const SurfaceImage& surface, const StructuredLightRenderC
             image.at<std::uint8_t>(y, x) =
                 cv::saturate_cast<std::uint8_t>(signal + noise);  // Rounds.
         }
-    }
+    });
     return image;
 }
+
+std::uint64_t camera_noise_seed(const StructuredLightRenderConfig& config, int camera_index,
+                                std::size_t frame) {
+    return detail::hash3(config.seed, static_cast<std::uint64_t>(camera_index), frame);
+}
+
+CameraSurface trace_camera_surface(const RayCaster& caster, const std::vector<float>& albedos,
+                                   const PinholeModel& camera, const PinholeModel& projector,
+                                   const StructuredLightRenderConfig& config) {
+    return trace(Scenery{caster, albedos, projector, config}, camera);
+}
+
+namespace {
 
 std::vector<cv::Mat> render_camera(const Scenery& s, const PinholeModel& cam,
                                    const std::vector<Pattern>& patterns,
                                    const std::vector<cv::Mat>& projector_images, int camera_index,
                                    CameraTruth& truth) {
-    SurfaceImage surface = trace_surface(s, cam);
+    CameraSurface surface = trace(s, cam);
     std::vector<cv::Mat> images(patterns.size());
     tbb::parallel_for(std::size_t{0}, patterns.size(), [&](std::size_t i) {
-        images[i] = render_pattern(surface, s.config, patterns[i], projector_images[i],
-                                   detail::hash3(s.config.seed, std::uint64_t(camera_index), i));
+        images[i] = render_camera_image(surface, projector_images[i], s.config,
+                                        camera_noise_seed(s.config, camera_index, i));
     });
     truth = surface.truth;
     return images;
@@ -206,7 +274,8 @@ Expected<StructuredLightCapture> render_structured_light(
         rig.cam2.height_px <= 0)
         return fail(ErrorCode::kInvalidArgument, "sim:structured-light: empty camera image size");
     const Scenery scenery{caster, albedo_of_triangle, rig.projector, config};
-    StructuredLightCapture capture{.rig = rig, .patterns = pattern_sequence(config.patterns)};
+    StructuredLightCapture capture{
+        .rig = rig, .patterns = pattern_sequence(config.patterns), .layout = config.patterns};
     const std::vector<cv::Mat> projector_images =
         drivers::sl::make_patterns(decoder_sequence(config.patterns));
     if (projector_images.size() != capture.patterns.size())

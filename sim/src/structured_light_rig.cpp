@@ -79,8 +79,9 @@ drivers::sl::StereoCalibration stereo_calibration(const StructuredLightRig& rig)
             .T_cam1_cam2 = rig.cam1.T_world_device.inverse() * rig.cam2.T_world_device};
 }
 
-Expected<void> write_stereo_calibration(const std::filesystem::path& path,
-                                        const StructuredLightRig& rig) {
+Expected<void> write_stereo_calibration(
+    const std::filesystem::path& path, const StructuredLightRig& rig,
+    const std::optional<drivers::sl::RecordedPatternLayout>& layout) {
     const Pose T_cam2_cam1 = rig.cam2.T_world_device.inverse() * rig.cam1.T_world_device;
     const cv::Mat K1 = intrinsics(rig.cam1), K2 = intrinsics(rig.cam2);
     const cv::Mat dist = cv::Mat::zeros(1, 5, CV_64F);
@@ -109,6 +110,9 @@ Expected<void> write_stereo_calibration(const std::filesystem::path& path,
        << cv::Size(rig.projector.width_px, rig.projector.height_px);
     fs << "T_world_cam1_m" << to_cv(rig.cam1.T_world_device.matrix()) << "T_world_proj_m"
        << to_cv(rig.projector.T_world_device.matrix());
+    if (layout)
+        fs << "pattern_phase_steps" << layout->phase_steps << "pattern_phase_period_px"
+           << layout->phase_period_px;
     fs.release();
     return {};
 }

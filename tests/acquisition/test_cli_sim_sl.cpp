@@ -70,10 +70,14 @@ OnStone measure(const fs::path& cloud_ply, const fs::path& stone_ply) {
     return m;
 }
 
+// No layout flags: the capture's calibration.yml records it (proj_size, pattern_phase_*).
 TEST_F(SimSlCli, CaptureDecodesOnTheStoneInMetresWithoutSwap) {
     capture();
-    const CliRun run = decode("--phase-steps 4 --phase-period 8");
+    const CliRun run = decode("");
     ASSERT_EQ(run.exit_code, 0) << run.output;
+    EXPECT_NE(run.output.find("4 phase steps of period 8 px (from the calibration file)"),
+              std::string::npos)
+        << run.output;
     EXPECT_EQ(run.output.find("--swap-cameras"), std::string::npos) << run.output;
     const OnStone m = measure(dir_ / "cloud.ply", dir_ / "cap" / "stone_in_cam1.ply");
     std::printf(
@@ -97,7 +101,7 @@ TEST_F(SimSlCli, CaptureDecodesOnTheStoneInMetresWithoutSwap) {
 }
 
 // The statue data's --swap-cameras is wrong here: the mirrored rig still triangulates
-// (small ray gaps), but the points leave the stone.
+// (small ray gaps), but the points leave the stone. (Layout flags override the file's.)
 TEST_F(SimSlCli, SwappingTheCamerasMovesThePointsOffTheStone) {
     capture();
     const CliRun run = decode("--phase-steps 4 --phase-period 8 --swap-cameras");

@@ -74,6 +74,7 @@ std::size_t MockV4l2Camera::image_bytes() const {
 }
 
 std::vector<std::uint8_t> MockV4l2Camera::render_frame(std::uint64_t seq) const {
+    if (config_.frame_source) return config_.frame_source();
     if (format_ == PixelFormat::kMjpeg) {  // SOI, a sequence byte, EOI: enough for the checks
         return {0xFF, 0xD8, static_cast<std::uint8_t>(seq), 0xFF, 0xD9};
     }
@@ -86,6 +87,15 @@ std::vector<std::uint8_t> MockV4l2Camera::render_frame(std::uint64_t seq) const 
             if (format_ != PixelFormat::kGrey8) out.push_back(static_cast<std::uint8_t>(v >> 8));
         }
     }
+    return out;
+}
+
+MockV4l2Camera::Taken MockV4l2Camera::take_frame() {
+    Taken now{render_frame(frames_sent_++), std::chrono::steady_clock::now().time_since_epoch()};
+    if (!config_.one_frame_late) return now;
+    if (!pending_) pending_ = Taken{render_frame(frames_sent_), now.at};
+    Taken out = std::move(*pending_);
+    pending_ = std::move(now);
     return out;
 }
 
@@ -224,8 +234,12 @@ int MockV4l2Camera::handle_buffer_ioctl(void* c, unsigned long request, void* d)
         case VIDIOC_DQBUF: {
             if (queued_indices_.empty() || !next_frame_available())
                 return unplugged_ ? ENODEV : EAGAIN;
-            const std::vector<std::uint8_t> frame = render_frame(frames_sent_++);
+            const Taken taken = take_frame();
+            const std::vector<std::uint8_t>& frame = taken.bytes;
             auto* b = as<v4l2_buffer>(data);
+            b->flags = V4L2_BUF_FLAG_TIMESTAMP_MONOTONIC | V4L2_BUF_FLAG_TSTAMP_SRC_SOE;
+            b->timestamp.tv_sec = static_cast<time_t>(taken.at.count() / 1000000000);
+            b->timestamp.tv_usec = static_cast<suseconds_t>(taken.at.count() % 1000000000 / 1000);
             b->index = queued_indices_.front();
             b->m.userptr = queued_userptrs_.front();
             b->bytesused = static_cast<std::uint32_t>(frame.size());

@@ -5,8 +5,11 @@
 // frames, stalls (no frame: EAGAIN) and unplugs (ENODEV from then on).
 
 #include <atomic>
+#include <chrono>
 #include <cstdint>
+#include <functional>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,6 +30,12 @@ struct MockV4l2Config {
     bool streaming = true;  ///< V4L2_CAP_STREAMING (user pointers).
     int exposure_min = 1;   ///< 100 µs units, as V4L2_CID_EXPOSURE_ABSOLUTE.
     int exposure_max = 1000;
+    /// The image bytes of each frame (a camera seeing something); empty: mock_pixel.
+    /// Called on umockdev's worker thread when the frame is taken (its exposure start).
+    std::function<std::vector<std::uint8_t>()> frame_source;
+    /// Streaming frames are delivered one call late, as from a driver's queue: each DQBUF
+    /// returns the frame taken at the previous one (time-stamped then).
+    bool one_frame_late = false;
 };
 
 /// Thread-safe: the test thread changes the behaviour while umockdev's worker thread
@@ -59,6 +68,12 @@ public:
 
 private:
     std::vector<std::uint8_t> render_frame(std::uint64_t sequence) const;
+    /// A frame and the CLOCK_MONOTONIC time it was taken (streaming).
+    struct Taken {
+        std::vector<std::uint8_t> bytes;
+        std::chrono::nanoseconds at{};
+    };
+    Taken take_frame();
     std::size_t image_bytes() const;
     bool next_frame_available();
     int handle_format_ioctl(unsigned long request, void* arg_data);
@@ -74,6 +89,7 @@ private:
     int rate_hz_ = 30;
     std::vector<unsigned long> queued_userptrs_;
     std::vector<std::uint32_t> queued_indices_;
+    std::optional<Taken> pending_;  ///< one_frame_late: taken at the previous DQBUF.
     std::atomic<int> unplug_after_{-1};
     std::atomic<bool> unplugged_{false};
     std::atomic<bool> stalled_{false};

@@ -110,7 +110,32 @@ TEST(Registry, HardwareRegistryHasTheRealBackends) {
     const DeviceRegistry registry = make_hardware_registry();
     std::vector<std::string> schemes;
     for (const Backend& b : registry.backends()) schemes.push_back(b.scheme);
-    EXPECT_EQ(schemes, (std::vector<std::string>{"v4l2", "usb", "ptx", "playback"}));
+    EXPECT_EQ(schemes, (std::vector<std::string>{"v4l2", "usb", "ptx", "playback", "sl", "depth"}));
+}
+
+// The composed devices' URIs fail clearly before any part is opened.
+TEST(Registry, ComposedScannerUrisNameWhatIsWrong) {
+    const DeviceRegistry registry = make_hardware_registry();
+    auto error_of = [&](const std::string& uri) {
+        auto device = registry.open(uri);
+        EXPECT_FALSE(device) << uri;
+        return device ? Error{} : device.error();
+    };
+    const Error no_cam2 = error_of("sl:calib.yml?cam1=v4l2:/dev/video2");
+    EXPECT_EQ(no_cam2.code, ErrorCode::kInvalidArgument);
+    EXPECT_NE(no_cam2.message.find("cam2=URI"), std::string::npos) << no_cam2.message;
+    const Error unknown = error_of("sl:calib.yml?cam1=a:1&cam2=b:2&lens=9");
+    EXPECT_EQ(unknown.code, ErrorCode::kInvalidArgument);
+    EXPECT_NE(unknown.message.find("unknown key 'lens'"), std::string::npos) << unknown.message;
+    const Error bad_number = error_of("sl:calib.yml?cam1=a:1&cam2=b:2&phase_steps=four");
+    EXPECT_NE(bad_number.message.find("phase_steps=four is not an integer"), std::string::npos)
+        << bad_number.message;
+    const Error no_file = error_of("sl:/no/such/calib.yml?cam1=a:1&cam2=b:2");
+    EXPECT_EQ(no_file.code, ErrorCode::kIo);
+    EXPECT_NE(no_file.message.find("/no/such/calib.yml"), std::string::npos) << no_file.message;
+    const Error depth = error_of("depth:v4l2:/dev/video9?fx_px=0&fy_px=1&cx_px=1&cy_px=1");
+    EXPECT_EQ(depth.code, ErrorCode::kInvalidArgument);
+    EXPECT_NE(depth.message.find("must be positive"), std::string::npos) << depth.message;
 }
 
 TEST(Watcher, DiffReportsRemovalsThenArrivals) {

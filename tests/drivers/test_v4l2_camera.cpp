@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "anascan/drivers/device_watcher.hpp"
+#include "anascan/drivers/scanner.hpp"
 #include "anascan/drivers/stream_runner.hpp"
 #include "anascan/drivers/v4l2_camera.hpp"
 #include "event_log.hpp"
@@ -204,6 +205,39 @@ TEST_F(V4l2Test, MissingNodeIsDisconnectedAndNamed) {
     ASSERT_FALSE(camera);
     EXPECT_EQ(camera.error().code, ErrorCode::kDisconnected);
     EXPECT_NE(camera.error().message.find("/dev/video7"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace anascan::drivers::test
+
+namespace anascan::drivers::test {
+namespace {
+
+// `depth:CAMERA_URI?intrinsics`: the Z16 camera as a scanner, opened by the registry.
+TEST_F(V4l2Test, DepthUriGivesAScannerWithTheIntrinsicsOfTheUri) {
+    const DeviceRegistry registry = make_hardware_registry();
+    const std::string uri = "depth:" + mock_->uri() + "?fx_px=20&fy_px=20&cx_px=7.5&cy_px=5.5";
+    auto device = registry.open(uri);
+    ASSERT_TRUE(device) << device.error().message;
+    Scanner* scanner = (*device)->as_scanner();
+    ASSERT_NE(scanner, nullptr);
+    EXPECT_EQ((*device)->info().uri, uri);
+    EXPECT_NE((*device)->calibration_json().find("\"fx_px\":20"), std::string::npos);
+    auto scan = scanner->capture_scan({.timeout = std::chrono::milliseconds(2000)});
+    ASSERT_TRUE(scan) << scan.error().message;
+    ASSERT_EQ(scan->cloud.size(), 16u * 12u);
+    // Pixel (0, 0) of frame 0: depth mock_pixel mm, x = (0 - cx) z / fx.
+    const double z_m = 0.001 * mock_pixel(0, 0, 0);
+    EXPECT_NEAR(scan->cloud.positions[0].z(), z_m, 1e-6);
+    EXPECT_NEAR(scan->cloud.positions[0].x(), -7.5 * z_m / 20.0, 1e-6);
+    auto missing = registry.open("depth:" + mock_->uri() + "?fx_px=20");
+    ASSERT_FALSE(missing);
+    EXPECT_EQ(missing.error().code, ErrorCode::kInvalidArgument);
+    EXPECT_NE(missing.error().message.find("missing fy_px"), std::string::npos)
+        << missing.error().message;
+    auto unknown = registry.open("depth:" + mock_->uri() + "?fx_px=20&focal=3");
+    ASSERT_FALSE(unknown);
+    EXPECT_NE(unknown.error().message.find("unknown key 'focal'"), std::string::npos);
 }
 
 }  // namespace

@@ -38,6 +38,42 @@ public:
     DeviceSettings invalid_settings() const override { return {.angular_step_deg = 0.5}; }
 };
 
+/// The composed head with one part failing: an unplug takes that part away in the middle
+/// of a capture, a stall silences it (the projector cannot fall silent here).
+class SimSlPartHarness : public SimStructuredLightHarness {
+public:
+    explicit SimSlPartHarness(sim::SlPart part) : part_(part) {}
+    Expected<std::unique_ptr<Device>> open() override {
+        auto device = sim::SimStructuredLightScanner::open(sim::test::small_sl_config());
+        part_faults_ = device->part_faults(part_);
+        if (unplug_after_ >= 0) {
+            // Frames (a camera) or patterns (the projector) of whole captures, then half.
+            const int n = static_cast<int>(patterns_per_capture());
+            part_faults_->unplug_after_captures = unplug_after_ * n + n / 2;
+        }
+        return std::unique_ptr<Device>(std::move(device));
+    }
+    void unplug_after(int captures) override { unplug_after_ = captures; }
+    bool stall() override {
+        if (part_ == sim::SlPart::kProjector) return false;
+        part_faults_->stalled = true;
+        return true;
+    }
+
+private:
+    static std::size_t patterns_per_capture() {
+        const sim::SimStructuredLightConfig c = sim::test::small_sl_config();
+        return sim::decoder_sequence({.width_px = c.rig.projector_width_px,
+                                      .height_px = c.rig.projector_height_px,
+                                      .phase_steps = c.render.patterns.phase_steps,
+                                      .phase_period_px = c.render.patterns.phase_period_px})
+            .image_count();
+    }
+    sim::SlPart part_;
+    int unplug_after_ = -1;
+    std::shared_ptr<sim::SimDeviceFaults> part_faults_;
+};
+
 }  // namespace
 
 std::vector<HarnessEntry> conformance_harnesses() {
@@ -45,6 +81,10 @@ std::vector<HarnessEntry> conformance_harnesses() {
         {"sim_tof", [] { return std::make_unique<SimTofHarness>(); }, false},
         {"sim_structured_light", [] { return std::make_unique<SimStructuredLightHarness>(); },
          false},
+        {"sim_sl_cam2", [] { return std::make_unique<SimSlPartHarness>(sim::SlPart::kCam2); },
+         false},
+        {"sim_sl_projector",
+         [] { return std::make_unique<SimSlPartHarness>(sim::SlPart::kProjector); }, false},
     };
 }
 

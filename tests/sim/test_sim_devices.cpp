@@ -5,6 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <stop_token>
+#include <string>
+#include <vector>
 
 #include "anascan/drivers/recording.hpp"
 #include "anascan/drivers/settings.hpp"
@@ -50,6 +53,37 @@ TEST(SimTofDevice, ScanCarriesItsTruePoseAndSettings) {
         if (!hit || std::abs(hit->distance_m - p.norm()) > 1e-4) ++off;
     }
     EXPECT_EQ(off, 0u);
+}
+
+// The sweep is a setting: a narrower field gives a smaller grid of the same step, about
+// the same elevation centre; outside the LMS-Z420i's 360 x 80 degrees it is refused.
+TEST(SimTofDevice, TheSweepFieldIsASetting) {
+    auto device = SimTofScanner::open(small_tof_config());
+    EXPECT_EQ(device->settings().horizontal_field_deg, 360.0);
+    EXPECT_EQ(device->settings().vertical_field_deg, 80.0);
+    auto full = device->capture_scan({});
+    ASSERT_TRUE(full) << full.error().message;
+    ASSERT_TRUE(device->configure({.horizontal_field_deg = 180.0, .vertical_field_deg = 40.0}));
+    auto half = device->capture_scan({});
+    ASSERT_TRUE(half) << half.error().message;
+    auto settings = drivers::settings_from_json(half->meta.settings_json, "scan");
+    ASSERT_TRUE(settings);
+    EXPECT_EQ(settings->horizontal_field_deg, 180.0);
+    // Elevation of the lowest point: the full field reaches -40 degrees, this one -20.
+    auto lowest_deg = [](const Scan& scan) {
+        double lowest = 90.0;
+        for (const Eigen::Vector3f& p : scan.cloud.positions)
+            lowest = std::min(lowest,
+                              std::atan2(double(p.z()), double(p.head<2>().norm())) * 180.0 / M_PI);
+        return lowest;
+    };
+    EXPECT_LT(lowest_deg(*full), -30.0);
+    EXPECT_GE(lowest_deg(*half), -20.0 - 2.0);  // one 2-degree step of slack
+    EXPECT_LT(half->cloud.size(), full->cloud.size() * 3 / 4);
+    auto bad = device->configure({.vertical_field_deg = 120.0});
+    ASSERT_FALSE(bad);
+    EXPECT_EQ(bad.error().code, ErrorCode::kInvalidArgument);
+    EXPECT_NE(bad.error().message.find("vertical_field_deg"), std::string::npos);
 }
 
 TEST(SimTofDevice, EachCaptureIsTheNextStationAndTheBlockCanBeTurnedOver) {
@@ -203,6 +237,72 @@ TEST(SimStructuredLightDevice, DecodedScanLiesOnTheTrueSurfaceAtItsTruePose) {
     EXPECT_LT(p90_mm, 3.0);
     // The next capture is from the next viewpoint.
     EXPECT_FALSE(device->rig().cam1.T_world_device.isApprox(T_world_cam1));
+}
+
+// The sync rule of drivers::StructuredLightScanner: a frame exposed before its pattern was
+// shown is never used. Cameras that deliver one such stale frame after every switch give
+// the same scan as cameras that do not.
+TEST(SimStructuredLightDevice, StaleFramesAfterAPatternSwitchAreDropped) {
+    auto fresh = SimStructuredLightScanner::open(small_sl_config());
+    SimStructuredLightConfig queued_config = small_sl_config();
+    queued_config.stale_frame_after_switch = true;
+    auto queued = SimStructuredLightScanner::open(queued_config);
+    auto a = fresh->capture_scan({});
+    auto b = queued->capture_scan({});
+    ASSERT_TRUE(a) << a.error().message;
+    ASSERT_TRUE(b) << b.error().message;
+    const std::size_t patterns = fresh->last_capture().patterns_shown;
+    EXPECT_EQ(fresh->last_capture().stale_frames, 0u);
+    // Each camera: one stale frame per switch after its first frame.
+    EXPECT_EQ(queued->last_capture().stale_frames, 2 * (patterns - 1));
+    EXPECT_EQ(queued->last_capture().frames_used, 2 * patterns);
+    ASSERT_EQ(a->cloud.size(), b->cloud.size());
+    EXPECT_EQ(a->cloud.positions, b->cloud.positions);
+}
+
+TEST(SimStructuredLightDevice, CancelDuringThePatternsStopsAndTheDeviceStaysUsable) {
+    auto device = SimStructuredLightScanner::open(small_sl_config());
+    std::stop_source stop;
+    std::vector<std::string> stages;
+    auto cancelled = device->capture_scan({.on_progress =
+                                               [&](const drivers::CaptureProgress& p) {
+                                                   stages.push_back(p.stage);
+                                                   if (stages.size() == 5) stop.request_stop();
+                                               },
+                                           .stop = stop.get_token()});
+    ASSERT_FALSE(cancelled);
+    EXPECT_EQ(cancelled.error().code, ErrorCode::kCancelled) << cancelled.error().message;
+    EXPECT_EQ(device->last_capture().patterns_shown, 5u);
+    ASSERT_FALSE(stages.empty());
+    EXPECT_NE(stages.front().find("projecting pattern 1/"), std::string::npos) << stages.front();
+    auto next = device->capture_scan({});
+    EXPECT_TRUE(next) << next.error().message;
+}
+
+TEST(SimStructuredLightDevice, ASilentCameraIsATimeoutNamingIt) {
+    auto device = SimStructuredLightScanner::open(small_sl_config());
+    device->part_faults(SlPart::kCam2)->stalled = true;
+    auto none = device->capture_scan({.timeout = std::chrono::milliseconds(300)});
+    ASSERT_FALSE(none);
+    EXPECT_EQ(none.error().code, ErrorCode::kTimeout);
+    EXPECT_NE(none.error().message.find("sim:structured-light/small-block#cam2"), std::string::npos)
+        << none.error().message;
+    device->part_faults(SlPart::kCam2)->stalled = false;
+    auto again = device->capture_scan({});  // a silent camera is not a lost one
+    EXPECT_TRUE(again) << again.error().message;
+}
+
+TEST(SimStructuredLightDevice, AProjectorGoneMidCaptureIsADisconnectNamingIt) {
+    auto device = SimStructuredLightScanner::open(small_sl_config());
+    device->part_faults(SlPart::kProjector)->unplug_after_captures = 7;
+    auto gone = device->capture_scan({});
+    ASSERT_FALSE(gone);
+    EXPECT_EQ(gone.error().code, ErrorCode::kDisconnected);
+    EXPECT_NE(gone.error().message.find("#projector"), std::string::npos) << gone.error().message;
+    EXPECT_EQ(device->last_capture().patterns_shown, 7u);
+    auto later = device->capture_scan({});
+    ASSERT_FALSE(later);
+    EXPECT_EQ(later.error().code, ErrorCode::kDisconnected);
 }
 
 }  // namespace

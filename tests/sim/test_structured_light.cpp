@@ -402,5 +402,48 @@ TEST_F(StructuredLightTest, StereoCodesTriangulateWithinTheAccuracyBudgetAtOneMe
     EXPECT_GT(within, 0.95);
 }
 
+// render_camera_image lights each pixel with the projector image's mean over the pixel's
+// footprint: with footprints of exactly one projector pixel centred on it, no blur and
+// no noise, a pixel shows exactly the projector pixel it looks at, for stripe patterns
+// (1-D profile) and for any other image (summed-area table) alike; a dark projector
+// leaves the ambient light.
+TEST(RenderCameraImage, EachPixelShowsTheProjectorPixelItLooksAt) {
+    const int w = 12, h = 8;
+    CameraSurface surface{.albedo = cv::Mat(h, w, CV_32F, cv::Scalar(1.0f)),
+                          .light = cv::Mat(h, w, CV_32F, cv::Scalar(1.0f)),
+                          .footprint = cv::Mat(h, w, CV_32FC2, cv::Scalar(1.0f, 1.0f)),
+                          .truth = {.projector_xy = cv::Mat(h, w, CV_32FC2)}};
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            surface.truth.projector_xy.at<cv::Vec2f>(y, x) = cv::Vec2f(float(w - 1 - x), float(y));
+    const StructuredLightRenderConfig config{.exposure_dn = 255.0,
+                                             .ambient_level = 0.0,
+                                             .read_noise_dn = 0.0,
+                                             .shot_noise_dn2_per_dn = 0.0,
+                                             .camera_blur_sigma_px = 0.0,
+                                             .projector_blur_sigma_px = 0.0};
+    cv::Mat any(h, w, CV_8UC1), stripes(h, w, CV_8UC1);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            any.at<std::uint8_t>(y, x) = static_cast<std::uint8_t>((37 * x + 91 * y) % 256);
+            stripes.at<std::uint8_t>(y, x) = static_cast<std::uint8_t>(20 * x);
+        }
+    for (const cv::Mat& projector : {any, stripes}) {
+        const cv::Mat image = render_camera_image(surface, projector, config, 7);
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x)
+                ASSERT_EQ(image.at<std::uint8_t>(y, x), projector.at<std::uint8_t>(y, w - 1 - x))
+                    << "pixel (" << x << ", " << y << ")";
+    }
+    cv::Mat rows(h, w, CV_8UC1);  // row stripes: every column alike
+    for (int y = 0; y < h; ++y) rows.row(y).setTo(cv::Scalar(30 * y));
+    const cv::Mat lit_by_rows = render_camera_image(surface, rows, config, 7);
+    for (int y = 0; y < h; ++y) EXPECT_EQ(lit_by_rows.at<std::uint8_t>(y, 3), 30 * y);
+    StructuredLightRenderConfig ambient = config;
+    ambient.ambient_level = 0.2;
+    const cv::Mat dark = render_camera_image(surface, cv::Mat(), ambient, 7);
+    EXPECT_EQ(cv::countNonZero(dark != 51), 0);  // 255 * 0.2
+}
+
 }  // namespace
 }  // namespace anascan::sim

@@ -102,4 +102,35 @@ Expected<StereoCalibration> load_stereo_calibration(const std::filesystem::path&
     }
 }
 
+Expected<std::optional<RecordedPatternLayout>> load_pattern_layout(
+    const std::filesystem::path& path) {
+    const std::string file = path.string();
+    if (!std::filesystem::is_regular_file(path))
+        return fail(ErrorCode::kIo, file + ": no such calibration file");
+    try {
+        cv::FileStorage fs(file, cv::FileStorage::READ | cv::FileStorage::FORMAT_AUTO);
+        if (!fs.isOpened())
+            return fail(ErrorCode::kFormat, file + ": not an OpenCV FileStorage file");
+        const cv::FileNode size = fs["proj_size"];
+        if (size.empty()) return std::optional<RecordedPatternLayout>{};
+        RecordedPatternLayout layout;
+        if (size.isSeq() && size.size() == 2 && size[0].isInt() && size[1].isInt()) {
+            layout.projector_width_px = int(size[0]);
+            layout.projector_height_px = int(size[1]);
+        }
+        if (layout.projector_width_px <= 0 || layout.projector_height_px <= 0)
+            return fail(ErrorCode::kFormat, file + ": bad 'proj_size' (expected [w, h])");
+        const cv::FileNode steps = fs["pattern_phase_steps"];
+        const cv::FileNode period = fs["pattern_phase_period_px"];
+        if (!steps.empty()) layout.phase_steps = steps.isInt() ? int(steps) : -1;
+        if (!period.empty()) layout.phase_period_px = period.isInt() ? int(period) : -1;
+        if (layout.phase_steps < 0 || (layout.phase_steps > 0 && layout.phase_period_px < 2))
+            return fail(ErrorCode::kFormat,
+                        file + ": bad 'pattern_phase_steps' / 'pattern_phase_period_px'");
+        return std::optional<RecordedPatternLayout>{layout};
+    } catch (const cv::Exception& e) {
+        return fail(ErrorCode::kFormat, file + ": " + e.msg);
+    }
+}
+
 }  // namespace anascan::drivers::sl

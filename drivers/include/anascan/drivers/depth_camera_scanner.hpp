@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "anascan/drivers/camera.hpp"
+#include "anascan/drivers/device_registry.hpp"
 #include "anascan/drivers/scanner.hpp"
 #include "anascan/processing/range_grid.hpp"
 
@@ -31,5 +32,11 @@ Expected<PointCloud> depth_to_point_cloud(const Frame& frame, const DepthIntrins
 /// One depth frame per capture_scan(). Owns the camera. Not thread-safe (see Scanner).
 std::unique_ptr<Scanner> make_depth_camera_scanner(std::unique_ptr<Camera> camera,
                                                    const DepthIntrinsics& intrinsics);
+
+/// The `depth:` backend: `depth:CAMERA_URI?fx_px=F&fy_px=F&cx_px=C&cy_px=C[&depth_unit_m=U]`
+/// (e.g. `depth:v4l2:/dev/video2?fx_px=580&fy_px=580&cx_px=320&cy_px=240`): the Z16 camera
+/// opened by `cameras`, as a scanner with those intrinsics (pixels; unit default 0.001 m).
+/// Not enumerable. kInvalidArgument naming the key for missing or bad intrinsics.
+Backend make_depth_scanner_backend(std::shared_ptr<const DeviceRegistry> cameras);
 
 }  // namespace anascan::drivers

@@ -1,8 +1,9 @@
 #pragma once
 /// \file
-/// Projector output: a GLFW full-screen window on a chosen monitor that shows a sequence
-/// of 8-bit patterns, calling back after each pattern is on screen (the camera captures
-/// there), so projection and capture stay in step.
+/// Projector output: a GLFW full-screen window on a chosen monitor that shows 8-bit
+/// patterns, as a PatternOutput (load, then show(i) returning when it is on screen) or as
+/// a sequence calling back after each pattern is on screen (the camera captures there), so
+/// projection and capture stay in step.
 
 #include <chrono>
 #include <cstdint>
@@ -13,16 +14,10 @@
 #include <string>
 #include <vector>
 
+#include "anascan/drivers/pattern_output.hpp"
 #include "anascan/processing/expected.hpp"
 
 namespace anascan::drivers {
-
-/// One pattern: 8-bit grey, row-major, row 0 at the top, exactly the output's size.
-struct Pattern {
-    int width = 0;
-    int height = 0;
-    std::vector<std::uint8_t> grey;
-};
 
 struct MonitorInfo {
     std::string name;
@@ -45,24 +40,21 @@ struct ProjectorConfig {
 
 /// Not thread-safe, and GLFW's rule applies: create, use and destroy it on the main thread.
 /// Owns the GLFW window and context; destroying it closes the window.
-class ProjectorOutput {
+class ProjectorOutput : public PatternOutput {
 public:
     /// Monitors GLFW sees (empty without a display).
     static std::vector<MonitorInfo> monitors();
     /// Opens the window; kUnsupported without a display, kInvalidArgument for a monitor
     /// index out of range (the message lists the monitors).
     static Expected<std::unique_ptr<ProjectorOutput>> open(const ProjectorConfig& config);
-    virtual ~ProjectorOutput() = default;
 
-    /// Output size in pixels: every pattern must have it.
-    virtual int width_px() const = 0;
-    virtual int height_px() const = 0;
-    /// Shows the patterns in order; after each is on screen (buffer swapped, GPU finished,
-    /// `settle` waited) calls on_shown(index). on_shown returning false, or `stop`, ends the
-    /// sequence with kCancelled. kInvalidArgument for a pattern of the wrong size.
-    virtual Expected<void> show_sequence(std::span<const Pattern> patterns,
-                                         const std::function<bool(std::size_t index)>& on_shown,
-                                         std::stop_token stop = {}) = 0;
+    /// Loads the patterns, then shows them in order; after each is on screen (buffer
+    /// swapped, GPU finished, `settle` waited) calls on_shown(index). on_shown returning
+    /// false, or `stop`, ends the sequence with kCancelled. kInvalidArgument for a pattern
+    /// of the wrong size.
+    Expected<void> show_sequence(std::span<const Pattern> patterns,
+                                 const std::function<bool(std::size_t index)>& on_shown,
+                                 std::stop_token stop = {});
     /// The frame buffer of the pattern shown last, read with glReadPixels just before the
     /// swap (the front buffer cannot be read back on every driver, e.g. Mesa under Xvfb),
     /// 8-bit grey (red channel), row 0 at the top; empty unless keep_read_back is set.

@@ -35,10 +35,12 @@ struct Capabilities {
     bool can_stream = false;        ///< A camera: start/stop with frame callbacks.
     bool can_capture_scan = false;  ///< A scanner: one-shot capture_scan().
     std::vector<StreamProfile> profiles;
-    std::optional<NumericRange> exposure_us;       ///< Exposure time, microseconds.
-    std::optional<NumericRange> gain;              ///< Analogue gain, device units.
-    std::optional<NumericRange> angular_step_deg;  ///< Scanner angular resolution, degrees.
-    std::optional<NumericRange> range_m;           ///< Scanner measurable range, metres.
+    std::optional<NumericRange> exposure_us;           ///< Exposure time, microseconds.
+    std::optional<NumericRange> gain;                  ///< Analogue gain, device units.
+    std::optional<NumericRange> angular_step_deg;      ///< Scanner angular resolution, degrees.
+    std::optional<NumericRange> range_m;               ///< Scanner measurable range, metres.
+    std::optional<NumericRange> horizontal_field_deg;  ///< Scanner sweep width, degrees.
+    std::optional<NumericRange> vertical_field_deg;    ///< Scanner sweep height, degrees.
 };
 
 /// Requested or current settings; an empty field means "leave as it is".
@@ -49,6 +51,9 @@ struct DeviceSettings {
     std::optional<double> angular_step_deg;  ///< Degrees.
     std::optional<double> min_range_m;       ///< Metres; with max_range_m within range_m.
     std::optional<double> max_range_m;       ///< Metres.
+    /// Sweep of a scanning device (ToF): width in azimuth, height in elevation, degrees.
+    std::optional<double> horizontal_field_deg;
+    std::optional<double> vertical_field_deg;
     friend bool operator==(const DeviceSettings&, const DeviceSettings&) = default;
 };
 

@@ -1,13 +1,16 @@
 #pragma once
 /// \file
-/// The simulated structured-light scanner as a device (`sim:structured-light[/SCENE]`): a
-/// drivers::Scanner whose capture_scan renders the pattern sequence onto the scene as both
-/// cameras see it (structured_light_renderer.hpp) and decodes it with the real pipeline
-/// (drivers' decode_stereo), returning the cloud in cam1's frame with its true pose.
+/// The simulated structured-light scanner as a device (`sim:structured-light[/SCENE]`): the
+/// same drivers::StructuredLightScanner as real hardware, composed of a simulated projector
+/// (sim_projector.hpp) and two simulated cameras (sim_camera.hpp) that render the scene
+/// lit by the pattern on show; the real pipeline decodes. The cloud is in cam1's frame
+/// with its true pose.
 
 #include <memory>
 #include <string>
 
+#include "anascan/drivers/structured_light_scanner.hpp"
+#include "anascan/sim/sim_camera.hpp"
 #include "anascan/sim/sim_scanner.hpp"
 #include "anascan/sim/structured_light_renderer.hpp"
 #include "anascan/sim/structured_light_rig.hpp"
@@ -34,30 +37,52 @@ struct SimStructuredLightConfig {
     double advance_deg = 60.0;              ///< Moves around the block after each capture; 0 stays.
     std::shared_ptr<SimWorldCache> worlds;  ///< Shared scenes; empty: a private cache.
     std::shared_ptr<SimDeviceFaults> faults;  ///< Injected unplug/stall; may be empty.
+    /// Each camera delivers one stale frame after every pattern switch (the scanner must
+    /// drop it); tests of the synchronisation.
+    bool stale_frame_after_switch = false;
 };
 
-/// The device. Settings: exposure_us (scales the rendered brightness; 10000 us = the
-/// renderer's exposure_dn) and min/max_range_m (depths kept, along cam1's axis). Not
-/// thread-safe (see drivers::Scanner).
+/// The parts of the head, each with its own injected faults (SimStructuredLightScanner::
+/// part_faults): a camera counts frames, the projector patterns.
+enum class SlPart { kCam1, kCam2, kProjector };
+
+/// The device. Settings: exposure_us (the cameras'; 10000 us = the renderer's exposure_dn)
+/// and min/max_range_m (depths kept, along cam1's axis). The whole device's faults
+/// (set_faults): an unplug takes the projector away half-way through the patterns, a stall
+/// silences cam1. Not thread-safe (see drivers::Scanner).
 class SimStructuredLightScanner final : public SimScanner {
 public:
     /// Opens at once; the scene is built at the first capture.
     static std::unique_ptr<SimStructuredLightScanner> open(SimStructuredLightConfig config);
 
     std::string calibration_json() const override;
-    /// Renders, then decodes: a stop or the timeout is seen between the two stages.
+    /// Closes the cameras too.
+    void close() override;
+    /// Places the cameras, then drivers::StructuredLightScanner::capture_scan: show each
+    /// pattern, take each camera's frame of it, decode.
     Expected<Scan> capture_scan(const drivers::CaptureControl& control) override;
 
     /// Sim-only: the viewpoint of the next capture.
     void move_to(const Viewpoint& station) { station_ = station; }
     /// The rig of the next capture, with its true poses.
     StructuredLightRig rig() const;
+    /// Sim-only: the faults of one part (unplug or silence one camera or the projector).
+    const std::shared_ptr<SimDeviceFaults>& part_faults(SlPart part) const;
+    /// What the last capture saw (stale frames dropped, ...).
+    const drivers::StructuredLightCaptureStats& last_capture() const {
+        return head_->last_capture();
+    }
 
 private:
     explicit SimStructuredLightScanner(SimStructuredLightConfig config);
+    void place_parts(const StructuredLightRig& head, const std::shared_ptr<const SimWorld>& world);
 
     SimStructuredLightConfig config_;
     Viewpoint station_;
+    std::shared_ptr<SimDeviceFaults> part_faults_[3];
+    SimCamera* cam1_ = nullptr;  ///< Owned by head_.
+    SimCamera* cam2_ = nullptr;
+    std::unique_ptr<drivers::StructuredLightScanner> head_;
 };
 
 }  // namespace anascan::sim

@@ -37,9 +37,35 @@ struct CameraTruth {
     cv::Mat depth_m;       ///< CV_32F: z of the surface point in the camera frame; NaN: none.
 };
 
+/// What one camera sees of the scene from one pose, per pixel: traced once, then rendered
+/// under any projector image (render_camera_image).
+struct CameraSurface {
+    cv::Mat albedo;     ///< CV_32F, 0 where nothing is hit.
+    cv::Mat light;      ///< CV_32F: cos(theta) (d_ref / d)^2, 0 where unlit or in shadow.
+    cv::Mat footprint;  ///< CV_32FC2: extent of the pixel in projector columns and rows.
+    CameraTruth truth;
+};
+
+/// Ray-casts every pixel of `camera` and the shadow ray toward `projector` (TBB).
+CameraSurface trace_camera_surface(const RayCaster& caster, const std::vector<float>& albedos,
+                                   const PinholeModel& camera, const PinholeModel& projector,
+                                   const StructuredLightRenderConfig& config);
+
+/// The camera image (CV_8UC1) of the surface lit by `projector_image` (CV_8UC1, projector
+/// size; empty: the projector is dark) and the ambient light: each pixel takes the image's
+/// mean over its footprint (exact box filter of the projector pixels), then camera blur and
+/// noise drawn from `noise_seed`. Thread-safe; TBB over rows.
+cv::Mat render_camera_image(const CameraSurface& surface, const cv::Mat& projector_image,
+                            const StructuredLightRenderConfig& config, std::uint64_t noise_seed);
+
+/// The noise seed of camera `camera_index`'s `frame`-th image of a capture.
+std::uint64_t camera_noise_seed(const StructuredLightRenderConfig& config, int camera_index,
+                                std::size_t frame);
+
 struct StructuredLightCapture {
     StructuredLightRig rig;         ///< The rig with its true poses (T_world_device).
     std::vector<Pattern> patterns;  ///< In projection order.
+    PatternSequenceConfig layout;   ///< The sequence they come from.
     std::vector<cv::Mat> cam1;      ///< CV_8UC1 images, one per pattern.
     std::vector<cv::Mat> cam2;
     CameraTruth truth1, truth2;
@@ -52,7 +78,8 @@ Expected<StructuredLightCapture> render_structured_light(
     const StructuredLightRig& rig, const StructuredLightRenderConfig& config = {});
 
 /// Writes the capture as `dir/pattern_cam{1,2}_imNN.png` (NN from 01, projection order)
-/// and its rig's calibration as `dir/calibration.yml`; creates `dir` if needed.
+/// and its rig's calibration, with the pattern layout, as `dir/calibration.yml` (so that
+/// `anascan sl decode` needs no layout flags); creates `dir` if needed.
 Expected<void> write_structured_light_capture(const std::filesystem::path& dir,
                                               const StructuredLightCapture& capture);
 

@@ -59,8 +59,11 @@ drivers::sl::StereoCalibration stereo_calibration(const StructuredLightRig& rig)
 /// cam1_distorsion (zeros), cam1_size, cam2_*, R, T (millimetres) with
 /// X_cam2 = R X_cam1 + T (OpenCV stereoCalibrate convention; NOT swapped like the statue
 /// data), RT_cam1_2_cam2, stereo_error, rectification R1 R2 P1 P2 Q (cv::stereoRectify),
-/// plus the simulation's truth: proj_intrinsics, proj_size, T_world_cam1_m, T_world_proj_m.
-Expected<void> write_stereo_calibration(const std::filesystem::path& path,
-                                        const StructuredLightRig& rig);
+/// plus the simulation's truth: proj_intrinsics, proj_size, T_world_cam1_m, T_world_proj_m,
+/// and, when given, the pattern layout (pattern_phase_steps, pattern_phase_period_px: see
+/// drivers::sl::load_pattern_layout).
+Expected<void> write_stereo_calibration(
+    const std::filesystem::path& path, const StructuredLightRig& rig,
+    const std::optional<drivers::sl::RecordedPatternLayout>& layout = std::nullopt);
 
 }  // namespace anascan::sim

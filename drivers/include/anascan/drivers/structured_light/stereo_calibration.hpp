@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <filesystem>
+#include <optional>
 #include <vector>
 
 #include "anascan/processing/expected.hpp"
@@ -43,5 +44,19 @@ struct StereoCalibrationLoadConfig {
 /// image sizes). Errors name the file and the key.
 Expected<StereoCalibration> load_stereo_calibration(const std::filesystem::path& path,
                                                     const StereoCalibrationLoadConfig& config);
+
+/// The pattern layout a calibration file may record next to the cameras (the simulator
+/// writes it): `proj_size` [w, h], `pattern_phase_steps`, `pattern_phase_period_px`.
+struct RecordedPatternLayout {
+    int projector_width_px = 0;
+    int projector_height_px = 0;
+    int phase_steps = 0;  ///< 0: Gray code only.
+    int phase_period_px = 0;
+};
+
+/// Reads the recorded layout; empty when the file has no `proj_size`. kFormat naming the
+/// file and key for a malformed entry, kIo when the file is missing.
+Expected<std::optional<RecordedPatternLayout>> load_pattern_layout(
+    const std::filesystem::path& path);
 
 }  // namespace anascan::drivers::sl

@@ -1,0 +1,174 @@
+// StructuredLightScanner::capture_scan: show each pattern, take each camera's first frame
+// exposed after it, decode.
+#include <tbb/parallel_invoke.h>
+
+#include <algorithm>
+
+#include "anascan/drivers/structured_light_scanner.hpp"
+#include "frame_grey.hpp"
+
+namespace anascan::drivers {
+namespace {
+
+using std::chrono::milliseconds;
+using std::chrono::steady_clock;
+
+/// A stop request ends a wait for a frame within one slice.
+constexpr milliseconds kWaitSlice{100};
+
+std::string part_name(const char* label, const Camera& camera) {
+    return std::string(label) + " (" + camera.info().uri + ")";
+}
+
+/// Stops both streams on every path out of a capture.
+class Streams {
+public:
+    Streams(Camera& a, Camera& b) : a_(a), b_(b) {}
+    ~Streams() {
+        if (a_on_) a_.stop_stream();
+        if (b_on_) b_.stop_stream();
+    }
+    Streams(const Streams&) = delete;
+    Streams& operator=(const Streams&) = delete;
+    Expected<void> start(const char* la, const char* lb) {
+        if (auto ok = a_.start_stream(); !ok)
+            return fail(ok.error().code, part_name(la, a_) + ": " + ok.error().message);
+        a_on_ = true;
+        if (auto ok = b_.start_stream(); !ok)
+            return fail(ok.error().code, part_name(lb, b_) + ": " + ok.error().message);
+        b_on_ = true;
+        return {};
+    }
+
+private:
+    Camera& a_;
+    Camera& b_;
+    bool a_on_ = false;
+    bool b_on_ = false;
+};
+
+/// One pattern's wait for the frames of the cameras.
+struct FrameWait {
+    const CaptureControl& control;
+    steady_clock::time_point deadline;  ///< Of the whole capture.
+    std::chrono::nanoseconds shown_at;  ///< Of the pattern.
+    std::chrono::nanoseconds latency;   ///< Frame stamp minus start of its exposure.
+    milliseconds frame_timeout;
+    std::string what;  ///< "pattern 3/46"
+};
+
+std::string ms_text(std::chrono::nanoseconds t) {
+    return std::to_string(std::chrono::duration_cast<milliseconds>(t).count()) + " ms";
+}
+
+/// The first frame of `camera` exposed after the pattern was shown; older frames are
+/// counted in `stale` and dropped.
+Expected<cv::Mat> fresh_frame(Camera& camera, const char* label, const FrameWait& w,
+                              std::size_t& stale) {
+    const auto frame_deadline = std::min(w.deadline, steady_clock::now() + w.frame_timeout);
+    for (;;) {
+        if (w.control.stop.stop_requested())
+            return fail(ErrorCode::kCancelled, "capture cancelled at " + w.what);
+        const auto now = steady_clock::now();
+        if (now >= frame_deadline) {
+            const bool whole = frame_deadline == w.deadline;
+            return fail(ErrorCode::kTimeout,
+                        part_name(label, camera) + " delivered no frame of " + w.what + " within " +
+                            ms_text(whole ? w.control.timeout : w.frame_timeout) +
+                            (whole ? " (the capture's timeout)" : ""));
+        }
+        const auto left = std::chrono::duration_cast<milliseconds>(frame_deadline - now);
+        Expected<Frame> frame = camera.next_frame(std::clamp(left, milliseconds(1), kWaitSlice));
+        if (!frame) {
+            if (frame.error().code == ErrorCode::kTimeout) continue;
+            return fail(frame.error().code,
+                        part_name(label, camera) + " at " + w.what + ": " + frame.error().message);
+        }
+        if (frame->timestamp_ns - w.latency < w.shown_at) {
+            ++stale;
+            continue;
+        }
+        return frame_to_grey(*frame, part_name(label, camera));
+    }
+}
+
+void report(const CaptureControl& control, double fraction, std::string stage) {
+    if (control.on_progress) control.on_progress({fraction, std::move(stage)});
+}
+
+}  // namespace
+
+Expected<void> StructuredLightScanner::acquire(const CaptureControl& control,
+                                               std::vector<cv::Mat>& images1,
+                                               std::vector<cv::Mat>& images2) {
+    const auto deadline = steady_clock::now() + control.timeout;
+    Streams streams(*parts_.cam1, *parts_.cam2);
+    if (auto ok = streams.start("cam1", "cam2"); !ok) return fail(gone(ok.error()));
+    const std::size_t n = patterns_.size();
+    for (std::size_t i = 0; i < n; ++i) {
+        const std::string what = "pattern " + std::to_string(i + 1) + "/" + std::to_string(n);
+        if (control.stop.stop_requested())
+            return fail(gone({ErrorCode::kCancelled, "capture cancelled before " + what}));
+        if (steady_clock::now() >= deadline)
+            return fail(gone({ErrorCode::kTimeout, "no scan within " + ms_text(control.timeout) +
+                                                       " (at " + what + ")"}));
+        report(control, 0.9 * static_cast<double>(i) / static_cast<double>(n),
+               "projecting " + what);
+        auto shown = parts_.projector->show(i);
+        if (!shown)
+            return fail(gone({shown.error().code, parts_.projector->name() + " at " + what + ": " +
+                                                      shown.error().message}));
+        ++stats_.patterns_shown;
+        const FrameWait wait{control, deadline, *shown, parts_.frame_latency, parts_.frame_timeout,
+                             what};
+        // Both cameras at once (each on one thread, as Camera requires).
+        std::size_t stale1 = 0, stale2 = 0;
+        Expected<cv::Mat> a = cv::Mat(), b = cv::Mat();
+        tbb::parallel_invoke([&] { a = fresh_frame(*parts_.cam1, "cam1", wait, stale1); },
+                             [&] { b = fresh_frame(*parts_.cam2, "cam2", wait, stale2); });
+        stats_.stale_frames += stale1 + stale2;
+        if (!a) return fail(gone(a.error()));
+        if (!b) return fail(gone(b.error()));
+        images1.push_back(std::move(*a));
+        images2.push_back(std::move(*b));
+        stats_.frames_used += 2;
+    }
+    return {};
+}
+
+Expected<Scan> StructuredLightScanner::capture_scan(const CaptureControl& control) {
+    if (closed_) return fail(ErrorCode::kDisconnected, parts_.info.uri + ": closed");
+    if (disconnected_)
+        return fail(ErrorCode::kDisconnected, parts_.info.uri + ": a part went away");
+    stats_ = {};
+    std::vector<cv::Mat> images1, images2;
+    if (auto ok = acquire(control, images1, images2); !ok) return fail(ok.error());
+    if (control.stop.stop_requested())
+        return fail(ErrorCode::kCancelled, parts_.info.uri + ": capture cancelled");
+    report(control, 0.9, "decoding");
+    auto scan = decode(images1, images2);
+    if (scan) report(control, 1.0, "scan complete");
+    return scan;
+}
+
+Expected<Scan> StructuredLightScanner::decode(std::vector<cv::Mat>& images1,
+                                              std::vector<cv::Mat>& images2) {
+    sl::StereoDecodeConfig config = parts_.decode;
+    config.triangulation.min_depth_m = min_range_m_;
+    config.triangulation.max_depth_m = max_range_m_;
+    auto decoded = sl::decode_stereo(images1, images2, parts_.calibration, config);
+    if (!decoded)
+        return fail(decoded.error().code, parts_.info.uri + ": " + decoded.error().message);
+    Scan scan;
+    scan.cloud = std::move(decoded->cloud);
+    scan.meta.id = "sl-" + std::to_string(sequence_);
+    scan.meta.sequence = sequence_++;
+    scan.meta.device_id = parts_.info.uri;
+    scan.meta.device_kind = DeviceKind::kStructuredLight;
+    scan.meta.sensor_origin_scan_m = Eigen::Vector3d::Zero();
+    scan.meta.time = std::chrono::system_clock::now();
+    scan.meta.settings_json = settings_to_json(settings());
+    return scan;
+}
+
+}  // namespace anascan::drivers
