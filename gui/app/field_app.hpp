@@ -34,6 +34,7 @@ struct FieldAppConfig {
     int flip_after = -1;    ///< Turned over after this many views (-1: half the tour).
     std::optional<double> angular_step_deg;  ///< Terrestrial scanner setting, degrees.
     int sim_unplug_after = -1;               ///< Fault injection (simulated scanners).
+    int worker_nice = 10;  ///< Capture/registration threads' nice value over the UI thread.
     std::optional<std::filesystem::path> dump_state_json;  ///< The view state at the end.
     double session_timeout_s = 600.0;  ///< Headless: give up waiting for the session.
 };

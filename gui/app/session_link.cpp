@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "anascan/gui/session_view.hpp"
+#include "thread_priority.hpp"
 
 namespace anascan::field {
 namespace {
@@ -32,9 +33,12 @@ SessionLink::SessionLink(SessionLinkConfig config) : config_(std::move(config)) 
 
 SessionLink::~SessionLink() = default;
 
+// The UI reads through its own read-only connection even while the app captures: a
+// WAL reader never waits for the session's writes (their commits fsync), whereas the
+// capture session's store is shared with its threads under one mutex.
 const acquisition::SessionStore* SessionLink::store() const {
-    if (session_) return &session_->store();
-    return read_store_.get();
+    if (read_store_) return read_store_.get();
+    return session_ ? &session_->store() : nullptr;
 }
 
 void SessionLink::open(gui::FieldViewState& view) {
@@ -64,8 +68,10 @@ void SessionLink::open(gui::FieldViewState& view) {
         return;
     }
     read_store_ = std::move(*store);
-    pending_check_ = std::async(std::launch::async,
-                                [dir = config_.dir] { return acquisition::check_session(dir); });
+    pending_check_ = std::async(std::launch::async, [dir = config_.dir, n = config_.worker_nice] {
+        lower_this_thread_priority(n);
+        return acquisition::check_session(dir);
+    });
 }
 
 void SessionLink::poll(gui::FieldViewState& view, gui::PointRenderer& renderer) {
@@ -122,14 +128,16 @@ void SessionLink::poll_futures(gui::FieldViewState& view) {
         ++captures_finished_;
         if (acknowledged) {
             ++acknowledged_;
+            view.capture_problem.reset();  // recovered: the banner goes
+            set_device_status(view, true, "ready");
         } else {
             const Error& error = acknowledged.error();
-            const bool away =
-                error.code == ErrorCode::kDisconnected || error.code == ErrorCode::kTimeout;
-            view.status.last_error =
-                "capture failed: " + error.message +
-                (away ? " (unplugged or silent: plug it in, then capture again)" : "");
-            if (away) set_device_status(view, false, "unplugged or silent");
+            view.capture_problem = gui::capture_problem(error);
+            view.status.last_error = view.capture_problem->line();
+            if (error.code == ErrorCode::kDisconnected || error.code == ErrorCode::kTimeout)
+                set_device_status(view, false, "unplugged or silent");
+            else
+                set_device_status(view, true, "ready; " + view.capture_problem->headline);
         }
         dirty_ = true;
     }
@@ -221,9 +229,11 @@ void SessionLink::poll_load(gui::PointRenderer& renderer) {
     if (pending_load_ || to_load_.empty() || store() == nullptr) return;
     loading_seq_ = to_load_.front();
     to_load_.erase(to_load_.begin());
-    pending_load_ = std::async(std::launch::async, [store = store(), seq = loading_seq_] {
-        return store->load_scan(seq);
-    });
+    pending_load_ = std::async(std::launch::async,
+                               [store = store(), seq = loading_seq_, n = config_.worker_nice] {
+                                   lower_this_thread_priority(n);
+                                   return store->load_scan(seq);
+                               });
 }
 
 void SessionLink::refresh_coverage(gui::FieldViewState& view, gui::PointRenderer& renderer) {
@@ -231,6 +241,9 @@ void SessionLink::refresh_coverage(gui::FieldViewState& view, gui::PointRenderer
     if (store() == nullptr) return;
     const auto json = store()->value("coverage");
     if (!json || !*json) return;
+    // Unchanged: keep the markers (new markers would restart the view's refinement).
+    if (**json == coverage_json_) return;
+    coverage_json_ = **json;
     const gui::StoredCoverage coverage = gui::parse_coverage_json(**json);
     if (coverage.fraction) view.status.coverage_percent = *coverage.fraction * 100.0;
     renderer.set_hole_markers(coverage.holes);

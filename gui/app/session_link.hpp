@@ -35,6 +35,9 @@ struct SessionLinkConfig {
     runtime::SimulatedTour tour;                                  ///< For simulated scanners.
     runtime::ScannerSettings settings;
     int sim_unplug_after = -1;  ///< Fault injection (simulated scanners), -1: never.
+    /// Nice increment of the capture session's threads and the scan loads over the UI
+    /// thread (thread_priority.hpp); 0: same priority.
+    int worker_nice = 10;
 };
 
 /// Session events, pushed by acquisition's threads, drained by the UI thread.
@@ -107,6 +110,7 @@ private:
     std::vector<std::int64_t> to_load_;    ///< Registered scans whose points are not shown yet.
     std::set<std::int64_t> unloadable_;    ///< Scans whose file could not be read.
     std::string load_error_;               ///< For the status bar.
+    std::string coverage_json_;            ///< The stored coverage last shown.
     // Futures last: destroyed (and waited for) before the session they use.
     std::optional<std::future<Expected<std::int64_t>>> pending_capture_;
     std::optional<std::future<Expected<Scan>>> pending_load_;

@@ -34,6 +34,10 @@ json read_json(const fs::path& file) {
     return json::parse(in, nullptr, false);
 }
 
+/// A scan of kDevice is a PLY file of about 1.3 MB; the session database and a screenshot
+/// fit in this file size limit, a scan does not.
+constexpr int kFullDiskLimitKiB = 800;
+
 /// A fast simulated device: the terrestrial (time-of-flight) scanner at a coarse step.
 const std::string kDevice = "--device sim:tof/small-block --angular-step-deg 0.5";
 
@@ -146,6 +150,36 @@ TEST_F(FieldSession, AnUnpluggedScannerIsReportedAndTheAppGoesOn) {
     EXPECT_NE(error.find("sim:tof"), std::string::npos) << "the message names the device";
     // The capture after the unplug reopened the device: two scans, nothing lost.
     EXPECT_EQ(state["scans"].size(), 2u) << state.dump(2);
+}
+
+TEST_F(FieldSession, AFullDiskIsReportedInTheBannerAndTheAppGoesOn) {
+    // RLIMIT_FSIZE (SIGXFSZ ignored) makes writes past the limit fail as on a full disk:
+    // room for the session database and the screenshot, not for a scan file.
+    const fs::path session = dir_ / "full", png = dir_ / "full.png",
+                   state_file = dir_ / "state.json";
+    const std::string command = "bash -c \"trap '' XFSZ; ulimit -f " +
+                                std::to_string(kFullDiskLimitKiB) + "; exec " + ANASCAN_FIELD +
+                                " --session " + session.string() + " " + kDevice +
+                                " --capture-views 2 --tour-views 12 --flip-after 0 --frames 3 "
+                                "--screenshot " +
+                                png.string() + " --dump-state " + state_file.string() + "\"";
+    const RunResult r = anascan::test::run_command(command);
+    ASSERT_EQ(r.exit_code, 0) << r.output;  // the app went on to draw its frames and exit
+    const json state = read_json(state_file);
+    ASSERT_TRUE(state.is_object()) << state_file;
+    const std::string error = state["last_error"];
+    EXPECT_NE(error.find("DISK FULL"), std::string::npos) << error;
+    EXPECT_NE(error.find("NOT saved"), std::string::npos) << error;
+    EXPECT_EQ(state["banner_kind"], "capture-failed") << state.dump(2);
+    EXPECT_TRUE(state["scans"].empty()) << "nothing half-recorded: " << state.dump(2);
+    // The red banner over the top of the view (the view starts at 450 px).
+    const cv::Mat image = cv::imread(png.string(), cv::IMREAD_COLOR);
+    ASSERT_FALSE(image.empty()) << png;
+    const cv::Vec3b banner_red{191, 13, 13};  // ImVec4(0.75, 0.05, 0.05)
+    EXPECT_LT(fraction_not(image, cv::Rect(460, 5, 300, 60), banner_red), 0.5)
+        << "no red banner over the view";
+    const RunResult check = cli("session check " + session.string());
+    EXPECT_EQ(check.exit_code, 0) << check.output;
 }
 
 TEST_F(FieldSession, AnUnwritableFolderIsReportedAndTheAppGoesOn) {

@@ -95,4 +95,29 @@ TEST(SessionView, CheckSummaryIsEmptyWhenCleanAndNamesTheFileOtherwise) {
     EXPECT_NE(text.find("--repair"), std::string::npos) << text;
 }
 
+TEST(SessionView, CaptureProblemsSayWhatHappenedAndWhatToDo) {
+    using anascan::Error;
+    using anascan::ErrorCode;
+    const gui::CaptureProblem away = gui::capture_problem(
+        Error{ErrorCode::kDisconnected, "sim:tof/small-block: device went away"});
+    EXPECT_NE(away.line().find("sim:tof/small-block"), std::string::npos) << away.line();
+    EXPECT_NE(away.headline.find("unplugged"), std::string::npos) << away.headline;
+    EXPECT_NE(away.what_to_try.find("cable"), std::string::npos) << away.what_to_try;
+
+    // acquisition's text for EFBIG / ENOSPC ends with its advice "The disk is full: ...".
+    const gui::CaptureProblem full = gui::capture_problem(
+        Error{ErrorCode::kIo,
+              "cannot save scan 1 in session /data/s: File too large. Nothing was recorded for "
+              "this scan; scans saved before are safe. The disk is full: free space and retry."});
+    EXPECT_EQ(full.headline, "DISK FULL: the scan was NOT saved");
+    EXPECT_NE(full.line().find("/data/s"), std::string::npos) << "names the session";
+    EXPECT_NE(full.what_to_try.find("Free space"), std::string::npos) << full.what_to_try;
+
+    const gui::CaptureProblem other =
+        gui::capture_problem(Error{ErrorCode::kInvalidArgument, "bad exposure 0 ms"});
+    EXPECT_NE(other.line().find("bad exposure 0 ms"), std::string::npos);
+    EXPECT_FALSE(other.what_to_try.empty());
+    EXPECT_EQ(other.line().find("DISK FULL"), std::string::npos);
+}
+
 }  // namespace

@@ -37,8 +37,11 @@ void draw_status_bar(const FieldViewState& state, const PanelLayout& layout);
 /// turned-over buttons, the colour mode and theme switches.
 void draw_device_panel(const FieldViewState& state, const PanelLayout& layout, UiActions& actions);
 
-/// The failure banner window ("Registration failed"), drawn only when failure_banner(state)
-/// has a value: red, large, with the message and what to try. Returns true when drawn.
+/// The banner over the view, drawn only when session_banner(state) has a value: a failed
+/// capture ("Capture failed", red), a failed registration ("Registration failed", red) or
+/// a split model ("Model split", amber),
+/// large, with the message, what to try and an exclude button for the scan at fault.
+/// Returns true when drawn.
 bool draw_failure_banner(const FieldViewState& state, const PanelLayout& layout,
                          UiActions& actions);
 
