@@ -117,7 +117,9 @@ void apply_actions(const gui::UiActions& actions, AppState& app, bool font_scale
 gui::DrawStats draw_scene(AppState& app, const gui::PanelLayout& layout, int fb_w, int fb_h,
                           const gui::DrawConfig& draw) {
     glViewport(0, 0, fb_w, fb_h);
-    glClearColor(kBackground.x(), kBackground.y(), kBackground.z(), 1.0f);
+    // The panels' background (they draw none: panels.hpp); the view is copied over it.
+    const gui::PanelBackground bg = gui::panel_background();
+    glClearColor(bg.r, bg.g, bg.b, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     // Window pixels (top left) to frame-buffer pixels (bottom left), HiDPI-safe.
     const float sx = static_cast<float>(fb_w) / std::max(layout.width_px, 1.0f);

@@ -44,10 +44,12 @@ public:
 
 private:
     explicit FieldWindow(GLFWwindow* window) : window_(window) {}
+    void use_nearest_font_filter();
     GLFWwindow* window_ = nullptr;
     bool imgui_glfw_ = false;
     bool imgui_gl_ = false;
     bool font_scaled_ = false;
+    unsigned nearest_font_texture_ = 0;  ///< The font texture last set to GL_NEAREST.
 };
 
 }  // namespace anascan::field

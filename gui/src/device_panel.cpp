@@ -58,7 +58,7 @@ void draw_view_options(const FieldViewState& state, UiActions& actions) {
 void draw_device_panel(const FieldViewState& state, const PanelLayout& layout, UiActions& actions) {
     detail::place_next_window(layout.width_px - layout.device_width_px, 0.0f,
                               layout.device_width_px, layout.height_px - layout.status_height_px);
-    ImGui::Begin("Device", nullptr, detail::kPanelFlags);
+    ImGui::Begin("Device", nullptr, detail::kClearedPanelFlags);
     if (!state.session_dir.empty()) {
         ImGui::TextWrapped("Session: %s", state.session_dir.c_str());
     }

@@ -35,9 +35,9 @@ bool draw_failure_banner(const FieldViewState& state, const PanelLayout& layout,
     ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 1.0f, 1.0f, 1.0f));
     ImGui::Begin(window_name(banner->kind), nullptr,
                  detail::kPanelFlags | ImGuiWindowFlags_NoTitleBar);
-    ImGui::SetWindowFontScale(1.3f);
+    detail::begin_large_text();
     ImGui::TextWrapped("%s", banner->message.c_str());
-    ImGui::SetWindowFontScale(1.0f);
+    detail::end_large_text();
     if (!banner->details.empty()) ImGui::TextWrapped("%s", banner->details.c_str());
     ImGui::TextWrapped("Try: %s", banner->what_to_try.c_str());
     if (banner->seq >= 0) {
