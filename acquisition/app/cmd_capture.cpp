@@ -48,35 +48,6 @@ std::string device_uri(const CaptureOptions& o) {
     return o.device + "/" + o.scene;
 }
 
-/// Prints the session's events, one line each, as they arrive: progress on stdout (a log a
-/// script can follow: "saved scan N"), failures once, as errors on stderr.
-acquisition::SessionEventSink printing_sink() {
-    auto mutex = std::make_shared<std::mutex>();
-    return [mutex](const acquisition::SessionEvent& event) {
-        std::lock_guard lock(*mutex);
-        using K = acquisition::SessionEventKind;
-        if (event.kind == K::kDeviceError || event.kind == K::kSaveFailed ||
-            event.kind == K::kRegistrationFailed) {
-            spdlog::error("{}", event.message);
-            return;
-        }
-        std::printf("%s\n", event.message.c_str());
-        std::fflush(stdout);
-    };
-}
-
-/// The coverage of the finished session, from the scans on disk as `anascan coverage`
-/// computes it, so that both report the same figure.
-void store_final_coverage(acquisition::SessionStore& store) {
-    auto report = acquisition::session_coverage(store, {});
-    if (!report) {
-        spdlog::warn("no coverage: {}", report.error().message);
-        return;
-    }
-    if (auto ok = store.set_value("coverage", coverage_to_json(*report)); !ok)
-        spdlog::warn("coverage not stored: {}", ok.error().message);
-}
-
 /// A real scanner: the operator places it and presses Enter (q or end of input stops).
 bool operator_ready(int view, int views) {
     std::printf("place the scanner for view %d of %d and press Enter (q to stop) ", view + 1,

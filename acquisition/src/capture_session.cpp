@@ -122,6 +122,24 @@ Expected<void> CaptureSession::exclude(std::int64_t seq, bool excluded) {
     return {};
 }
 
+Expected<void> CaptureSession::reregister(std::int64_t seq) {
+    auto record = impl_->store->scan(seq);
+    if (!record) return std::unexpected(record.error());
+    if (record->excluded) {
+        return fail(ErrorCode::kInvalidArgument, "scan " + std::to_string(seq) +
+                                                     " is excluded: include it before "
+                                                     "registering it again");
+    }
+    (void)impl_->store->add_event("reregister", "",
+                                  "scan " + std::to_string(seq) + ": registered again");
+    impl_->begin_work();
+    // Like a scan of a reopened session, it keeps the latency it was registered with live.
+    SavedScan item{.seq = seq, .resumed = true, .reregister = true};
+    item.previous_latency_s = record->latency_s;
+    impl_->to_register.push(std::move(item));
+    return {};
+}
+
 Expected<void> CaptureSession::add_note(std::optional<std::int64_t> seq, std::string_view text) {
     return impl_->store->add_note(seq, text);
 }

@@ -38,7 +38,8 @@ struct SavedScan {
     std::chrono::system_clock::time_point acknowledged_at{};
     bool resumed = false;                      ///< Registered again after the session was reopened.
     std::optional<double> previous_latency_s;  ///< Of a resumed scan.
-    int exclude_change = 0;  ///< Operator action instead of a scan: +1 exclude, -1 include.
+    int exclude_change = 0;   ///< Operator action instead of a scan: +1 exclude, -1 include.
+    bool reregister = false;  ///< Operator action: register this saved scan again.
 };
 
 struct CaptureSession::Impl {
@@ -60,6 +61,8 @@ struct CaptureSession::Impl {
     // Registration worker (capture_session_register.cpp).
     void registration_loop();
     void register_one(const SavedScan& saved);
+    /// Stores a decision of the registrar and reports it.
+    void record_decision(const SavedScan& saved, const LiveDecision& decision);
     /// One refine() call; true when it still found work (call again).
     bool refine_in_background();
     void update_coverage();

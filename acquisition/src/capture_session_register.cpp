@@ -13,20 +13,29 @@ double seconds_since(std::chrono::system_clock::time_point then) {
     return std::chrono::duration<double>(std::chrono::system_clock::now() - then).count();
 }
 
-std::string decision_message(const LiveDecision& decision, double latency_s) {
+/// "2.31 s after saving" for a new scan; a scan of a reopened session, or one the operator
+/// asked to register again, has no new latency.
+std::string when(std::optional<double> latency_s) {
+    if (!latency_s) return "registered again";
+    char text[48];
+    std::snprintf(text, sizeof(text), "%.2f s after saving", *latency_s);
+    return text;
+}
+
+std::string decision_message(const LiveDecision& decision, std::optional<double> latency_s) {
     char text[512];
     if (decision.registered && (decision.method == "first" || decision.method == "new-group"))
         std::snprintf(
-            text, sizeof(text), "registered scan %lld: opens group %d (%s), %.2f s after saving",
+            text, sizeof(text), "registered scan %lld: opens group %d (%s), %s",
             static_cast<long long>(decision.seq), decision.group,
             decision.method == "first" ? "the session's frame" : "matches no earlier scan yet",
-            latency_s);
+            when(latency_s).c_str());
     else if (decision.registered)
         std::snprintf(text, sizeof(text),
-                      "registered scan %lld: group %d by %s, RMS %.3f mm, overlap %.0f %%, "
-                      "%.2f s after saving",
+                      "registered scan %lld: group %d by %s, RMS %.3f mm, overlap %.0f %%, %s",
                       static_cast<long long>(decision.seq), decision.group, decision.method.c_str(),
-                      decision.rms_m * 1e3, decision.overlap_fraction * 100.0, latency_s);
+                      decision.rms_m * 1e3, decision.overlap_fraction * 100.0,
+                      when(latency_s).c_str());
     else
         std::snprintf(text, sizeof(text),
                       "scan %lld NOT registered: %s — check that the stone is in view and "
@@ -103,11 +112,18 @@ void CaptureSession::Impl::register_one(const SavedScan& saved) {
     }
     if (config.coverage_live)
         coverage_copies[saved.seq] = make_coverage_copy(*scan, config.coverage_voxel_size_m);
-    LiveDecision decision = registrar.add({.seq = saved.seq,
-                                           .cloud = scan->cloud,
-                                           .sensor_origin_scan_m = scan->meta.sensor_origin_scan_m,
-                                           .turned_over_before = saved.turned_over});
-    const double latency_s = seconds_since(saved.acknowledged_at);
+    LiveScanInput input{.seq = saved.seq,
+                        .cloud = scan->cloud,
+                        .sensor_origin_scan_m = scan->meta.sensor_origin_scan_m,
+                        .turned_over_before = saved.turned_over};
+    record_decision(saved, saved.reregister ? registrar.reregister(std::move(input))
+                                            : registrar.add(std::move(input)));
+}
+
+void CaptureSession::Impl::record_decision(const SavedScan& saved, const LiveDecision& decision) {
+    const std::optional<double> live_latency_s =
+        saved.resumed ? std::nullopt : std::optional<double>(seconds_since(saved.acknowledged_at));
+    const double latency_s = live_latency_s.value_or(0.0);
     const std::optional<double> recorded_latency =
         saved.resumed ? saved.previous_latency_s : std::optional<double>(latency_s);
     RegistrationUpdate update{
@@ -121,11 +137,12 @@ void CaptureSession::Impl::register_one(const SavedScan& saved) {
               .seq = saved.seq,
               .message = ok.error().message});
     if (!decision.registered)
-        (void)store->add_event("registration-failed", "", decision_message(decision, latency_s));
+        (void)store->add_event("registration-failed", "",
+                               decision_message(decision, live_latency_s));
     emit({.kind = decision.registered ? SessionEventKind::kRegistered
                                       : SessionEventKind::kRegistrationFailed,
           .seq = saved.seq,
-          .message = decision_message(decision, latency_s),
+          .message = decision_message(decision, live_latency_s),
           .group = decision.group,
           .method = decision.method,
           .rms_m = decision.rms_m,

@@ -43,16 +43,37 @@ LiveRegistrar::LiveRegistrar(LiveRegistrar&&) noexcept = default;
 LiveRegistrar& LiveRegistrar::operator=(LiveRegistrar&&) noexcept = default;
 
 LiveDecision LiveRegistrar::add(LiveScanInput scan) {
-    const Clock::time_point start = Clock::now();
-    State& s = *state_;
-    LiveDecision decision{.seq = scan.seq};
-    if (s.index_of_seq.contains(scan.seq)) {
-        decision.method = "unusable";
-        decision.message = "scan " + std::to_string(scan.seq) + " was already added";
-        return decision;
+    if (state_->index_of_seq.contains(scan.seq)) {
+        return {.seq = scan.seq,
+                .method = "unusable",
+                .message = "scan " + std::to_string(scan.seq) + " was already added"};
     }
+    return state_->place(std::move(scan), true);
+}
+
+LiveDecision LiveRegistrar::reregister(LiveScanInput scan) {
+    State& s = *state_;
+    if (const auto it = s.index_of_seq.find(scan.seq); it != s.index_of_seq.end()) {
+        // The old entry is retired (out of the model, the links and the refinement); the
+        // scan comes back as a new entry.
+        const std::size_t old = it->second;
+        s.scans[old] = {.seq = scan.seq, .excluded = true};
+        std::erase_if(s.links,
+                      [&](const live::Link& l) { return l.target == old || l.source == old; });
+        std::erase_if(s.link_tried, [&](const auto& kv) {
+            return kv.first.first == old || kv.first.second == old;
+        });
+        s.index_of_seq.erase(it);
+    }
+    scan.turned_over_before = false;
+    return s.place(std::move(scan), false);
+}
+
+LiveDecision LiveRegistrar::State::place(LiveScanInput scan, bool newest) {
+    const Clock::time_point start = Clock::now();
+    LiveDecision decision{.seq = scan.seq};
     const bool turned = scan.turned_over_before;
-    live::Prepared prepared = live::prepare_scan(std::move(scan), s.config);
+    live::Prepared prepared = live::prepare_scan(std::move(scan), config);
     decision.reduced_points = prepared.entry.cloud.size();
     if (!prepared.problem.empty()) {
         decision.method = "unusable";
@@ -60,33 +81,34 @@ LiveDecision LiveRegistrar::add(LiveScanInput scan) {
         decision.time_s = seconds_since(start);
         return decision;
     }
-    if (turned) s.awaiting_turn = true;
-    const bool first = s.groups().empty();
-    const std::size_t index = s.scans.size();
-    s.index_of_seq[decision.seq] = index;
-    s.scans.push_back(std::move(prepared.entry));
-
+    if (turned) awaiting_turn = true;
+    const bool first = groups().empty();
+    const std::size_t index = scans.size();
+    index_of_seq[decision.seq] = index;
+    scans.push_back(std::move(prepared.entry));
     std::optional<live::Verified> accepted;
     int group = -1;
     if (!first) {
-        accepted = s.try_cheap(s.scans[index], group, decision.method, decision);
+        // The operator's predictions belong to the newest scan; a scan registered again
+        // goes straight to global registration.
+        if (newest) accepted = try_cheap(scans[index], group, decision.method, decision);
         if (!accepted) {
-            accepted = s.try_global(index, group, decision);
+            accepted = try_global(index, group, decision);
             decision.method = "global";
         }
     }
-    live::ScanEntry& entry = s.scans[index];
+    live::ScanEntry& entry = scans[index];
     entry.registered = true;
     if (accepted) {
         copy_figures(accepted->fine, decision);
         decision.group = group;
-        s.accepted_rms_m.push_back(decision.rms_m);
-        s.accepted_normal_deviation.push_back(decision.normal_deviation_deg);
+        accepted_rms_m.push_back(decision.rms_m);
+        accepted_normal_deviation.push_back(decision.normal_deviation_deg);
     } else {
         decision.method = first ? "first" : "new-group";
-        decision.group = s.next_group++;
+        decision.group = next_group++;
     }
-    s.awaiting_turn = false;
+    if (newest) awaiting_turn = false;
     entry.group = decision.group;
     entry.T_group_scan = decision.T_group_scan;
     decision.registered = true;

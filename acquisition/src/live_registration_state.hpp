@@ -95,6 +95,8 @@ struct LiveRegistrar::State {
     std::vector<double> link_rms_m;      ///< RMS of every multi-view link (the session's noise).
     std::vector<double> accepted_rms_m;  ///< Of every accepted add() decision.
     std::vector<double> accepted_normal_deviation;  ///< Degrees, same.
+    /// Prepares and places a scan (add: `newest`; reregister: not, so no operator priors).
+    LiveDecision place(LiveScanInput scan, bool newest);
     /// Verification bounds from the config and the session's accepted figures.
     live::VerificationLimits limits() const;
     /// Largest RMS a global hypothesis may have to count (see global_rms_median_factor).

@@ -81,6 +81,37 @@ TEST_F(CaptureSessionTest, ScansAreAcknowledgedInOrderAndEachIsDecided) {
     EXPECT_EQ(opened, 1);
 }
 
+TEST_F(CaptureSessionTest, AScanCanBeRegisteredAgainButNotAnUnknownOrExcludedOne) {
+    int opened = 0;
+    auto session = start({.coverage_live = false});
+    ASSERT_TRUE(session->attach_scanner("sim:tof/small-block", tof_opener(nullptr, &opened)));
+    for (int i = 0; i < 3; ++i) ASSERT_TRUE(session->capture({}).get());
+    session->wait_until_idle();
+    const std::size_t decided =
+        count(SessionEventKind::kRegistered) + count(SessionEventKind::kRegistrationFailed);
+
+    ASSERT_TRUE(session->reregister(2));
+    session->wait_until_idle();
+    EXPECT_EQ(count(SessionEventKind::kRegistered) + count(SessionEventKind::kRegistrationFailed),
+              decided + 1);
+    auto scan = session->store().scan(2);
+    ASSERT_TRUE(scan);
+    EXPECT_NE(scan->state, ScanState::kQueued);
+    auto events = session->store().events();
+    ASSERT_TRUE(events);
+    EXPECT_TRUE(std::any_of(events->begin(), events->end(),
+                            [](const EventRecord& e) { return e.kind == "reregister"; }));
+
+    auto unknown = session->reregister(99);
+    ASSERT_FALSE(unknown);
+    EXPECT_NE(unknown.error().message.find("99"), std::string::npos) << unknown.error().message;
+    ASSERT_TRUE(session->exclude(3, true));
+    auto excluded = session->reregister(3);
+    ASSERT_FALSE(excluded);
+    EXPECT_NE(excluded.error().message.find("excluded"), std::string::npos)
+        << excluded.error().message;
+}
+
 TEST_F(CaptureSessionTest, UnpluggedMidScanIsAnEventAndTheSessionGoesOnWhenItIsBack) {
     auto faults = std::make_shared<sim::SimDeviceFaults>();
     faults->unplug_after_captures = 1;

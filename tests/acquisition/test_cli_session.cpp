@@ -100,6 +100,37 @@ TEST_F(SessionCli, ExcludeUndoNoteAndTurnOverAreRecorded) {
     EXPECT_TRUE(contains(bad.output, "no scan 99")) << bad.output;
 }
 
+TEST_F(SessionCli, RegisterDecidesEveryScanAgainAndReregistersTheOnesAskedFor) {
+    const auto run = run_cli("session register " + quoted() + " --scan 2");
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    // Scan 2 is decided twice: with the session, then on its own.
+    const auto count = [&](const std::string& part) {
+        std::size_t n = 0;
+        for (std::size_t at = 0; (at = run.output.find(part, at)) != std::string::npos; ++at) ++n;
+        return n;
+    };
+    const std::size_t decided_2 = count("registered scan 2:") + count("scan 2 NOT registered");
+    EXPECT_EQ(decided_2, 2u) << run.output;
+    const nlohmann::json doc = info();
+    for (const auto& scan : doc["scans"]) EXPECT_NE(scan["state"], "queued") << scan.dump();
+    auto store = SessionStore::open(session_, SessionOpenMode::kReadOnly);
+    ASSERT_TRUE(store) << store.error().message;
+    auto events = (*store)->events();
+    ASSERT_TRUE(events);
+    EXPECT_TRUE(std::any_of(events->begin(), events->end(), [](const acquisition::EventRecord& e) {
+        return e.kind == "reregister";
+    }));
+    store->reset();  // The next commands open it for writing.
+
+    const auto unknown = run_cli("session register " + quoted() + " --scan 99");
+    EXPECT_EQ(unknown.exit_code, 1);
+    EXPECT_TRUE(contains(unknown.output, "no scan 99")) << unknown.output;
+    ASSERT_EQ(run_cli("session exclude " + quoted() + " 3").exit_code, 0);
+    const auto excluded = run_cli("session register " + quoted() + " --scan 3");
+    EXPECT_EQ(excluded.exit_code, 1);
+    EXPECT_TRUE(contains(excluded.output, "excluded")) << excluded.output;
+}
+
 TEST_F(SessionCli, CheckNamesATruncatedFileAndRepairFlagsIt) {
     EXPECT_EQ(run_cli("session check " + quoted()).exit_code, 0);
     const fs::path file = session_ / "scans/scan_000002.ply";

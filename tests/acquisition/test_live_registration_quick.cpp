@@ -135,6 +135,31 @@ TEST_F(LiveRegistrationWalk, ExcludedScansLeaveTheModelAndComeBack) {
     EXPECT_EQ(r.model().size(), scans_->size());
 }
 
+TEST_F(LiveRegistrationWalk, AScanRegisteredAgainIsPlacedGloballyAndOnce) {
+    // Its own registrar (with features for the global registration): the operator asks to
+    // register scan 3 again; it must come back in the same group, once, at the same pose.
+    LiveRegistrar r;
+    for (std::size_t i = 0; i < scans_->size(); ++i)
+        ASSERT_TRUE(r.add({.seq = static_cast<std::int64_t>(i + 1), .cloud = (*scans_)[i].cloud})
+                        .registered);
+    const LiveDecision again = r.reregister({.seq = 3, .cloud = (*scans_)[2].cloud});
+    ASSERT_TRUE(again.registered) << again.message;
+    EXPECT_EQ(again.method, "global") << again.message;
+    EXPECT_EQ(again.group, 0) << again.message;
+    const std::vector<LiveModelScan> model = r.model();
+    EXPECT_EQ(model.size(), scans_->size());
+    EXPECT_EQ(std::count_if(model.begin(), model.end(),
+                            [](const LiveModelScan& m) { return m.seq == 3; }),
+              1);
+    const anascan::testing::PoseError e = anascan::testing::pose_error(
+        again.T_group_scan, scans_->front().T_true, (*scans_)[2].T_true,
+        anascan::testing::centroid_of((*scans_)[2].cloud));
+    EXPECT_LT(e.rotation_deg, 0.05) << again.message;
+    EXPECT_LT(e.translation_m, 0.0002) << again.message;
+    r.refine();  // Links and refinement run without the retired entry.
+    EXPECT_EQ(r.group_count(), 1u);
+}
+
 TEST(LiveRegistration, UnusableScansAreReportedAndNotPlaced) {
     LiveRegistrar registrar;
     const LiveDecision empty = registrar.add({.seq = 1});

@@ -91,6 +91,10 @@ public:
 
     /// Operator actions (recorded in the session, applied by the worker).
     Expected<void> exclude(std::int64_t seq, bool excluded);
+    /// Registers a saved scan again, from its file, against the other registered scans
+    /// (asynchronous: the result arrives as a registration event). Fails for an unknown or
+    /// excluded scan.
+    Expected<void> reregister(std::int64_t seq);
     Expected<void> add_note(std::optional<std::int64_t> seq, std::string_view text);
 
     SessionStore& store();

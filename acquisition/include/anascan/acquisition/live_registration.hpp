@@ -221,6 +221,11 @@ public:
 
     /// Registers one new scan; keeps its reduced copy, never the full cloud.
     LiveDecision add(LiveScanInput scan);
+    /// Places a scan again (operator action): its old placement, links and figures are
+    /// dropped and it is registered globally against the other registered scans (the
+    /// operator's motion priors belong to the newest scan), else it opens a new group. Also
+    /// for a scan not added before.
+    LiveDecision reregister(LiveScanInput scan);
     /// Background work: links, multi-view refinement, group merges. Returns the changed
     /// poses (`last_refine_report` has the figures).
     std::vector<PoseUpdate> refine();
