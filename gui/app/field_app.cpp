@@ -34,11 +34,13 @@ struct AppState {
     gui::ThemeConfig theme;
     bool fit_pending = true;  ///< Fit the camera in the next frame (its aspect is known there).
     std::unique_ptr<SessionLink> link;  ///< With --session.
+    bool reregister_sent = false;       ///< Headless --reregister-scan done.
 };
 
 /// A headless run with a session: capture (--capture-views), wait until the session has
-/// settled (registration done, points loaded), then count the --frames.
-enum class Phase { kCapturing, kSettling, kCounting };
+/// settled (registration done, points loaded), re-register a scan (--reregister-scan) and
+/// settle again, then count the --frames.
+enum class Phase { kCapturing, kSettling, kReregistering, kCounting };
 
 /// Loads the PLY files and the synthetic stone into the renderer and the scan list; the
 /// renderer keeps the only copy of the points (on the GPU).
@@ -180,7 +182,17 @@ Phase drive_session(const FieldAppConfig& config, AppState& app, Phase phase,
         if (!app.link->capturing()) actions.push_back({.kind = gui::UiActionKind::kCapture});
         return phase;
     }
+    if (phase == Phase::kReregistering) {  // the action was applied in the last frame
+        app.link->request_idle();
+        return Phase::kSettling;
+    }
     if (phase == Phase::kSettling && app.link->settled()) {
+        if (config.reregister_seq > 0 && !app.reregister_sent) {
+            actions.push_back(
+                {.kind = gui::UiActionKind::kReRegister, .seq = config.reregister_seq});
+            app.reregister_sent = true;
+            return Phase::kReregistering;
+        }
         app.fit_pending = true;  // the whole model in the screenshot
         return Phase::kCounting;
     }
@@ -239,11 +251,15 @@ int run_loop(const FieldAppConfig& config, FieldWindow& window, AppState& app) {
     int counted = 0;
     for (int frame = 0; config.frames == 0 || counted < config.frames; ++frame) {
         if (window.should_close()) break;
+        // Nothing left to refine: sleep until input (or 50 ms, for live updates) instead of
+        // spinning, so that capture and registration get the CPU. Headless runs do the same
+        // until they count their --frames, which are drawn back to back. A frame's time is
+        // counted from the end of that wait: the time to react and draw.
+        const bool idle = (config.frames == 0 || phase != Phase::kCounting) && stats.complete &&
+                          !ImGui::IsAnyMouseDown();
+        window.wait_events(idle ? 0.05 : 0.0);
         const auto start = std::chrono::steady_clock::now();
-        // Interactive and nothing left to refine: sleep until input (or 50 ms, for live
-        // updates) instead of spinning; measurement runs (--frames) never wait.
-        const bool idle = config.frames == 0 && stats.complete && !ImGui::IsAnyMouseDown();
-        window.begin_frame(idle ? 0.05 : 0.0);
+        window.begin_frame();
         poll_session(app);
         gui::UiActions actions;
         if (app.link) phase = drive_session(config, app, phase, actions);

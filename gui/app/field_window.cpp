@@ -66,12 +66,15 @@ FieldWindow::~FieldWindow() {
 
 bool FieldWindow::should_close() const { return glfwWindowShouldClose(window_) == GLFW_TRUE; }
 
-void FieldWindow::begin_frame(double idle_wait_s) {
+void FieldWindow::wait_events(double idle_wait_s) {
     if (idle_wait_s > 0.0) {
         glfwWaitEventsTimeout(idle_wait_s);
     } else {
         glfwPollEvents();
     }
+}
+
+void FieldWindow::begin_frame() {
     ImGui_ImplOpenGL3_NewFrame();  // creates the font texture at the first frame
     if (font_scaled_) use_nearest_font_filter();
     ImGui_ImplGlfw_NewFrame();

@@ -30,9 +30,11 @@ public:
     FieldWindow& operator=(const FieldWindow&) = delete;
 
     bool should_close() const;
-    /// Takes the pending events (or, with idle_wait_s > 0, waits up to that long for one, so
-    /// an idle window leaves the CPU to capture and registration) and starts an ImGui frame.
-    void begin_frame(double idle_wait_s = 0.0);
+    /// Takes the pending events, or with idle_wait_s > 0 waits up to that long for one (an
+    /// idle window leaves the CPU to capture and registration).
+    void wait_events(double idle_wait_s);
+    /// Starts an ImGui frame (after wait_events).
+    void begin_frame();
     /// Renders ImGui's draw data over the scene (call after drawing the scene).
     void render_ui();
     void swap();

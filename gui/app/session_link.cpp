@@ -96,9 +96,12 @@ void SessionLink::poll(gui::FieldViewState& view, gui::PointRenderer& renderer) 
 void SessionLink::drain_events(gui::FieldViewState& view) {
     for (const acquisition::SessionEvent& event : events_->take()) {
         switch (event.kind) {
-            case SessionEventKind::kSaved:
             case SessionEventKind::kRegistered:
             case SessionEventKind::kRegistrationFailed:
+                reregistering_.erase(event.seq);  // its new result is in the row
+                dirty_ = true;
+                break;
+            case SessionEventKind::kSaved:
             case SessionEventKind::kPosesRefined:
                 dirty_ = true;
                 break;
@@ -176,8 +179,12 @@ void SessionLink::refresh(gui::FieldViewState& view, gui::PointRenderer& rendere
     view.status.queued_registrations = 0;
     for (const acquisition::ScanRecord& record : *scans) {
         view.scans.push_back(gui::scan_row(record));
-        if (record.state == acquisition::ScanState::kQueued && !record.excluded)
-            ++view.status.queued_registrations;
+        gui::ScanRow& row = view.scans.back();
+        if (reregistering_.contains(record.seq) && row.state != gui::ScanRowState::kExcluded) {
+            row.state = gui::ScanRowState::kQueued;  // until its new result arrives
+            row.message = "registering again";
+        }
+        if (row.state == gui::ScanRowState::kQueued) ++view.status.queued_registrations;
     }
     update_chunks(*scans, renderer);
 }
@@ -251,7 +258,7 @@ void SessionLink::refresh_coverage(gui::FieldViewState& view, gui::PointRenderer
 
 bool SessionLink::settled() const {
     return !pending_capture_ && !pending_load_ && !pending_check_ && !pending_idle_ && !dirty_ &&
-           to_load_.empty();
+           to_load_.empty() && reregistering_.empty();
 }
 
 bool SessionLink::busy(const gui::FieldViewState& view) const {

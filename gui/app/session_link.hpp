@@ -86,6 +86,7 @@ private:
     void capture(gui::FieldViewState& view);
     bool attach(const std::string& uri, gui::FieldViewState& view);
     void set_excluded(std::int64_t seq, bool excluded, gui::FieldViewState& view);
+    void reregister(std::int64_t seq, gui::FieldViewState& view);
     void drain_events(gui::FieldViewState& view);
     void poll_futures(gui::FieldViewState& view);
     void refresh(gui::FieldViewState& view, gui::PointRenderer& renderer);
@@ -105,12 +106,13 @@ private:
     bool turned_over_pending_ = false;
     bool dirty_ = true, coverage_dirty_ = true;
     std::chrono::steady_clock::time_point next_timed_refresh_{};
-    std::map<std::int64_t, Pose> shown_;   ///< Chunks in the renderer and their poses.
-    std::map<std::int64_t, Pose> wanted_;  ///< Scans the view should show, at these poses.
-    std::vector<std::int64_t> to_load_;    ///< Registered scans whose points are not shown yet.
-    std::set<std::int64_t> unloadable_;    ///< Scans whose file could not be read.
-    std::string load_error_;               ///< For the status bar.
-    std::string coverage_json_;            ///< The stored coverage last shown.
+    std::map<std::int64_t, Pose> shown_;    ///< Chunks in the renderer and their poses.
+    std::map<std::int64_t, Pose> wanted_;   ///< Scans the view should show, at these poses.
+    std::vector<std::int64_t> to_load_;     ///< Registered scans whose points are not shown yet.
+    std::set<std::int64_t> unloadable_;     ///< Scans whose file could not be read.
+    std::set<std::int64_t> reregistering_;  ///< Asked to register again, no result yet.
+    std::string load_error_;                ///< For the status bar.
+    std::string coverage_json_;             ///< The stored coverage last shown.
     // Futures last: destroyed (and waited for) before the session they use.
     std::optional<std::future<Expected<std::int64_t>>> pending_capture_;
     std::optional<std::future<Expected<Scan>>> pending_load_;

@@ -109,6 +109,21 @@ void SessionLink::set_excluded(std::int64_t seq, bool excluded, gui::FieldViewSt
     dirty_ = true;
 }
 
+/// Registers a saved scan again (CaptureSession::reregister, asynchronous: the row changes
+/// when its registration event arrives). A session only viewed so far is opened for
+/// capture first, as by the capture action.
+void SessionLink::reregister(std::int64_t seq, gui::FieldViewState& view) {
+    if (seq < 0) return;
+    if (!session_ && !start_session(view)) return;
+    if (auto ok = session_->reregister(seq); !ok) {
+        view.status.last_error = "re-register: " + ok.error().message;
+        return;
+    }
+    view.status.last_error.clear();
+    reregistering_.insert(seq);
+    dirty_ = true;
+}
+
 bool SessionLink::apply(const gui::UiAction& action, gui::FieldViewState& view) {
     switch (action.kind) {
         case gui::UiActionKind::kCapture:
@@ -124,9 +139,7 @@ bool SessionLink::apply(const gui::UiAction& action, gui::FieldViewState& view) 
             turned_over_pending_ = true;
             return true;
         case gui::UiActionKind::kReRegister:
-            view.status.last_error =
-                "re-register: not offered by the capture session yet (exclude and include the "
-                "scan instead)";
+            reregister(action.seq, view);
             return true;
         case gui::UiActionKind::kConnectDevice:
             if (action.device_index >= 0 &&

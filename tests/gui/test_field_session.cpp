@@ -105,6 +105,21 @@ TEST_F(FieldSession, ShowsASessionAsSessionInfoAndCoverageReportIt) {
     EXPECT_GT(fraction_not(image, cv::Rect(500, 150, 370, 450), kClearRgb), 0.05)
         << "no model drawn in the view";
 
+    // Re-register scan 2 from the scan list's action (the session is opened for capture):
+    // the row gets a new decision and the session records the operator's action.
+    const int events_before = cli_json("session info " + session.string() + " --json")["events"];
+    const RunResult again =
+        field("--session " + session.string() + " --reregister-scan 2 --frames 2 --dump-state " +
+              state_file.string());
+    ASSERT_EQ(again.exit_code, 0) << again.output;
+    const json after = read_json(state_file);
+    ASSERT_EQ(after["scans"].size(), 2u) << after.dump(2);
+    EXPECT_NE(after["scans"][1]["state"], "queued") << after.dump(2);
+    EXPECT_EQ(after["queued_registrations"], 0);
+    EXPECT_EQ(after["last_error"], "") << after.dump(2);
+    const json info = cli_json("session info " + session.string() + " --json");
+    EXPECT_GT(info["events"].get<int>(), events_before) << "the re-register event";
+
     // After a "crash" that damaged a scan file, reopening shows what `session check` found.
     fs::resize_file(session / "scans" / "scan_000002.ply", 200);
     const RunResult reopened =
