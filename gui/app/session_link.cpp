@@ -91,6 +91,27 @@ void SessionLink::poll(gui::FieldViewState& view, gui::PointRenderer& renderer) 
     if (!load_error_.empty()) view.status.last_error = std::exchange(load_error_, {});
     if (coverage_dirty_) refresh_coverage(view, renderer);
     poll_load(renderer);
+    poll_preview(view);
+}
+
+/// The newest scan's preview, read and projected off the UI thread (its points are freed
+/// there), uploaded here; a newer scan waits for the read in progress.
+void SessionLink::poll_preview(gui::FieldViewState& view) {
+    if (ready(pending_preview_)) {
+        const Expected<gui::ScanPreview> preview = pending_preview_->get();
+        pending_preview_.reset();
+        if (preview) preview_texture_.show(*preview, view.device);
+    }
+    if (pending_preview_ || newest_seq_ <= preview_seq_ || store() == nullptr) return;
+    preview_seq_ = newest_seq_;
+    pending_preview_ = std::async(std::launch::async,
+                                  [store = store(), seq = preview_seq_,
+                                   n = config_.worker_nice]() -> Expected<gui::ScanPreview> {
+                                      lower_this_thread_priority(n);
+                                      auto scan = store->load_scan(seq);
+                                      if (!scan) return fail(scan.error());
+                                      return gui::make_scan_preview(*scan);
+                                  });
 }
 
 void SessionLink::drain_events(gui::FieldViewState& view) {
@@ -178,6 +199,7 @@ void SessionLink::refresh(gui::FieldViewState& view, gui::PointRenderer& rendere
     view.scans.clear();
     view.status.queued_registrations = 0;
     for (const acquisition::ScanRecord& record : *scans) {
+        newest_seq_ = std::max(newest_seq_, record.seq);
         view.scans.push_back(gui::scan_row(record));
         gui::ScanRow& row = view.scans.back();
         if (reregistering_.contains(record.seq) && row.state != gui::ScanRowState::kExcluded) {
@@ -258,7 +280,8 @@ void SessionLink::refresh_coverage(gui::FieldViewState& view, gui::PointRenderer
 
 bool SessionLink::settled() const {
     return !pending_capture_ && !pending_load_ && !pending_check_ && !pending_idle_ && !dirty_ &&
-           to_load_.empty() && reregistering_.empty();
+           to_load_.empty() && reregistering_.empty() && !pending_preview_ &&
+           newest_seq_ <= preview_seq_;
 }
 
 bool SessionLink::busy(const gui::FieldViewState& view) const {

@@ -24,8 +24,10 @@
 #include "anascan/acquisition/session_check.hpp"
 #include "anascan/gui/field_view_state.hpp"
 #include "anascan/gui/point_renderer.hpp"
+#include "anascan/gui/scan_preview.hpp"
 #include "anascan/gui/ui_action.hpp"
 #include "anascan/runtime/scanner_source.hpp"
+#include "preview_texture.hpp"
 
 namespace anascan::field {
 
@@ -93,6 +95,7 @@ private:
     void update_chunks(const std::vector<acquisition::ScanRecord>& scans,
                        gui::PointRenderer& renderer);
     void poll_load(gui::PointRenderer& renderer);
+    void poll_preview(gui::FieldViewState& view);
     void refresh_coverage(gui::FieldViewState& view, gui::PointRenderer& renderer);
     void set_device_status(gui::FieldViewState& view, bool connected, std::string status);
 
@@ -113,11 +116,15 @@ private:
     std::set<std::int64_t> reregistering_;  ///< Asked to register again, no result yet.
     std::string load_error_;                ///< For the status bar.
     std::string coverage_json_;             ///< The stored coverage last shown.
+    std::int64_t newest_seq_ = -1;          ///< The newest scan in the session.
+    std::int64_t preview_seq_ = -1;         ///< The scan previewed (or being read for it).
+    PreviewTexture preview_texture_;
     // Futures last: destroyed (and waited for) before the session they use.
     std::optional<std::future<Expected<std::int64_t>>> pending_capture_;
     std::optional<std::future<Expected<Scan>>> pending_load_;
     std::int64_t loading_seq_ = -1;
     std::optional<std::future<Expected<acquisition::SessionCheckReport>>> pending_check_;
+    std::optional<std::future<Expected<gui::ScanPreview>>> pending_preview_;
     std::optional<std::future<void>> pending_idle_;
 };
 

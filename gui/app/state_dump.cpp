@@ -83,6 +83,11 @@ Expected<void> write_state_json(const std::filesystem::path& file, const gui::Fi
          banner ? nlohmann::json(banner_kind_name(banner->kind)) : nlohmann::json(nullptr)},
         {"devices", devices_json(view)},
         {"active_device", view.device.active_device},
+        {"preview",
+         {{"shown", view.device.preview_texture != 0},
+          {"width_px", view.device.preview_width_px},
+          {"height_px", view.device.preview_height_px},
+          {"caption", view.device.preview_caption}}},
         {"points_total", figures.points_total},
         {"chunks", figures.chunks}};
     std::ofstream out(file);

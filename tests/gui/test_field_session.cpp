@@ -145,6 +145,10 @@ TEST_F(FieldSession, CapturesFromTheCaptureActionRegisterLive) {
     EXPECT_GE(registered_rows(state), 2) << state.dump(2);
     EXPECT_EQ(state["queued_registrations"], 0);
     EXPECT_GT(state["points_total"].get<double>(), 0.0);
+    // The device panel shows the last scan as the scanner saw it.
+    EXPECT_TRUE(state["preview"]["shown"].get<bool>()) << state["preview"].dump();
+    EXPECT_GT(state["preview"]["height_px"].get<int>(), 0);
+    EXPECT_NE(state["preview"]["caption"].get<std::string>().find("Scan 3"), std::string::npos);
     // The session on disk holds what the app showed.
     const json stored = cli_json("session info " + session.string() + " --json");
     ASSERT_TRUE(stored.is_object());

@@ -45,6 +45,10 @@ struct DevicePanelState {
     std::vector<DeviceRow> devices;
     int active_device = -1;  ///< Index into devices, -1 when none is chosen.
     bool capturing = false;  ///< A capture is in progress: the capture button is disabled.
+    /// The last scan as the scanner saw it (scan_preview.hpp): an OpenGL texture (0: none).
+    std::uintptr_t preview_texture = 0;
+    int preview_width_px = 0, preview_height_px = 0;
+    std::string preview_caption;  ///< "Scan 12 as the scanner saw it (153 204 points)".
 };
 
 /// The status bar figures; an absent figure shows as "-".
