@@ -34,11 +34,13 @@ struct AppState {
     gui::ThemeConfig theme;
     bool fit_pending = true;  ///< Fit the camera in the next frame (its aspect is known there).
     std::unique_ptr<SessionLink> link;  ///< With --session.
+    bool reregister_sent = false;       ///< Headless --reregister-scan done.
 };
 
 /// A headless run with a session: capture (--capture-views), wait until the session has
-/// settled (registration done, points loaded), then count the --frames.
-enum class Phase { kCapturing, kSettling, kCounting };
+/// settled (registration done, points loaded), re-register a scan (--reregister-scan) and
+/// settle again, then count the --frames.
+enum class Phase { kCapturing, kSettling, kReregistering, kCounting };
 
 /// Loads the PLY files and the synthetic stone into the renderer and the scan list; the
 /// renderer keeps the only copy of the points (on the GPU).
@@ -117,7 +119,9 @@ void apply_actions(const gui::UiActions& actions, AppState& app, bool font_scale
 gui::DrawStats draw_scene(AppState& app, const gui::PanelLayout& layout, int fb_w, int fb_h,
                           const gui::DrawConfig& draw) {
     glViewport(0, 0, fb_w, fb_h);
-    glClearColor(kBackground.x(), kBackground.y(), kBackground.z(), 1.0f);
+    // The panels' background (they draw none: panels.hpp); the view is copied over it.
+    const gui::PanelBackground bg = gui::panel_background();
+    glClearColor(bg.r, bg.g, bg.b, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     // Window pixels (top left) to frame-buffer pixels (bottom left), HiDPI-safe.
     const float sx = static_cast<float>(fb_w) / std::max(layout.width_px, 1.0f);
@@ -178,7 +182,17 @@ Phase drive_session(const FieldAppConfig& config, AppState& app, Phase phase,
         if (!app.link->capturing()) actions.push_back({.kind = gui::UiActionKind::kCapture});
         return phase;
     }
+    if (phase == Phase::kReregistering) {  // the action was applied in the last frame
+        app.link->request_idle();
+        return Phase::kSettling;
+    }
     if (phase == Phase::kSettling && app.link->settled()) {
+        if (config.reregister_seq > 0 && !app.reregister_sent) {
+            actions.push_back(
+                {.kind = gui::UiActionKind::kReRegister, .seq = config.reregister_seq});
+            app.reregister_sent = true;
+            return Phase::kReregistering;
+        }
         app.fit_pending = true;  // the whole model in the screenshot
         return Phase::kCounting;
     }
@@ -237,11 +251,15 @@ int run_loop(const FieldAppConfig& config, FieldWindow& window, AppState& app) {
     int counted = 0;
     for (int frame = 0; config.frames == 0 || counted < config.frames; ++frame) {
         if (window.should_close()) break;
+        // Nothing left to refine: sleep until input (or 50 ms, for live updates) instead of
+        // spinning, so that capture and registration get the CPU. Headless runs do the same
+        // until they count their --frames, which are drawn back to back. A frame's time is
+        // counted from the end of that wait: the time to react and draw.
+        const bool idle = (config.frames == 0 || phase != Phase::kCounting) && stats.complete &&
+                          !ImGui::IsAnyMouseDown();
+        window.wait_events(idle ? 0.05 : 0.0);
         const auto start = std::chrono::steady_clock::now();
-        // Interactive and nothing left to refine: sleep until input (or 50 ms, for live
-        // updates) instead of spinning; measurement runs (--frames) never wait.
-        const bool idle = config.frames == 0 && stats.complete && !ImGui::IsAnyMouseDown();
-        window.begin_frame(idle ? 0.05 : 0.0);
+        window.begin_frame();
         poll_session(app);
         gui::UiActions actions;
         if (app.link) phase = drive_session(config, app, phase, actions);
@@ -294,7 +312,8 @@ SessionLinkConfig session_link_config(const FieldAppConfig& config) {
         .device_uri = config.device,
         .tour = {.views = config.tour_views,
                  .flip_after = config.flip_after < 0 ? config.tour_views / 2 : config.flip_after},
-        .sim_unplug_after = config.sim_unplug_after};
+        .sim_unplug_after = config.sim_unplug_after,
+        .worker_nice = config.worker_nice};
     link.settings.angular_step_deg = config.angular_step_deg;
     return link;
 }

@@ -4,6 +4,7 @@
 /// `frames` frames are drawn; then the screenshot and the frame-time report.
 
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -29,11 +30,13 @@ struct FieldAppConfig {
     gui::ColorMode color_mode = gui::ColorMode::kByScan;
     std::optional<std::filesystem::path> session;  ///< Session folder (opened or created).
     std::string device = "sim:structured-light/small-block";  ///< Active device at start.
-    int capture_views = 0;  ///< Headless: this many captures through the capture action.
-    int tour_views = 24;    ///< The simulated operator's tour around the block.
-    int flip_after = -1;    ///< Turned over after this many views (-1: half the tour).
+    int capture_views = 0;            ///< Headless: this many captures through the capture action.
+    std::int64_t reregister_seq = 0;  ///< Headless: re-register this scan once settled (0: none).
+    int tour_views = 24;              ///< The simulated operator's tour around the block.
+    int flip_after = -1;              ///< Turned over after this many views (-1: half the tour).
     std::optional<double> angular_step_deg;  ///< Terrestrial scanner setting, degrees.
     int sim_unplug_after = -1;               ///< Fault injection (simulated scanners).
+    int worker_nice = 10;  ///< Capture/registration threads' nice value over the UI thread.
     std::optional<std::filesystem::path> dump_state_json;  ///< The view state at the end.
     double session_timeout_s = 600.0;  ///< Headless: give up waiting for the session.
 };

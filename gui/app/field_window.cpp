@@ -7,6 +7,8 @@
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
 
+#include <cstdint>
+
 #include "anascan/gui/theme.hpp"
 
 namespace anascan::field {
@@ -64,15 +66,33 @@ FieldWindow::~FieldWindow() {
 
 bool FieldWindow::should_close() const { return glfwWindowShouldClose(window_) == GLFW_TRUE; }
 
-void FieldWindow::begin_frame(double idle_wait_s) {
+void FieldWindow::wait_events(double idle_wait_s) {
     if (idle_wait_s > 0.0) {
         glfwWaitEventsTimeout(idle_wait_s);
     } else {
         glfwPollEvents();
     }
-    ImGui_ImplOpenGL3_NewFrame();
+}
+
+void FieldWindow::begin_frame() {
+    ImGui_ImplOpenGL3_NewFrame();  // creates the font texture at the first frame
+    if (font_scaled_) use_nearest_font_filter();
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();
+}
+
+/// The glyphs are drawn at the size they were rasterised at, on whole pixels (ImGui floors
+/// text positions), so nearest filtering draws the same text as linear, and costs llvmpipe
+/// far less per pixel (every panel pixel samples the atlas). Once per font texture.
+void FieldWindow::use_nearest_font_filter() {
+    const auto texture =
+        static_cast<GLuint>(reinterpret_cast<std::intptr_t>(ImGui::GetIO().Fonts->TexID));
+    if (texture == 0 || texture == nearest_font_texture_) return;
+    glBindTexture(GL_TEXTURE_2D, texture);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    nearest_font_texture_ = texture;
 }
 
 void FieldWindow::render_ui() {

@@ -30,9 +30,11 @@ public:
     FieldWindow& operator=(const FieldWindow&) = delete;
 
     bool should_close() const;
-    /// Takes the pending events (or, with idle_wait_s > 0, waits up to that long for one, so
-    /// an idle window leaves the CPU to capture and registration) and starts an ImGui frame.
-    void begin_frame(double idle_wait_s = 0.0);
+    /// Takes the pending events, or with idle_wait_s > 0 waits up to that long for one (an
+    /// idle window leaves the CPU to capture and registration).
+    void wait_events(double idle_wait_s);
+    /// Starts an ImGui frame (after wait_events).
+    void begin_frame();
     /// Renders ImGui's draw data over the scene (call after drawing the scene).
     void render_ui();
     void swap();
@@ -44,10 +46,12 @@ public:
 
 private:
     explicit FieldWindow(GLFWwindow* window) : window_(window) {}
+    void use_nearest_font_filter();
     GLFWwindow* window_ = nullptr;
     bool imgui_glfw_ = false;
     bool imgui_gl_ = false;
     bool font_scaled_ = false;
+    unsigned nearest_font_texture_ = 0;  ///< The font texture last set to GL_NEAREST.
 };
 
 }  // namespace anascan::field

@@ -34,6 +34,14 @@ void add_session_options(CLI::App& app, anascan::field::FieldAppConfig& config) 
     app.add_option("--session-timeout-s", config.session_timeout_s,
                    "Headless: give up when the session has not settled after this long, s")
         ->check(CLI::PositiveNumber);
+    app.add_option("--worker-nice", config.worker_nice,
+                   "Capture, persistence and registration threads run this much nicer than the "
+                   "drawing thread (0-19, default 10; 0: same priority)")
+        ->check(CLI::Range(0, 19));
+    app.add_option("--reregister-scan", config.reregister_seq,
+                   "Headless: once the session has settled, re-register this scan through the "
+                   "scan list's action and wait for its result (needs --session and --frames)")
+        ->check(CLI::PositiveNumber);
     // Fault injection for the tests: hidden (empty group).
     app.add_option("--sim-unplug-after", config.sim_unplug_after,
                    "Simulated device unplugged during the capture after this many")

@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "anascan/gui/session_view.hpp"
+#include "thread_priority.hpp"
 
 namespace anascan::field {
 namespace {
@@ -32,9 +33,12 @@ SessionLink::SessionLink(SessionLinkConfig config) : config_(std::move(config)) 
 
 SessionLink::~SessionLink() = default;
 
+// The UI reads through its own read-only connection even while the app captures: a
+// WAL reader never waits for the session's writes (their commits fsync), whereas the
+// capture session's store is shared with its threads under one mutex.
 const acquisition::SessionStore* SessionLink::store() const {
-    if (session_) return &session_->store();
-    return read_store_.get();
+    if (read_store_) return read_store_.get();
+    return session_ ? &session_->store() : nullptr;
 }
 
 void SessionLink::open(gui::FieldViewState& view) {
@@ -64,8 +68,10 @@ void SessionLink::open(gui::FieldViewState& view) {
         return;
     }
     read_store_ = std::move(*store);
-    pending_check_ = std::async(std::launch::async,
-                                [dir = config_.dir] { return acquisition::check_session(dir); });
+    pending_check_ = std::async(std::launch::async, [dir = config_.dir, n = config_.worker_nice] {
+        lower_this_thread_priority(n);
+        return acquisition::check_session(dir);
+    });
 }
 
 void SessionLink::poll(gui::FieldViewState& view, gui::PointRenderer& renderer) {
@@ -85,14 +91,38 @@ void SessionLink::poll(gui::FieldViewState& view, gui::PointRenderer& renderer) 
     if (!load_error_.empty()) view.status.last_error = std::exchange(load_error_, {});
     if (coverage_dirty_) refresh_coverage(view, renderer);
     poll_load(renderer);
+    poll_preview(view);
+}
+
+/// The newest scan's preview, read and projected off the UI thread (its points are freed
+/// there), uploaded here; a newer scan waits for the read in progress.
+void SessionLink::poll_preview(gui::FieldViewState& view) {
+    if (ready(pending_preview_)) {
+        const Expected<gui::ScanPreview> preview = pending_preview_->get();
+        pending_preview_.reset();
+        if (preview) preview_texture_.show(*preview, view.device);
+    }
+    if (pending_preview_ || newest_seq_ <= preview_seq_ || store() == nullptr) return;
+    preview_seq_ = newest_seq_;
+    pending_preview_ = std::async(std::launch::async,
+                                  [store = store(), seq = preview_seq_,
+                                   n = config_.worker_nice]() -> Expected<gui::ScanPreview> {
+                                      lower_this_thread_priority(n);
+                                      auto scan = store->load_scan(seq);
+                                      if (!scan) return fail(scan.error());
+                                      return gui::make_scan_preview(*scan);
+                                  });
 }
 
 void SessionLink::drain_events(gui::FieldViewState& view) {
     for (const acquisition::SessionEvent& event : events_->take()) {
         switch (event.kind) {
-            case SessionEventKind::kSaved:
             case SessionEventKind::kRegistered:
             case SessionEventKind::kRegistrationFailed:
+                reregistering_.erase(event.seq);  // its new result is in the row
+                dirty_ = true;
+                break;
+            case SessionEventKind::kSaved:
             case SessionEventKind::kPosesRefined:
                 dirty_ = true;
                 break;
@@ -122,14 +152,16 @@ void SessionLink::poll_futures(gui::FieldViewState& view) {
         ++captures_finished_;
         if (acknowledged) {
             ++acknowledged_;
+            view.capture_problem.reset();  // recovered: the banner goes
+            set_device_status(view, true, "ready");
         } else {
             const Error& error = acknowledged.error();
-            const bool away =
-                error.code == ErrorCode::kDisconnected || error.code == ErrorCode::kTimeout;
-            view.status.last_error =
-                "capture failed: " + error.message +
-                (away ? " (unplugged or silent: plug it in, then capture again)" : "");
-            if (away) set_device_status(view, false, "unplugged or silent");
+            view.capture_problem = gui::capture_problem(error);
+            view.status.last_error = view.capture_problem->line();
+            if (error.code == ErrorCode::kDisconnected || error.code == ErrorCode::kTimeout)
+                set_device_status(view, false, "unplugged or silent");
+            else
+                set_device_status(view, true, "ready; " + view.capture_problem->headline);
         }
         dirty_ = true;
     }
@@ -167,9 +199,14 @@ void SessionLink::refresh(gui::FieldViewState& view, gui::PointRenderer& rendere
     view.scans.clear();
     view.status.queued_registrations = 0;
     for (const acquisition::ScanRecord& record : *scans) {
+        newest_seq_ = std::max(newest_seq_, record.seq);
         view.scans.push_back(gui::scan_row(record));
-        if (record.state == acquisition::ScanState::kQueued && !record.excluded)
-            ++view.status.queued_registrations;
+        gui::ScanRow& row = view.scans.back();
+        if (reregistering_.contains(record.seq) && row.state != gui::ScanRowState::kExcluded) {
+            row.state = gui::ScanRowState::kQueued;  // until its new result arrives
+            row.message = "registering again";
+        }
+        if (row.state == gui::ScanRowState::kQueued) ++view.status.queued_registrations;
     }
     update_chunks(*scans, renderer);
 }
@@ -221,9 +258,11 @@ void SessionLink::poll_load(gui::PointRenderer& renderer) {
     if (pending_load_ || to_load_.empty() || store() == nullptr) return;
     loading_seq_ = to_load_.front();
     to_load_.erase(to_load_.begin());
-    pending_load_ = std::async(std::launch::async, [store = store(), seq = loading_seq_] {
-        return store->load_scan(seq);
-    });
+    pending_load_ = std::async(std::launch::async,
+                               [store = store(), seq = loading_seq_, n = config_.worker_nice] {
+                                   lower_this_thread_priority(n);
+                                   return store->load_scan(seq);
+                               });
 }
 
 void SessionLink::refresh_coverage(gui::FieldViewState& view, gui::PointRenderer& renderer) {
@@ -231,6 +270,9 @@ void SessionLink::refresh_coverage(gui::FieldViewState& view, gui::PointRenderer
     if (store() == nullptr) return;
     const auto json = store()->value("coverage");
     if (!json || !*json) return;
+    // Unchanged: keep the markers (new markers would restart the view's refinement).
+    if (**json == coverage_json_) return;
+    coverage_json_ = **json;
     const gui::StoredCoverage coverage = gui::parse_coverage_json(**json);
     if (coverage.fraction) view.status.coverage_percent = *coverage.fraction * 100.0;
     renderer.set_hole_markers(coverage.holes);
@@ -238,7 +280,8 @@ void SessionLink::refresh_coverage(gui::FieldViewState& view, gui::PointRenderer
 
 bool SessionLink::settled() const {
     return !pending_capture_ && !pending_load_ && !pending_check_ && !pending_idle_ && !dirty_ &&
-           to_load_.empty();
+           to_load_.empty() && reregistering_.empty() && !pending_preview_ &&
+           newest_seq_ <= preview_seq_;
 }
 
 bool SessionLink::busy(const gui::FieldViewState& view) const {

@@ -24,8 +24,10 @@
 #include "anascan/acquisition/session_check.hpp"
 #include "anascan/gui/field_view_state.hpp"
 #include "anascan/gui/point_renderer.hpp"
+#include "anascan/gui/scan_preview.hpp"
 #include "anascan/gui/ui_action.hpp"
 #include "anascan/runtime/scanner_source.hpp"
+#include "preview_texture.hpp"
 
 namespace anascan::field {
 
@@ -35,6 +37,9 @@ struct SessionLinkConfig {
     runtime::SimulatedTour tour;                                  ///< For simulated scanners.
     runtime::ScannerSettings settings;
     int sim_unplug_after = -1;  ///< Fault injection (simulated scanners), -1: never.
+    /// Nice increment of the capture session's threads and the scan loads over the UI
+    /// thread (thread_priority.hpp); 0: same priority.
+    int worker_nice = 10;
 };
 
 /// Session events, pushed by acquisition's threads, drained by the UI thread.
@@ -83,12 +88,14 @@ private:
     void capture(gui::FieldViewState& view);
     bool attach(const std::string& uri, gui::FieldViewState& view);
     void set_excluded(std::int64_t seq, bool excluded, gui::FieldViewState& view);
+    void reregister(std::int64_t seq, gui::FieldViewState& view);
     void drain_events(gui::FieldViewState& view);
     void poll_futures(gui::FieldViewState& view);
     void refresh(gui::FieldViewState& view, gui::PointRenderer& renderer);
     void update_chunks(const std::vector<acquisition::ScanRecord>& scans,
                        gui::PointRenderer& renderer);
     void poll_load(gui::PointRenderer& renderer);
+    void poll_preview(gui::FieldViewState& view);
     void refresh_coverage(gui::FieldViewState& view, gui::PointRenderer& renderer);
     void set_device_status(gui::FieldViewState& view, bool connected, std::string status);
 
@@ -102,16 +109,22 @@ private:
     bool turned_over_pending_ = false;
     bool dirty_ = true, coverage_dirty_ = true;
     std::chrono::steady_clock::time_point next_timed_refresh_{};
-    std::map<std::int64_t, Pose> shown_;   ///< Chunks in the renderer and their poses.
-    std::map<std::int64_t, Pose> wanted_;  ///< Scans the view should show, at these poses.
-    std::vector<std::int64_t> to_load_;    ///< Registered scans whose points are not shown yet.
-    std::set<std::int64_t> unloadable_;    ///< Scans whose file could not be read.
-    std::string load_error_;               ///< For the status bar.
+    std::map<std::int64_t, Pose> shown_;    ///< Chunks in the renderer and their poses.
+    std::map<std::int64_t, Pose> wanted_;   ///< Scans the view should show, at these poses.
+    std::vector<std::int64_t> to_load_;     ///< Registered scans whose points are not shown yet.
+    std::set<std::int64_t> unloadable_;     ///< Scans whose file could not be read.
+    std::set<std::int64_t> reregistering_;  ///< Asked to register again, no result yet.
+    std::string load_error_;                ///< For the status bar.
+    std::string coverage_json_;             ///< The stored coverage last shown.
+    std::int64_t newest_seq_ = -1;          ///< The newest scan in the session.
+    std::int64_t preview_seq_ = -1;         ///< The scan previewed (or being read for it).
+    PreviewTexture preview_texture_;
     // Futures last: destroyed (and waited for) before the session they use.
     std::optional<std::future<Expected<std::int64_t>>> pending_capture_;
     std::optional<std::future<Expected<Scan>>> pending_load_;
     std::int64_t loading_seq_ = -1;
     std::optional<std::future<Expected<acquisition::SessionCheckReport>>> pending_check_;
+    std::optional<std::future<Expected<gui::ScanPreview>>> pending_preview_;
     std::optional<std::future<void>> pending_idle_;
 };
 

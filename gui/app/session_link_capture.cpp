@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "session_link.hpp"
+#include "thread_priority.hpp"
 
 namespace anascan::field {
 
@@ -12,26 +13,39 @@ bool SessionLink::start_session(gui::FieldViewState& view) {
     auto store =
         acquisition::SessionStore::open(config_.dir, acquisition::SessionOpenMode::kCreateOrOpen);
     if (!store) {
+        const bool held = store.error().code == ErrorCode::kBusy;
         view.status.last_error =
-            store.error().code == ErrorCode::kBusy
-                ? fmt::format(
-                      "session {} is held by another process (an `anascan capture` "
-                      "running?): capture there, or close it and capture again here",
-                      config_.dir.string())
-                : fmt::format("cannot open session {} for capture: {}", config_.dir.string(),
-                              store.error().message);
+            held ? fmt::format(
+                       "session {} is held by another process (an `anascan capture` "
+                       "running?): capture there, or close it and capture again here",
+                       config_.dir.string())
+                 : fmt::format("cannot open session {} for capture: {}", config_.dir.string(),
+                               store.error().message);
+        view.capture_problem = gui::CaptureProblem{
+            .headline = held ? "session held by another process" : "cannot open the session",
+            .details = view.status.last_error,
+            .what_to_try = held ? "Stop the other capture, then capture again here."
+                                : "Restart the app with --session on a writable folder."};
         return false;
     }
     if (auto scans = (*store)->scans(); scans) acknowledged_ = static_cast<int>(scans->size());
     auto queue = events_;
-    auto session = acquisition::CaptureSession::start(
-        std::move(*store), {},
-        [queue](const acquisition::SessionEvent& event) { queue->push(event); });
+    // Started from a lowered thread: its threads inherit the lower priority.
+    auto session = call_at_lower_priority(config_.worker_nice, [&] {
+        return acquisition::CaptureSession::start(
+            std::move(*store), {},
+            [queue](const acquisition::SessionEvent& event) { queue->push(event); });
+    });
     if (!session) {
         view.status.last_error = "cannot start the capture session: " + session.error().message;
         return false;
     }
     session_ = std::move(*session);
+    if (!read_store_) {  // a new session: the UI's own reader (see store())
+        auto reader =
+            acquisition::SessionStore::open(config_.dir, acquisition::SessionOpenMode::kReadOnly);
+        if (reader) read_store_ = std::move(*reader);
+    }
     view.session_check.clear();
     dirty_ = coverage_dirty_ = true;
     return true;
@@ -48,7 +62,10 @@ bool SessionLink::attach(const std::string& uri, gui::FieldViewState& view) {
     }
     const runtime::ScannerSource source{
         .uri = uri, .settings = config_.settings, .sim_unplug_after = config_.sim_unplug_after};
-    if (auto ok = session_->attach_scanner(uri, runtime::make_scanner_opener(source)); !ok) {
+    auto ok = call_at_lower_priority(config_.worker_nice, [&] {
+        return session_->attach_scanner(uri, runtime::make_scanner_opener(source));
+    });
+    if (!ok) {
         view.status.last_error = ok.error().message;
         return false;
     }
@@ -92,6 +109,21 @@ void SessionLink::set_excluded(std::int64_t seq, bool excluded, gui::FieldViewSt
     dirty_ = true;
 }
 
+/// Registers a saved scan again (CaptureSession::reregister, asynchronous: the row changes
+/// when its registration event arrives). A session only viewed so far is opened for
+/// capture first, as by the capture action.
+void SessionLink::reregister(std::int64_t seq, gui::FieldViewState& view) {
+    if (seq < 0) return;
+    if (!session_ && !start_session(view)) return;
+    if (auto ok = session_->reregister(seq); !ok) {
+        view.status.last_error = "re-register: " + ok.error().message;
+        return;
+    }
+    view.status.last_error.clear();
+    reregistering_.insert(seq);
+    dirty_ = true;
+}
+
 bool SessionLink::apply(const gui::UiAction& action, gui::FieldViewState& view) {
     switch (action.kind) {
         case gui::UiActionKind::kCapture:
@@ -107,9 +139,7 @@ bool SessionLink::apply(const gui::UiAction& action, gui::FieldViewState& view) 
             turned_over_pending_ = true;
             return true;
         case gui::UiActionKind::kReRegister:
-            view.status.last_error =
-                "re-register: not offered by the capture session yet (exclude and include the "
-                "scan instead)";
+            reregister(action.seq, view);
             return true;
         case gui::UiActionKind::kConnectDevice:
             if (action.device_index >= 0 &&

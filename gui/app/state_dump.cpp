@@ -20,6 +20,18 @@ const char* state_name(gui::ScanRowState state) {
     return "queued";
 }
 
+const char* banner_kind_name(gui::BannerKind kind) {
+    switch (kind) {
+        case gui::BannerKind::kCaptureFailed:
+            return "capture-failed";
+        case gui::BannerKind::kFailed:
+            return "registration-failed";
+        case gui::BannerKind::kSplit:
+            return "split";
+    }
+    return "?";
+}
+
 template <typename T>
 nlohmann::json optional_json(const std::optional<T>& value) {
     return value ? nlohmann::json(*value) : nlohmann::json(nullptr);
@@ -52,7 +64,7 @@ nlohmann::json devices_json(const gui::FieldViewState& view) {
 
 Expected<void> write_state_json(const std::filesystem::path& file, const gui::FieldViewState& view,
                                 const ViewFigures& figures) {
-    const auto banner = gui::failure_banner(view);
+    const auto banner = gui::session_banner(view);
     const auto& status = view.status;
     const nlohmann::json doc{
         {"session", view.session_dir},
@@ -66,8 +78,16 @@ Expected<void> write_state_json(const std::filesystem::path& file, const gui::Fi
         {"disk_free_bytes", optional_json(status.disk_free_bytes)},
         {"last_error", status.last_error},
         {"banner", banner ? nlohmann::json(banner->message) : nlohmann::json(nullptr)},
+        {"banner_details", banner ? nlohmann::json(banner->details) : nlohmann::json(nullptr)},
+        {"banner_kind",
+         banner ? nlohmann::json(banner_kind_name(banner->kind)) : nlohmann::json(nullptr)},
         {"devices", devices_json(view)},
         {"active_device", view.device.active_device},
+        {"preview",
+         {{"shown", view.device.preview_texture != 0},
+          {"width_px", view.device.preview_width_px},
+          {"height_px", view.device.preview_height_px},
+          {"caption", view.device.preview_caption}}},
         {"points_total", figures.points_total},
         {"chunks", figures.chunks}};
     std::ofstream out(file);

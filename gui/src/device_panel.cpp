@@ -1,5 +1,7 @@
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include "anascan/gui/panels.hpp"
 #include "panel_util.hpp"
 
@@ -36,6 +38,20 @@ void draw_capture_buttons(const DevicePanelState& device, UiActions& actions) {
     }
 }
 
+/// The last scan as the scanner saw it: as wide as the panel, at most half as high.
+void draw_preview(const DevicePanelState& device) {
+    if (device.preview_texture == 0 || device.preview_width_px <= 0) return;
+    const float avail = ImGui::GetContentRegionAvail().x;
+    const float aspect =
+        static_cast<float>(device.preview_height_px) / static_cast<float>(device.preview_width_px);
+    const float height = std::min(avail * aspect, 0.5f * avail);
+    ImGui::Image(reinterpret_cast<ImTextureID>(device.preview_texture),
+                 ImVec2(height / aspect, height));
+    ImGui::PushStyleColor(ImGuiCol_Text, detail::kColorMuted);
+    ImGui::TextWrapped("%s", device.preview_caption.c_str());
+    ImGui::PopStyleColor();
+}
+
 void draw_view_options(const FieldViewState& state, UiActions& actions) {
     ImGui::TextUnformatted("Colour points by");
     constexpr std::pair<ColorMode, const char*> kModes[] = {{ColorMode::kByScan, "scan"},
@@ -58,7 +74,7 @@ void draw_view_options(const FieldViewState& state, UiActions& actions) {
 void draw_device_panel(const FieldViewState& state, const PanelLayout& layout, UiActions& actions) {
     detail::place_next_window(layout.width_px - layout.device_width_px, 0.0f,
                               layout.device_width_px, layout.height_px - layout.status_height_px);
-    ImGui::Begin("Device", nullptr, detail::kPanelFlags);
+    ImGui::Begin("Device", nullptr, detail::kClearedPanelFlags);
     if (!state.session_dir.empty()) {
         ImGui::TextWrapped("Session: %s", state.session_dir.c_str());
     }
@@ -72,6 +88,7 @@ void draw_device_panel(const FieldViewState& state, const PanelLayout& layout, U
     ImGui::Separator();
     draw_view_options(state, actions);
     ImGui::TextWrapped("X excludes the newest scan, C cycles the colours.");
+    draw_preview(state.device);  // last: the buttons above stay in view
     ImGui::End();
 }
 

@@ -24,7 +24,7 @@ std::optional<FailureBanner> failure_banner(const FieldViewState& state) {
     for (auto it = state.scans.rbegin(); it != state.scans.rend(); ++it) {
         if (it->state == ScanRowState::kRegistered) return std::nullopt;
         if (it->state != ScanRowState::kFailed) continue;
-        FailureBanner banner{.seq = it->seq};
+        FailureBanner banner{.kind = BannerKind::kFailed, .seq = it->seq};
         banner.message = fmt::format("Scan {} did not register{}{}", it->seq,
                                      it->message.empty() ? "" : ": ", it->message);
         banner.what_to_try =

@@ -4,6 +4,8 @@
 
 #include <ctime>
 
+#include "anascan/gui/panels.hpp"
+
 namespace anascan::gui::detail {
 
 std::string format_optional(const std::optional<double>& value, const char* format) {
@@ -25,3 +27,12 @@ std::string format_bytes(std::uint64_t bytes) {
 }
 
 }  // namespace anascan::gui::detail
+
+namespace anascan::gui {
+
+PanelBackground panel_background() {
+    const ImVec4 c = ImGui::GetStyle().Colors[ImGuiCol_WindowBg];
+    return {.r = c.x * c.w, .g = c.y * c.w, .b = c.z * c.w};
+}
+
+}  // namespace anascan::gui

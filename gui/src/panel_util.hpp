@@ -16,6 +16,29 @@ inline constexpr ImGuiWindowFlags kPanelFlags =
     ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
     ImGuiWindowFlags_NoSavedSettings;
 
+/// The side panels and the status bar draw no background: the app clears the whole window
+/// with ImGuiCol_WindowBg before drawing (see panels.hpp).
+inline constexpr ImGuiWindowFlags kClearedPanelFlags = kPanelFlags | ImGuiWindowFlags_NoBackground;
+
+/// The banner's headline: the atlas's second font (load_scaled_font adds it, 1.3× the
+/// text), else the window's font scaled by 1.3 (blurrier).
+inline void begin_large_text() {
+    ImFontAtlas* atlas = ImGui::GetIO().Fonts;
+    if (atlas->Fonts.Size > 1) {
+        ImGui::PushFont(atlas->Fonts[1]);
+    } else {
+        ImGui::SetWindowFontScale(1.3f);
+    }
+}
+
+inline void end_large_text() {
+    if (ImGui::GetIO().Fonts->Fonts.Size > 1) {
+        ImGui::PopFont();
+    } else {
+        ImGui::SetWindowFontScale(1.0f);
+    }
+}
+
 /// Places the next window at (x, y) with size (w, h), pixels.
 inline void place_next_window(float x, float y, float w, float h) {
     ImGui::SetNextWindowPos(ImVec2(x, y), ImGuiCond_Always);

@@ -68,7 +68,7 @@ void draw_selected_actions(const ScanRow& row, UiActions& actions) {
 void draw_scan_list(const FieldViewState& state, const PanelLayout& layout, UiActions& actions) {
     detail::place_next_window(0.0f, 0.0f, layout.scan_list_width_px,
                               layout.height_px - layout.status_height_px);
-    ImGui::Begin("Scans", nullptr, detail::kPanelFlags);
+    ImGui::Begin("Scans", nullptr, detail::kClearedPanelFlags);
     const ScanRow* selected = nullptr;
     for (const ScanRow& row : state.scans) {
         if (row.seq == state.selected_seq) selected = &row;

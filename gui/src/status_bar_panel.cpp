@@ -6,7 +6,7 @@ namespace anascan::gui {
 void draw_status_bar(const FieldViewState& state, const PanelLayout& layout) {
     detail::place_next_window(0.0f, layout.height_px - layout.status_height_px, layout.width_px,
                               layout.status_height_px);
-    ImGui::Begin("Status", nullptr, detail::kPanelFlags | ImGuiWindowFlags_NoTitleBar);
+    ImGui::Begin("Status", nullptr, detail::kClearedPanelFlags | ImGuiWindowFlags_NoTitleBar);
     const StatusBarState& status = state.status;
     ImGui::Text("Coverage %s %%",
                 detail::format_optional(status.coverage_percent, "{:.1f}").c_str());

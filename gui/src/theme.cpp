@@ -9,6 +9,7 @@ namespace {
 
 constexpr const char* kFontPath = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
 constexpr float kBaseFontPx = 15.0f;
+constexpr float kLargeFontFactor = 1.3f;
 
 /// White-on-black text, bright frames and yellow accents: readable in sunlight on a
 /// glossy laptop screen.
@@ -58,7 +59,10 @@ bool load_scaled_font(float font_scale) {
     std::error_code ec;
     if (!std::filesystem::exists(kFontPath, ec)) return false;
     ImGuiIO& io = ImGui::GetIO();
-    return io.Fonts->AddFontFromFileTTF(kFontPath, kBaseFontPx * font_scale) != nullptr;
+    if (io.Fonts->AddFontFromFileTTF(kFontPath, kBaseFontPx * font_scale) == nullptr) return false;
+    // The banner's headline (detail::begin_large_text): drawn at its own size, not scaled.
+    io.Fonts->AddFontFromFileTTF(kFontPath, kLargeFontFactor * kBaseFontPx * font_scale);
+    return true;
 }
 
 }  // namespace anascan::gui

@@ -34,6 +34,10 @@ json read_json(const fs::path& file) {
     return json::parse(in, nullptr, false);
 }
 
+/// A scan of kDevice is a PLY file of about 1.3 MB; the session database and a screenshot
+/// fit in this file size limit, a scan does not.
+constexpr int kFullDiskLimitKiB = 800;
+
 /// A fast simulated device: the terrestrial (time-of-flight) scanner at a coarse step.
 const std::string kDevice = "--device sim:tof/small-block --angular-step-deg 0.5";
 
@@ -97,9 +101,25 @@ TEST_F(FieldSession, ShowsASessionAsSessionInfoAndCoverageReportIt) {
 
     const cv::Mat image = cv::imread(png.string(), cv::IMREAD_COLOR);
     ASSERT_FALSE(image.empty()) << png;
-    // The view lies between the scan list (450 px) and the device panel (360 px).
-    EXPECT_GT(fraction_not(image, cv::Rect(500, 150, 370, 450), kClearRgb), 0.05)
+    // The view lies between the scan list (450 px) and the device panel (360 px); a banner
+    // (this 2-view session may be split) covers up to about 260 px of its top.
+    EXPECT_GT(fraction_not(image, cv::Rect(500, 300, 370, 300), kClearRgb), 0.05)
         << "no model drawn in the view";
+
+    // Re-register scan 2 from the scan list's action (the session is opened for capture):
+    // the row gets a new decision and the session records the operator's action.
+    const int events_before = cli_json("session info " + session.string() + " --json")["events"];
+    const RunResult again =
+        field("--session " + session.string() + " --reregister-scan 2 --frames 2 --dump-state " +
+              state_file.string());
+    ASSERT_EQ(again.exit_code, 0) << again.output;
+    const json after = read_json(state_file);
+    ASSERT_EQ(after["scans"].size(), 2u) << after.dump(2);
+    EXPECT_NE(after["scans"][1]["state"], "queued") << after.dump(2);
+    EXPECT_EQ(after["queued_registrations"], 0);
+    EXPECT_EQ(after["last_error"], "") << after.dump(2);
+    const json info = cli_json("session info " + session.string() + " --json");
+    EXPECT_GT(info["events"].get<int>(), events_before) << "the re-register event";
 
     // After a "crash" that damaged a scan file, reopening shows what `session check` found.
     fs::resize_file(session / "scans" / "scan_000002.ply", 200);
@@ -126,6 +146,10 @@ TEST_F(FieldSession, CapturesFromTheCaptureActionRegisterLive) {
     EXPECT_GE(registered_rows(state), 2) << state.dump(2);
     EXPECT_EQ(state["queued_registrations"], 0);
     EXPECT_GT(state["points_total"].get<double>(), 0.0);
+    // The device panel shows the last scan as the scanner saw it.
+    EXPECT_TRUE(state["preview"]["shown"].get<bool>()) << state["preview"].dump();
+    EXPECT_GT(state["preview"]["height_px"].get<int>(), 0);
+    EXPECT_NE(state["preview"]["caption"].get<std::string>().find("Scan 3"), std::string::npos);
     // The session on disk holds what the app showed.
     const json stored = cli_json("session info " + session.string() + " --json");
     ASSERT_TRUE(stored.is_object());
@@ -146,6 +170,36 @@ TEST_F(FieldSession, AnUnpluggedScannerIsReportedAndTheAppGoesOn) {
     EXPECT_NE(error.find("sim:tof"), std::string::npos) << "the message names the device";
     // The capture after the unplug reopened the device: two scans, nothing lost.
     EXPECT_EQ(state["scans"].size(), 2u) << state.dump(2);
+}
+
+TEST_F(FieldSession, AFullDiskIsReportedInTheBannerAndTheAppGoesOn) {
+    // RLIMIT_FSIZE (SIGXFSZ ignored) makes writes past the limit fail as on a full disk:
+    // room for the session database and the screenshot, not for a scan file.
+    const fs::path session = dir_ / "full", png = dir_ / "full.png",
+                   state_file = dir_ / "state.json";
+    const std::string command = "bash -c \"trap '' XFSZ; ulimit -f " +
+                                std::to_string(kFullDiskLimitKiB) + "; exec " + ANASCAN_FIELD +
+                                " --session " + session.string() + " " + kDevice +
+                                " --capture-views 2 --tour-views 12 --flip-after 0 --frames 3 "
+                                "--screenshot " +
+                                png.string() + " --dump-state " + state_file.string() + "\"";
+    const RunResult r = anascan::test::run_command(command);
+    ASSERT_EQ(r.exit_code, 0) << r.output;  // the app went on to draw its frames and exit
+    const json state = read_json(state_file);
+    ASSERT_TRUE(state.is_object()) << state_file;
+    const std::string error = state["last_error"];
+    EXPECT_NE(error.find("DISK FULL"), std::string::npos) << error;
+    EXPECT_NE(error.find("NOT saved"), std::string::npos) << error;
+    EXPECT_EQ(state["banner_kind"], "capture-failed") << state.dump(2);
+    EXPECT_TRUE(state["scans"].empty()) << "nothing half-recorded: " << state.dump(2);
+    // The red banner over the top of the view (the view starts at 450 px).
+    const cv::Mat image = cv::imread(png.string(), cv::IMREAD_COLOR);
+    ASSERT_FALSE(image.empty()) << png;
+    const cv::Vec3b banner_red{191, 13, 13};  // ImVec4(0.75, 0.05, 0.05)
+    EXPECT_LT(fraction_not(image, cv::Rect(460, 5, 300, 60), banner_red), 0.5)
+        << "no red banner over the view";
+    const RunResult check = cli("session check " + session.string());
+    EXPECT_EQ(check.exit_code, 0) << check.output;
 }
 
 TEST_F(FieldSession, AnUnwritableFolderIsReportedAndTheAppGoesOn) {

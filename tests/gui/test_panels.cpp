@@ -120,6 +120,77 @@ TEST(FailureBanner, ItsButtonExcludesTheFailedScan) {
     EXPECT_EQ(distinct_seqs(actions, UiActionKind::kExclude), (std::vector<std::int64_t>{5}));
 }
 
+TEST(SplitBanner, WarnsWhenRegisteredScansSitInMoreThanOneGroup) {
+    HeadlessImGui ui;
+    FieldViewState state = four_registered_scans();
+    EXPECT_FALSE(session_banner(state).has_value()) << "one group: no banner";
+    // Scan 1 alone in group 0, scans 2-4 in group 1 (the view shows group 1).
+    for (ScanRow& r : state.scans) r.group = r.seq == 1 ? 0 : 1;
+    const auto banner = session_banner(state);
+    ASSERT_TRUE(banner.has_value());
+    EXPECT_EQ(banner->kind, BannerKind::kSplit);
+    EXPECT_EQ(banner->seq, 1) << "the one scan outside the shown group";
+    EXPECT_NE(banner->message.find("split in 2 parts"), std::string::npos) << banner->message;
+    EXPECT_NE(banner->details.find("scan 1 not joined"), std::string::npos) << banner->details;
+    EXPECT_NE(banner->details.find("scans 2-4, group 1"), std::string::npos) << banner->details;
+    EXPECT_NE(banner->what_to_try.find("overlaps both parts"), std::string::npos);
+    UiActions actions;
+    bool drawn = false;
+    ui.frame([&] { drawn = draw_failure_banner(state, kLayout, actions); });
+    EXPECT_TRUE(drawn);
+    EXPECT_TRUE(HeadlessImGui::window_drawn("Model split"));
+    EXPECT_FALSE(HeadlessImGui::window_drawn("Registration failed"));
+
+    // A newer failure takes the banner; two scans apart: no exclude button.
+    state.scans[1].group = 0;
+    EXPECT_EQ(split_banner(state)->seq, -1);
+    state.scans.push_back(row(5, ScanRowState::kFailed));
+    EXPECT_EQ(session_banner(state)->kind, BannerKind::kFailed);
+    // Excluding the scans of the smaller part joins nothing but ends the warning.
+    state.scans.pop_back();
+    state.scans[0].state = state.scans[1].state = ScanRowState::kExcluded;
+    EXPECT_FALSE(session_banner(state).has_value());
+}
+
+TEST(SplitBanner, ItsButtonExcludesTheStrayScan) {
+    HeadlessImGui ui;
+    FieldViewState state = four_registered_scans();
+    state.scans[3].group = 2;  // scan 4 alone in group 2
+    UiActions warmup;
+    ui.frame([&] { draw_field_panels(state, kLayout, warmup); });
+    ui.frame([&] { draw_field_panels(state, kLayout, warmup); });  // height fits the text
+    const ImGuiWindow* banner = ImGui::FindWindowByName("Model split");
+    ASSERT_NE(banner, nullptr);
+    EXPECT_GE(banner->Size.y, kLayout.banner_height_px);
+    const float x = kLayout.view_x_px() + 60.0f;
+    const UiActions actions = sweep_clicks(ui, state, x, 0.0f, banner->Size.y);
+    EXPECT_EQ(distinct_seqs(actions, UiActionKind::kExclude), (std::vector<std::int64_t>{4}));
+}
+
+TEST(CaptureBanner, ACaptureProblemTakesTheBannerUntilCleared) {
+    HeadlessImGui ui;
+    FieldViewState state = four_registered_scans();
+    state.scans.push_back(row(5, ScanRowState::kFailed));
+    state.capture_problem = CaptureProblem{.headline = "DISK FULL: the scan was NOT saved",
+                                           .details = "cannot save scan 6 in session /s",
+                                           .what_to_try = "Free space"};
+    const auto banner = session_banner(state);
+    ASSERT_TRUE(banner.has_value());
+    EXPECT_EQ(banner->kind, BannerKind::kCaptureFailed);
+    EXPECT_EQ(banner->seq, -1) << "no exclude button: nothing was saved";
+    UiActions actions;
+    ui.frame([&] { draw_failure_banner(state, kLayout, actions); });
+    EXPECT_TRUE(HeadlessImGui::window_drawn("Capture failed"));
+    state.capture_problem.reset();
+    EXPECT_EQ(session_banner(state)->kind, BannerKind::kFailed);
+}
+
+TEST(SplitBanner, ScanListsAreShort) {
+    EXPECT_EQ(format_scan_list({4}), "scan 4");
+    EXPECT_EQ(format_scan_list({2, 3, 4, 5}), "scans 2-5");
+    EXPECT_EQ(format_scan_list({1, 3, 4, 5, 9}), "scans 1, 3-5, 9");
+}
+
 TEST(Shortcuts, SpaceCapturesXExcludesTheNewestTMarksTurnedOver) {
     HeadlessImGui ui;
     FieldViewState state = four_registered_scans();

@@ -2,6 +2,7 @@
 // the group drawn, the crash-check summary.
 #include <gtest/gtest.h>
 
+#include "anascan/gui/scan_preview.hpp"
 #include "anascan/gui/session_view.hpp"
 
 namespace {
@@ -93,6 +94,59 @@ TEST(SessionView, CheckSummaryIsEmptyWhenCleanAndNamesTheFileOtherwise) {
     const std::string text = gui::check_summary(report);
     EXPECT_NE(text.find("scan_000003.ply: truncated"), std::string::npos) << text;
     EXPECT_NE(text.find("--repair"), std::string::npos) << text;
+}
+
+TEST(SessionView, CaptureProblemsSayWhatHappenedAndWhatToDo) {
+    using anascan::Error;
+    using anascan::ErrorCode;
+    const gui::CaptureProblem away = gui::capture_problem(
+        Error{ErrorCode::kDisconnected, "sim:tof/small-block: device went away"});
+    EXPECT_NE(away.line().find("sim:tof/small-block"), std::string::npos) << away.line();
+    EXPECT_NE(away.headline.find("unplugged"), std::string::npos) << away.headline;
+    EXPECT_NE(away.what_to_try.find("cable"), std::string::npos) << away.what_to_try;
+
+    // acquisition's text for EFBIG / ENOSPC ends with its advice "The disk is full: ...".
+    const gui::CaptureProblem full = gui::capture_problem(
+        Error{ErrorCode::kIo,
+              "cannot save scan 1 in session /data/s: File too large. Nothing was recorded for "
+              "this scan; scans saved before are safe. The disk is full: free space and retry."});
+    EXPECT_EQ(full.headline, "DISK FULL: the scan was NOT saved");
+    EXPECT_NE(full.line().find("/data/s"), std::string::npos) << "names the session";
+    EXPECT_NE(full.what_to_try.find("Free space"), std::string::npos) << full.what_to_try;
+
+    const gui::CaptureProblem other =
+        gui::capture_problem(Error{ErrorCode::kInvalidArgument, "bad exposure 0 ms"});
+    EXPECT_NE(other.line().find("bad exposure 0 ms"), std::string::npos);
+    EXPECT_FALSE(other.what_to_try.empty());
+    EXPECT_EQ(other.line().find("DISK FULL"), std::string::npos);
+}
+
+TEST(ScanPreview, ShowsWhatTheSensorSawNearBrightFarDark) {
+    // A wall 2 m in front of the sensor (camera frame: z forward) with a box 0.5 m nearer
+    // on its left half; the sensor sits at (0, 0, -1) of the scan frame.
+    anascan::Scan scan;
+    scan.meta.sequence = 7;
+    scan.meta.sensor_origin_scan_m = Eigen::Vector3d(0.0, 0.0, -1.0);
+    for (int i = 0; i <= 100; ++i) {
+        for (int j = 0; j <= 50; ++j) {
+            const float x = -1.0f + 0.02f * static_cast<float>(i);
+            const float y = -0.5f + 0.02f * static_cast<float>(j);
+            scan.cloud.positions.emplace_back(x, y, x < 0.0f ? 0.5f : 1.0f);
+        }
+    }
+    const gui::ScanPreview preview = gui::make_scan_preview(scan, 80);
+    EXPECT_EQ(preview.seq, 7);
+    EXPECT_EQ(preview.points, scan.cloud.size());
+    ASSERT_EQ(preview.width_px, 80);
+    EXPECT_GT(preview.height_px, 20) << "a 2:1 field of view";
+    EXPECT_LT(preview.height_px, 60);
+    ASSERT_EQ(preview.rgb.size(), 3u * 80u * static_cast<std::size_t>(preview.height_px));
+    auto grey = [&](int x, int y) {
+        return preview.rgb[3 * (static_cast<std::size_t>(y) * 80 + static_cast<std::size_t>(x))];
+    };
+    const int mid = preview.height_px / 2;
+    EXPECT_GT(grey(15, mid), grey(65, mid)) << "the nearer box (left) is brighter";
+    EXPECT_TRUE(gui::make_scan_preview(anascan::Scan{}).rgb.empty());
 }
 
 }  // namespace

@@ -45,6 +45,10 @@ struct DevicePanelState {
     std::vector<DeviceRow> devices;
     int active_device = -1;  ///< Index into devices, -1 when none is chosen.
     bool capturing = false;  ///< A capture is in progress: the capture button is disabled.
+    /// The last scan as the scanner saw it (scan_preview.hpp): an OpenGL texture (0: none).
+    std::uintptr_t preview_texture = 0;
+    int preview_width_px = 0, preview_height_px = 0;
+    std::string preview_caption;  ///< "Scan 12 as the scanner saw it (153 204 points)".
 };
 
 /// The status bar figures; an absent figure shows as "-".
@@ -53,6 +57,16 @@ struct StatusBarState {
     int queued_registrations = 0;                  ///< Scans saved but not yet registered.
     std::optional<std::uint64_t> disk_free_bytes;  ///< On the session's file system.
     std::string last_error;                        ///< Last error event, empty when none.
+};
+
+/// The last capture failed (device gone, disk full, folder not writable): the banner shows
+/// it until a capture succeeds.
+struct CaptureProblem {
+    std::string headline;     ///< A few words, large in the banner ("DISK FULL: ...").
+    std::string details;      ///< acquisition's message: names the device or the folder.
+    std::string what_to_try;  ///< The operator's next step.
+    /// The status bar's line: headline and details.
+    std::string line() const { return details.empty() ? headline : headline + ": " + details; }
 };
 
 /// How the 3D view colours the points.
@@ -66,20 +80,44 @@ struct FieldViewState {
     std::int64_t selected_seq = -1;  ///< Highlighted scan, -1 when none.
     DevicePanelState device;
     StatusBarState status;
+    std::optional<CaptureProblem> capture_problem;  ///< Until the next capture succeeds.
     ColorMode color_mode = ColorMode::kByScan;
     bool high_contrast = false;
 };
 
-/// A failed registration, as the banner shows it: impossible to miss, says what to try.
+/// What the banner over the view reports.
+enum class BannerKind {
+    kCaptureFailed,  ///< The last capture failed: device gone, disk full, ... (red).
+    kFailed,         ///< The newest registration outcome is a failure (red).
+    kSplit,  ///< The registered scans sit in more than one group: the model is split (amber).
+};
+
+/// A failed registration or a split model, as the banner shows it: impossible to miss,
+/// says what to try.
 struct FailureBanner {
-    std::int64_t seq = 0;
-    std::string message;      ///< What happened, naming the scan.
+    BannerKind kind = BannerKind::kFailed;
+    std::int64_t seq = 0;     ///< The scan the button excludes; -1: no button.
+    std::string message;      ///< What happened, naming the scan(s): large.
+    std::string details;      ///< More of what happened (may be empty).
     std::string what_to_try;  ///< The operator's next step.
 };
 
 /// The banner for the newest failed scan, if the newest registration outcome is a failure
 /// (a later registered scan clears it: the operator has recovered).
 std::optional<FailureBanner> failure_banner(const FieldViewState& state);
+
+/// The banner for a split model: the registered, non-excluded scans sit in more than one
+/// group. Names the group the view shows (the largest, as model_group chooses: most scans,
+/// lowest id on a tie) and the scans outside it; `seq` is the one scan outside it when
+/// there is only one (a stray scan the operator may exclude), else -1.
+std::optional<FailureBanner> split_banner(const FieldViewState& state);
+
+/// The banner over the view: the capture problem, else the failure when the newest
+/// registration outcome failed, else the split warning, else none.
+std::optional<FailureBanner> session_banner(const FieldViewState& state);
+
+/// "scan 4", "scans 2-12", "scans 1, 3-5, 9" (ascending seqs).
+std::string format_scan_list(const std::vector<std::int64_t>& seqs);
 
 /// The newest scan (highest seq) that is not excluded, or -1.
 std::int64_t newest_scan(const FieldViewState& state);

@@ -10,6 +10,17 @@
 
 namespace anascan::gui {
 
+/// The scan list, the device panel and the status bar draw no window background (Mesa's
+/// llvmpipe spends about as long on ImGui's blended, textured background quads as on all
+/// the rest of a frame): the app clears the window with ImGuiCol_WindowBg first
+/// (`panel_background()`), which costs next to nothing. The banner draws its own.
+struct PanelBackground {
+    float r = 0.0f, g = 0.0f, b = 0.0f;
+};
+/// The colour to clear the window with: the style's window background (over black when
+/// translucent). Needs a current ImGui context.
+PanelBackground panel_background();
+
 /// Where the panels go, in pixels of the main window (origin top left).
 struct PanelLayout {
     float width_px = 1280.0f;
@@ -37,8 +48,11 @@ void draw_status_bar(const FieldViewState& state, const PanelLayout& layout);
 /// turned-over buttons, the colour mode and theme switches.
 void draw_device_panel(const FieldViewState& state, const PanelLayout& layout, UiActions& actions);
 
-/// The failure banner window ("Registration failed"), drawn only when failure_banner(state)
-/// has a value: red, large, with the message and what to try. Returns true when drawn.
+/// The banner over the view, drawn only when session_banner(state) has a value: a failed
+/// capture ("Capture failed", red), a failed registration ("Registration failed", red) or
+/// a split model ("Model split", amber),
+/// large, with the message, what to try and an exclude button for the scan at fault.
+/// Returns true when drawn.
 bool draw_failure_banner(const FieldViewState& state, const PanelLayout& layout,
                          UiActions& actions);
 

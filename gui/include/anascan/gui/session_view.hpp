@@ -37,6 +37,11 @@ int model_group(const std::vector<acquisition::ScanRecord>& scans);
 /// True when the scan's points belong in the 3D view (registered in `group`, with a pose).
 bool drawn_in_view(const acquisition::ScanRecord& record, int group);
 
+/// What the operator reads when a capture failed (acquisition's error): a device that went
+/// away or did not answer, a full disk, a folder that cannot be written, anything else.
+/// The message keeps acquisition's text (it names the device or the session folder).
+CaptureProblem capture_problem(const Error& error);
+
 /// Empty when the check found nothing; else one line for the device panel ("2 problems:
 /// scans/scan_000003.ply: ...; run `anascan session check DIR --repair`").
 std::string check_summary(const acquisition::SessionCheckReport& report);

@@ -15,8 +15,9 @@ struct ThemeConfig {
 /// scaled font was loaded. Needs a current ImGui context.
 void apply_theme(const ThemeConfig& config, bool font_already_scaled);
 
-/// Loads DejaVu Sans at 15 px × font_scale into the current context's font atlas when the
-/// font file exists (Debian fonts-dejavu-core); returns false (ImGui's default font stays)
+/// Loads DejaVu Sans at 15 px × font_scale (the first font: the text) and 1.3 times that
+/// (the second: the banner's headline) into the current context's font atlas when the font
+/// file exists (Debian fonts-dejavu-core); returns false (ImGui's default font stays)
 /// otherwise. Call before the atlas is built.
 bool load_scaled_font(float font_scale);
 
