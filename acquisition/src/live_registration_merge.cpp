@@ -57,14 +57,20 @@ std::vector<PoseUpdate> LiveRegistrar::State::merge_whole_groups() {
             std::size_t& tried = whole_merge_tried[{ids[a], ids[b]}];
             if (scans_now < 2 * tried) continue;
             tried = scans_now;
+            // The smaller group is the source: verification asks for overlap of the source.
+            const bool a_smaller = members(ids[a]).size() < members(ids[b]).size();
+            const int source_id = a_smaller ? ids[a] : ids[b];
+            const int target_id = a_smaller ? ids[b] : ids[a];
             GlobalRegistrationConfig global = config.global;
-            global.axis_constraint = up_constraint(ids[a], ids[b]);
-            const PointCloud target = group_cloud(ids[a]);
-            const PointCloud source = group_cloud(ids[b]);
-            const GlobalRegistrationResult g = register_global(source, target, global);
+            global.axis_constraint = up_constraint(target_id, source_id);
+            const GlobalRegistrationResult g =
+                register_global(group_cloud(source_id), group_cloud(target_id), global);
             ++report.merge_attempts;
-            if (g.status != GlobalRegistrationStatus::kSuccess || g.rms_m > rms_gate()) continue;
-            return merge(ids[a], ids[b], g.T_target_source);
+            // One try per call: it costs seconds, and a new scan may be waiting.
+            if (g.status != GlobalRegistrationStatus::kSuccess || g.rms_m > rms_gate()) return {};
+            // Into the lower id: T_a_b.
+            return merge(ids[a], ids[b],
+                         a_smaller ? Pose(g.T_target_source.inverse()) : g.T_target_source);
         }
     }
     return {};
