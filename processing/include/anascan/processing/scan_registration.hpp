@@ -30,6 +30,7 @@
 /// thread only. Results do not depend on the number of threads.
 #include <Eigen/Core>
 #include <cstddef>
+#include <filesystem>
 #include <functional>
 #include <optional>
 #include <string>
@@ -80,6 +81,23 @@ struct ScanRegistrationConfig {
     /// farther than the verification's, so the limit is looser).
     double max_link_rms_spacing_factor = 2.0;
     MultiviewRefinementConfig multiview{};  ///< fixed_scan_index is set per group.
+
+    // ---- Scale (thousands of scans; see docs/scan-registration.md "Scale") ----------------
+    /// Pair pruning: 0 matches every pair (N(N-1)/2 matchings). Otherwise each scan is
+    /// matched only with the scans whose feature signature (a histogram of the distances
+    /// between its feature patches, per patch class) is among its `max_candidates_per_scan`
+    /// most similar; a pair is matched when either of its scans lists the other.
+    std::size_t max_candidates_per_scan = 0;
+    /// Out-of-core: when set, prepared clouds and feature sites are written to this
+    /// directory (created when missing, files removed at the end) and reloaded on demand,
+    /// at most `max_loaded_clouds` in memory; descriptors are kept on disk between the two
+    /// feature passes. Empty: everything stays in memory.
+    std::filesystem::path spill_directory;
+    std::size_t max_loaded_clouds = 8;  ///< Clouds and site sets held in memory when spilling.
+    /// Sites pooled per scan for the saliency levels when spilling (evenly thinned).
+    std::size_t max_level_sites_per_scan = 2000;
+    /// Correspondences a multi-view link keeps (evenly thinned; 0 = all of them).
+    std::size_t max_link_correspondences = 0;
 };
 
 /// One scan's outcome.
@@ -141,7 +159,8 @@ struct ScanRegistrationTimings {
 
 struct ScanRegistrationResult {
     std::vector<ScanOutcome> scans;  ///< Input order.
-    std::vector<PairOutcome> pairs;  ///< Every pair, (1,0), (2,0), (2,1), ...
+    /// Every pair, (1,0), (2,0), (2,1), ... (only the candidate pairs when pruned).
+    std::vector<PairOutcome> pairs;
     std::size_t reference_scan = 0;  ///< The world frame's scan (when any is placed).
     std::size_t placed_count = 0;
     std::size_t group_count = 0;  ///< Connected components among the loaded scans.
@@ -151,6 +170,10 @@ struct ScanRegistrationResult {
     /// Multi-view status of the largest group (converged when it has one scan).
     MultiviewStatus multiview_status = MultiviewStatus::kConverged;
     ScanRegistrationTimings timings;
+    /// Out-of-core figures: clouds and site sets read back from the spill directory, and
+    /// the first spill failure (empty when none; the affected pairs are not registered).
+    std::size_t cloud_reloads = 0;
+    std::string spill_error;
 };
 
 /// Progress messages ("global registration 3 of 45: ..."), for a log; may be empty.
