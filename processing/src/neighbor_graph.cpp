@@ -5,6 +5,7 @@
 #include <tbb/parallel_sort.h>
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cassert>
 #include <cmath>
@@ -67,6 +68,7 @@ struct MortonGrid {
     std::vector<std::uint64_t> keys;      // Sorted point keys.
     std::vector<std::uint32_t> order;     // Point index of each sorted key.
     std::vector<Eigen::Vector3f> sorted;  // Positions in sorted order.
+    std::vector<float> sx, sy, sz;        // The same as arrays (vectorised linear scans).
     std::vector<std::uint64_t> cell_keys;
     std::vector<std::uint32_t> cell_begin;  // cell_keys.size() + 1 offsets into `sorted`.
 
@@ -90,26 +92,39 @@ void sort_points(std::span<const Eigen::Vector3f> points, MortonGrid& grid) {
         lo = lo.cwiseMin(p.cast<double>());
         hi = hi.cwiseMax(p.cast<double>());
     }
-    std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed;
-    keyed.reserve(points.size());
-    if (lo.x() <= hi.x()) {
-        grid.min_m = lo;
-        grid.units_per_m = kMaxCoord / std::max((hi - lo).maxCoeff(), 1e-9);
-        for (std::size_t i = 0; i < points.size(); ++i) {
-            if (!is_finite(points[i])) continue;
-            const Eigen::Vector3d u = grid.lattice(points[i]);
-            keyed.emplace_back(morton(u.array().floor().cast<std::int64_t>()), std::uint32_t(i));
+    if (!(lo.x() <= hi.x())) return;  // No finite point.
+    grid.min_m = lo;
+    grid.units_per_m = kMaxCoord / std::max((hi - lo).maxCoeff(), 1e-9);
+    // Keys in parallel (non-finite points get the largest key and are cut off after the
+    // sort: a finite key never reaches it, 63 bits are used).
+    constexpr std::uint64_t kNoKey = std::numeric_limits<std::uint64_t>::max();
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(points.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 4096), [&](auto r) {
+        for (std::size_t i = r.begin(); i < r.end(); ++i) {
+            const std::uint64_t key =
+                is_finite(points[i])
+                    ? morton(grid.lattice(points[i]).array().floor().cast<std::int64_t>())
+                    : kNoKey;
+            keyed[i] = {key, std::uint32_t(i)};
         }
-    }
+    });
     tbb::parallel_sort(keyed.begin(), keyed.end());  // Unique pairs: deterministic order.
-    grid.keys.resize(keyed.size());
-    grid.order.resize(keyed.size());
-    grid.sorted.resize(keyed.size());
-    for (std::size_t s = 0; s < keyed.size(); ++s) {
-        grid.keys[s] = keyed[s].first;
-        grid.order[s] = keyed[s].second;
-        grid.sorted[s] = points[keyed[s].second];
-    }
+    std::size_t finite = keyed.size();
+    while (finite > 0 && keyed[finite - 1].first == kNoKey) --finite;
+    grid.keys.resize(finite);
+    grid.order.resize(finite);
+    grid.sorted.resize(finite);
+    for (auto* axis : {&grid.sx, &grid.sy, &grid.sz}) axis->resize(finite);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, finite, 4096), [&](auto r) {
+        for (std::size_t s = r.begin(); s < r.end(); ++s) {
+            grid.keys[s] = keyed[s].first;
+            grid.order[s] = keyed[s].second;
+            grid.sorted[s] = points[keyed[s].second];
+            grid.sx[s] = grid.sorted[s].x();
+            grid.sy[s] = grid.sorted[s].y();
+            grid.sz[s] = grid.sorted[s].z();
+        }
+    });
 }
 
 std::size_t count_cells(const std::vector<std::uint64_t>& keys, int level) {
@@ -355,12 +370,25 @@ void answer_cell(const MortonGrid& grid, std::size_t cell, const NeighborGraphCo
 // Exact answer for one row by a linear scan of all finite points.
 void brute_force_row(const MortonGrid& grid, std::uint32_t row, const Eigen::Vector3f& q, TopK& top,
                      NeighborGraph& graph) {
+    constexpr std::size_t kChunk = 1024;  // A multiple of kGroup.
+    std::array<float, kChunk> d2;
     top.clear(top.max_d2());
-    for (std::size_t s = 0; s < grid.sorted.size(); ++s) {
-        const Eigen::Vector3f& p = grid.sorted[s];
-        const float dx = p.x() - q.x(), dy = p.y() - q.y(), dz = p.z() - q.z();
-        const float d2 = dx * dx + dy * dy + dz * dz;  // As offer_block: same rounding.
-        if (d2 <= top.worst() && grid.order[s] != row) top.offer(d2, grid.order[s]);
+    const std::size_t n = grid.sorted.size();
+    for (std::size_t begin = 0; begin < n; begin += kChunk) {
+        const std::size_t m = std::min(kChunk, n - begin);
+        for (std::size_t c = 0; c < m; ++c) {  // Vectorises; same rounding as offer_block.
+            const float dx = grid.sx[begin + c] - q.x(), dy = grid.sy[begin + c] - q.y(),
+                        dz = grid.sz[begin + c] - q.z();
+            d2[c] = dx * dx + dy * dy + dz * dz;
+        }
+        std::fill(d2.begin() + std::ptrdiff_t(m), d2.end(),
+                  std::numeric_limits<float>::quiet_NaN());
+        for (std::size_t c0 = 0; c0 < m; c0 += kGroup) {
+            for (unsigned mask = within_mask(&d2[c0], top.worst()); mask != 0; mask &= mask - 1) {
+                const std::size_t c = c0 + std::size_t(std::countr_zero(mask));
+                if (grid.order[begin + c] != row) top.offer(d2[c], grid.order[begin + c]);
+            }
+        }
     }
     write_row(top, row, graph);
 }
