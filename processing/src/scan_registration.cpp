@@ -91,10 +91,16 @@ void verify_pairs(detail::PreparedScans& scans, std::vector<FeatureMatchingResul
         return pairs[a].match_score > pairs[b].match_score;
     });
     detail::DisjointSets connected(scans.size());
+    std::vector<std::size_t> failures(scans.size(), 0);
+    const std::size_t max_failures = config.max_failed_refinements_per_scan;
+    const auto gave_up = [&](std::size_t i) {
+        return max_failures > 0 && failures[i] >= max_failures;
+    };
     std::size_t tried = 0;
     for (std::size_t p : order) {
         PairOutcome& pair = pairs[p];
-        if (connected.find(pair.source) == connected.find(pair.target)) {
+        if (connected.find(pair.source) == connected.find(pair.target) || gave_up(pair.source) ||
+            gave_up(pair.target)) {
             pair.global_skipped = true;
             continue;
         }
@@ -105,7 +111,12 @@ void verify_pairs(detail::PreparedScans& scans, std::vector<FeatureMatchingResul
         const GlobalRegistrationResult g = detail::refine_and_verify(
             {*source, source_f}, {*target, target_f}, std::move(matchings[p]), config.global);
         copy_global_figures(g, pair);
-        if (pair.verified) connected.unite(pair.source, pair.target);
+        if (pair.verified) {
+            connected.unite(pair.source, pair.target);
+        } else {
+            ++failures[pair.source];
+            ++failures[pair.target];
+        }
         report(progress, "global registration " + std::to_string(++tried) + ": scan " +
                              std::to_string(pair.source) + " onto " + std::to_string(pair.target) +
                              " (score " + std::to_string(static_cast<int>(pair.match_score)) +

@@ -10,12 +10,12 @@
 // as uninformative). The score of a pair is votes / sqrt(keys_a keys_b).
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <set>
-#include <unordered_map>
 
 #include "scan_registration_steps.hpp"
 
@@ -93,25 +93,54 @@ std::vector<std::uint64_t> scan_keys(const FeaturePatchResult& patches, double m
     return keys;
 }
 
-// Votes per pair of scans (key: larger index << 32 | smaller) from the inverted index.
-std::unordered_map<std::uint64_t, double> shared_keys(
-    const std::vector<std::vector<std::uint64_t>>& keys) {
-    std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> index;
+// The inverted index as one sorted array of (key, scan): 16 bytes per key of every scan,
+// no per-key allocation (a hash map of vectors cost several times more at 1000 scans).
+using IndexEntry = std::pair<std::uint64_t, std::uint32_t>;
+
+std::vector<IndexEntry> inverted_index(const std::vector<std::vector<std::uint64_t>>& keys) {
+    std::size_t total = 0;
+    for (const auto& k : keys) total += k.size();
+    std::vector<IndexEntry> index;
+    index.reserve(total);
     for (std::size_t i = 0; i < keys.size(); ++i) {
-        for (std::uint64_t k : keys[i]) index[k].push_back(static_cast<std::uint32_t>(i));
+        for (std::uint64_t k : keys[i]) index.emplace_back(k, static_cast<std::uint32_t>(i));
     }
-    std::unordered_map<std::uint64_t, double> votes;
+    tbb::parallel_sort(index.begin(), index.end());
+    return index;
+}
+
+// Scan i's `count` best partners by idf-weighted shared keys / sqrt(keys_i keys_j) (ties by
+// index); `votes` is scratch of size N, left zero.
+std::vector<std::size_t> best_partners(const std::vector<std::vector<std::uint64_t>>& keys,
+                                       const std::vector<IndexEntry>& index, std::size_t i,
+                                       std::size_t count, std::vector<double>& votes) {
     const double n = static_cast<double>(keys.size());
-    for (const auto& [key, scans] : index) {
-        if (scans.size() < 2 || scans.size() > kMaxScansPerKey) continue;
-        const double weight = std::log(n / static_cast<double>(scans.size()));  // Rare: more.
-        for (std::size_t u = 0; u < scans.size(); ++u) {
-            for (std::size_t v = 0; v < u; ++v) {
-                votes[std::uint64_t(scans[u]) << 32 | scans[v]] += weight;  // scans[u] > [v].
-            }
+    std::vector<std::uint32_t> touched;
+    for (std::uint64_t k : keys[i]) {
+        const auto lo = std::lower_bound(index.begin(), index.end(), IndexEntry{k, 0});
+        auto hi = lo;
+        while (hi != index.end() && hi->first == k) ++hi;
+        const auto holders = static_cast<std::size_t>(hi - lo);
+        if (holders < 2 || holders > kMaxScansPerKey) continue;
+        const double weight = std::log(n / static_cast<double>(holders));  // Rare: more.
+        for (auto it = lo; it != hi; ++it) {
+            if (it->second == i) continue;
+            if (votes[it->second] == 0.0) touched.push_back(it->second);
+            votes[it->second] += weight;
         }
     }
-    return votes;
+    std::vector<std::pair<double, std::size_t>> scored;
+    for (std::uint32_t j : touched) {
+        const double norm = std::sqrt(static_cast<double>(keys[i].size() * keys[j].size()));
+        scored.emplace_back(-votes[j] / norm, j);
+        votes[j] = 0.0;
+    }
+    const std::size_t keep = std::min(count, scored.size());
+    std::partial_sort(scored.begin(), scored.begin() + static_cast<std::ptrdiff_t>(keep),
+                      scored.end());
+    std::vector<std::size_t> out;
+    for (std::size_t r = 0; r < keep; ++r) out.push_back(scored[r].second);
+    return out;
 }
 
 }  // namespace
@@ -132,22 +161,16 @@ std::vector<std::pair<std::size_t, std::size_t>> candidate_pairs(
     tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) {
         if (scans.usable(i)) keys[i] = scan_keys(scans.features[i].patches, 0.25 * diagonal_m);
     });
-    // Each scan's best partners by normalised votes (ties by index).
-    std::vector<std::vector<std::pair<double, std::size_t>>> scored(n);
-    for (const auto& [pair, count] : shared_keys(keys)) {
-        const std::size_t a = pair >> 32, b = pair & 0xffffffffu;
-        const double score =
-            count / std::sqrt(static_cast<double>(keys[a].size() * keys[b].size()));
-        scored[a].emplace_back(-score, b);
-        scored[b].emplace_back(-score, a);
-    }
+    const std::vector<IndexEntry> index = inverted_index(keys);
     std::vector<std::vector<std::size_t>> similar(n);
-    for (std::size_t i = 0; i < n; ++i) {
-        auto& s = scored[i];
-        const std::size_t keep = std::min(config.max_candidates_per_scan, s.size());
-        std::partial_sort(s.begin(), s.begin() + static_cast<std::ptrdiff_t>(keep), s.end());
-        for (std::size_t r = 0; r < keep; ++r) similar[i].push_back(s[r].second);
-    }
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 16), [&](const auto& r) {
+        std::vector<double> votes(n, 0.0);
+        for (std::size_t i = r.begin(); i < r.end(); ++i) {
+            if (!keys[i].empty()) {
+                similar[i] = best_partners(keys, index, i, config.max_candidates_per_scan, votes);
+            }
+        }
+    });
     std::set<std::pair<std::size_t, std::size_t>> unique;
     for (std::size_t i = 0; i < n; ++i) {
         for (std::size_t j : similar[i]) unique.emplace(std::max(i, j), std::min(i, j));

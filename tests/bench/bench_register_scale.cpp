@@ -234,6 +234,7 @@ int main(int argc, char** argv) {
     ScanRegistrationConfig config{.voxel_size_m = o.voxel_mm * 1e-3,
                                   .max_candidates_per_scan = o.candidates,
                                   .max_loaded_clouds = o.max_loaded,
+                                  .max_failed_refinements_per_scan = 2,
                                   .max_link_correspondences = o.link_correspondences};
     if (!o.in_memory) {
         config.spill_directory = o.spill.empty() ? std::filesystem::temp_directory_path() /

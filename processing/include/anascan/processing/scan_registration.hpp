@@ -95,7 +95,11 @@ struct ScanRegistrationConfig {
     std::filesystem::path spill_directory;
     std::size_t max_loaded_clouds = 8;  ///< Clouds and site sets held in memory when spilling.
     /// Sites pooled per scan for the saliency levels when spilling (evenly thinned).
-    std::size_t max_level_sites_per_scan = 2000;
+    std::size_t max_level_sites_per_scan = 500;
+    /// Pairwise stage: a pair is not refined once one of its scans has failed this many
+    /// refinements (0 = no limit). With pruning, a scan whose true partners failed would
+    /// otherwise have all its remaining candidates refined, each failing slowly.
+    std::size_t max_failed_refinements_per_scan = 0;
     /// Correspondences a multi-view link keeps (evenly thinned; 0 = all of them).
     std::size_t max_link_correspondences = 0;
 };
@@ -123,7 +127,8 @@ struct PairOutcome {
     std::size_t source = 0, target = 0;  ///< Scan indices (input order).
     double match_score = 0.0;            ///< Best hypothesis's consensus score (0: none).
     std::size_t hypotheses = 0;          ///< Distinct pose hypotheses from matching.
-    /// Not refined: its scans were already connected by verified pairs of higher score.
+    /// Not refined: its scans were already connected by verified pairs of higher score (or
+    /// one of them had max_failed_refinements_per_scan failures).
     bool global_skipped = false;
     GlobalRegistrationStatus global_status = GlobalRegistrationStatus::kInvalidInput;
     bool verified = false;  ///< Global status success.
