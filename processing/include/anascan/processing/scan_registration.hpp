@@ -18,13 +18,15 @@
 /// world frame and only the largest group's scans are placed. A scan that is not placed is
 /// reported with the reason. See docs/scan-registration.md.
 ///
-/// Cost: N features, N(N-1)/2 feature matchings (~0.05 s each for 40k-point scans), about
-/// N-1 to a few N refinements, and the links' fine registrations.
+/// Cost: N features, N(N-1)/2 feature matchings (~0.05 s each for 40k-point scans; about
+/// k N with pruning), about N-1 to a few N refinements, and the links' fine registrations.
 ///
 /// Memory: each scan's loader is called exactly once, in input order, and the full cloud is
 /// released right after preparation; only the prepared clouds (down-sampled to
-/// `ScanRegistrationConfig::voxel_size_m` when that is positive) and their features are kept.
-/// The multi-view stage needs only the stored correspondences.
+/// `ScanRegistrationConfig::voxel_size_m` when that is positive) and their features are kept,
+/// or, with `spill_directory`, only the patches while clouds and sites wait on disk (at
+/// most `max_loaded_clouds` loaded). The multi-view stage needs only the stored
+/// correspondences. For thousands of scans see `max_candidates_per_scan` (pair pruning).
 ///
 /// Thread safety: `register_scans` is reentrant; it calls `progress` from the calling
 /// thread only. Results do not depend on the number of threads.
