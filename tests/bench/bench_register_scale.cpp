@@ -5,7 +5,7 @@
 //
 //   anascan_bench_register_scale --scans 100 [--points 50000] [--candidates 3]
 //       [--voxel-mm 2] [--max-loaded 8] [--link-correspondences 100] [--spill DIR]
-//       [--all-in-memory] [--list] [--seed 1]
+//       [--all-in-memory] [--list] [--max-failures 2] [--seed 1]
 //
 // The wall: z = Σ h exp(−|xy − c|²/2w²) over x in [0, L], |y| <= 0.1 m, bumps 3-12 mm high
 // and 6-16 mm wide, 1500 per m² (test_bumpy_surface.hpp has 350: too flat between bumps. Window k
@@ -46,6 +46,7 @@ struct Options {
     double voxel_mm = 2.0;
     std::size_t max_loaded = 8;
     std::size_t link_correspondences = 100;
+    std::size_t max_failures = 2;
     std::string spill;
     bool in_memory = false;
     bool list = false;
@@ -139,13 +140,15 @@ bool parse(int argc, char** argv, Options& o) {
             o.in_memory = true;
         else if (a == "--list")
             o.list = true;
+        else if (a == "--max-failures")
+            o.max_failures = std::strtoul(next(), nullptr, 10);
         else if (a == "--seed")
             o.seed = static_cast<unsigned>(std::strtoul(next(), nullptr, 10));
         else {
             std::fprintf(stderr,
                          "usage: %s --scans N [--points P] [--candidates K] [--voxel-mm V]\n"
                          "  [--max-loaded M] [--link-correspondences C] [--spill DIR]\n"
-                         "  [--all-in-memory] [--list] [--seed S]\n",
+                         "  [--all-in-memory] [--list] [--max-failures F] [--seed S]\n",
                          argv[0]);
             return false;
         }
@@ -234,7 +237,7 @@ int main(int argc, char** argv) {
     ScanRegistrationConfig config{.voxel_size_m = o.voxel_mm * 1e-3,
                                   .max_candidates_per_scan = o.candidates,
                                   .max_loaded_clouds = o.max_loaded,
-                                  .max_failed_refinements_per_scan = 2,
+                                  .max_failed_refinements_per_scan = o.max_failures,
                                   .max_link_correspondences = o.link_correspondences};
     if (!o.in_memory) {
         config.spill_directory = o.spill.empty() ? std::filesystem::temp_directory_path() /
