@@ -123,7 +123,7 @@ SaliencyLevels saliency_levels(std::span<const IntegralInvariantResult* const> s
         for (CurvatureSide side : {CurvatureSide::kConvex, CurvatureSide::kConcave}) {
             std::vector<double> deviations;
             for (const IntegralInvariantResult* scan : scans) {
-                for (std::size_t i = 0; i < scan->site_positions.size(); ++i) {
+                for (std::size_t i = 0; i < scan->volume.size(); ++i) {
                     const double d = side_deviation(scan->volume[i][k], side);
                     if (scan->is_valid(i, k) && d > 0.0) deviations.push_back(d);
                 }

@@ -42,9 +42,10 @@ bool usable_target_point(const PointCloud& target, std::size_t i) {
 std::string validate_config(const FineRegistrationConfig& c) {
     const bool ok = c.max_correspondence_distance_m > 0.0 &&
                     c.min_correspondence_distance_m > 0.0 && c.gate_shrink_factor > 0.0 &&
-                    c.max_iterations >= 1 && c.sample_count >= 6 && c.robust_width_fraction > 0.0 &&
-                    c.rotation_tolerance_rad >= 0.0 && c.translation_tolerance_m >= 0.0 &&
-                    c.degeneracy_threshold >= 0.0 && c.overlap_distance_m > 0.0;
+                    c.max_iterations >= 1 && c.max_polish_iterations >= 0 && c.sample_count >= 6 &&
+                    c.robust_width_fraction > 0.0 && c.rotation_tolerance_rad >= 0.0 &&
+                    c.translation_tolerance_m >= 0.0 && c.degeneracy_threshold >= 0.0 &&
+                    c.overlap_distance_m > 0.0;
     return ok ? std::string()
               : "fine registration: a config value is out of range (distances, "
                 "widths and factors must be > 0, max_iterations >= 1, "
@@ -105,8 +106,8 @@ bool converged_by_increment(const Pose& step, const Eigen::Vector3d& centroid_m,
     return angle_rad < config.rotation_tolerance_rad && shift_m < config.translation_tolerance_m;
 }
 
-bool reached_max_iterations(int iterations, const FineRegistrationConfig& config) {
-    return iterations >= config.max_iterations;
+bool reached_max_iterations(int iterations, int max_iterations) {
+    return iterations >= max_iterations;
 }
 
 bool lacks_correspondences_count(std::size_t inliers, const FineRegistrationConfig& config) {
@@ -138,14 +139,15 @@ struct IterationOutcome {
     double gate_m = 0.0;
 };
 
-IterationOutcome iterate(const Samples& samples, const TargetView& target, const Pose& T_initial,
+// Iterates from `start` until converged, out of correspondences or `max_iterations` steps.
+IterationOutcome iterate(const Samples& samples, const TargetView& target,
+                         const IterationOutcome& start, int max_iterations, bool symmetric,
                          const FineRegistrationConfig& config, Workspace& ws) {
-    IterationOutcome out{FineRegistrationStatus::kMaxIterations, 0, T_initial,
-                         config.max_correspondence_distance_m};
-    while (!reached_max_iterations(out.iterations, config)) {
+    IterationOutcome out{FineRegistrationStatus::kMaxIterations, 0, start.T_local, start.gate_m};
+    while (!reached_max_iterations(out.iterations, max_iterations)) {
         const Accumulation sums = fine_detail::match_and_accumulate(
-            samples, target, out.T_local, fine_detail::match_settings(config, out.gate_m),
-            ws.matches, ws.chunk_sums);
+            samples, target, out.T_local,
+            fine_detail::match_settings(config, out.gate_m, symmetric), ws.matches, ws.chunk_sums);
         if (lacks_correspondences(sums, config)) {
             out.status = FineRegistrationStatus::kInsufficientOverlap;
             return out;
@@ -164,6 +166,33 @@ IterationOutcome iterate(const Samples& samples, const TargetView& target, const
         }
     }
     return out;
+}
+
+struct Refinement {
+    IterationOutcome outcome;
+    int polish_iterations = 0;
+    bool polished = false;
+};
+
+// The iteration with the target's normals, then (see `symmetric_polish`) the symmetric one.
+Refinement refine(const Samples& samples, const TargetView& target, const Pose& T_initial,
+                  const FineRegistrationConfig& config, Workspace& ws) {
+    const IterationOutcome start{FineRegistrationStatus::kMaxIterations, 0, T_initial,
+                                 config.max_correspondence_distance_m};
+    Refinement r{iterate(samples, target, start, config.max_iterations, false, config, ws)};
+    const bool polish = config.symmetric_polish && config.max_polish_iterations > 0 &&
+                        !samples.normals.empty() &&
+                        r.outcome.status == FineRegistrationStatus::kConverged;
+    if (!polish) return r;
+    const IterationOutcome polished =
+        iterate(samples, target, r.outcome, config.max_polish_iterations, true, config, ws);
+    r.polish_iterations = polished.iterations;
+    r.outcome.iterations += polished.iterations;
+    if (polished.status != FineRegistrationStatus::kConverged) return r;
+    r.polished = true;
+    r.outcome.T_local = polished.T_local;
+    r.outcome.gate_m = polished.gate_m;
+    return r;
 }
 
 // ---- Status of the whole call -----------------------------------------------------------
@@ -199,11 +228,14 @@ FineRegistrationResult run(const PointCloud& source, const PointCloud& target, c
     }
     const TargetView view{target.positions, target.normals, &tree};
     Workspace ws{std::vector<Match>(samples.points.size()), {}};
-    const IterationOutcome outcome =
-        iterate(samples, view, to_local(T_initial, source, target), config, ws);
+    const Refinement refined =
+        refine(samples, view, to_local(T_initial, source, target), config, ws);
+    const IterationOutcome& outcome = refined.outcome;
     FineRegistrationResult result;
     result.T_target_source = from_local(outcome.T_local, source, target);
     result.iterations = outcome.iterations;
+    result.polish_iterations = refined.polish_iterations;
+    result.polished = refined.polished;
     result.sample_count = samples.points.size();
     fine_detail::rate_final_pose(
         {samples, view, outcome.T_local, outcome.gate_m, source.origin_m, target.origin_m}, config,

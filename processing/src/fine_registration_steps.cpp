@@ -168,6 +168,18 @@ void accumulate_one(const Eigen::Vector3d& x, const Eigen::Vector3d& n, const Ma
     ++acc.inliers;
 }
 
+// The plane normal of a correspondence: the target's, or in the symmetric form the mean of
+// the (moved) source normal and the target's when they face the same way (Rusinkiewicz
+// 2019: the optimum is not biased toward the target's side of the surface).
+Eigen::Vector3d plane_normal(const Samples& samples, std::size_t i, const PassFrame& frame,
+                             const Eigen::Vector3d& n_target, const MatchSettings& settings) {
+    if (!settings.symmetric || samples.normals.empty()) return n_target;
+    const Eigen::Vector3d n_source = frame.R * samples.normals[i].cast<double>();
+    const Eigen::Vector3d sum = n_source + n_target;
+    if (!(n_source.dot(n_target) > 0.0) || !sum.allFinite()) return n_target;
+    return sum.normalized();
+}
+
 Accumulation match_chunk(const Samples& samples, const TargetView& target,
                          const MatchSettings& settings, const PassFrame& frame, std::size_t begin,
                          std::size_t end, std::span<Match> matches) {
@@ -179,15 +191,16 @@ Accumulation match_chunk(const Samples& samples, const TargetView& target,
         const Eigen::Vector3d x = frame.R * samples.points[i].cast<double>() + frame.t;
         Neighbor nb;
         if (!target.tree->nearest(x.cast<float>(), nb)) continue;
-        const Eigen::Vector3d n = target.normals[nb.index].cast<double>();
-        if (!n.allFinite()) continue;
+        const Eigen::Vector3d n_target = target.normals[nb.index].cast<double>();
+        if (!n_target.allFinite()) continue;
+        const Eigen::Vector3d n = plane_normal(samples, i, frame, n_target, settings);
         const Eigen::Vector3d d = x - target.points[nb.index].cast<double>();
         match.target_index = nb.index;
         match.distance_sq_m2 = static_cast<float>(d.squaredNorm());
         match.residual_m = static_cast<float>(d.dot(n));
         if (d.squaredNorm() > gate_sq) continue;
         if (!samples.normals.empty() &&
-            (frame.R * samples.normals[i].cast<double>()).dot(n) < settings.min_normal_cos) {
+            (frame.R * samples.normals[i].cast<double>()).dot(n_target) < settings.min_normal_cos) {
             continue;
         }
         match.weight = kernel_weight(settings.kernel, settings.kernel_width_m, d.dot(n));
@@ -206,10 +219,10 @@ Samples sample_spread(const PointCloud& source, std::size_t count) {
     return make_samples(source, std::move(finite));
 }
 
-MatchSettings match_settings(const FineRegistrationConfig& config, double gate_m) {
+MatchSettings match_settings(const FineRegistrationConfig& config, double gate_m, bool symmetric) {
     const double cos_limit = std::cos(config.max_normal_angle_deg * std::numbers::pi / 180.0);
-    return {gate_m, config.robust_kernel, config.robust_width_fraction * gate_m, cos_limit,
-            config.chunk_size};
+    return {gate_m,    config.robust_kernel, config.robust_width_fraction * gate_m,
+            cos_limit, config.chunk_size,    symmetric};
 }
 
 Accumulation& Accumulation::operator+=(const Accumulation& other) {

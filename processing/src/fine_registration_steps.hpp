@@ -61,10 +61,15 @@ struct MatchSettings {
     double kernel_width_m = 0.0;
     double min_normal_cos = -1.0;  ///< Used only when the samples have normals.
     std::size_t chunk_size = 256;
+    /// The plane of a correspondence has the mean of both normals (symmetric
+    /// point-to-plane); needs sample normals, else the target normal is used.
+    bool symmetric = false;
 };
 
-/// The settings of a pass with correspondence gate `gate_m` (metres).
-MatchSettings match_settings(const FineRegistrationConfig& config, double gate_m);
+/// The settings of a pass with correspondence gate `gate_m` (metres); `symmetric` selects
+/// the symmetric plane (the polish stage).
+MatchSettings match_settings(const FineRegistrationConfig& config, double gate_m,
+                             bool symmetric = false);
 
 /// Sums of one pass over the inliers: normal equations of eq. 2 in scaled unknowns
 /// ξ = (c L, c̄'), c̄' the velocity of the samples' centroid (target local frame).

@@ -232,16 +232,20 @@ std::string_view to_string(GlobalRegistrationStatus status) {
     return "unknown";
 }
 
-InvariantRadii registration_radii_m(std::span<const PointCloud* const> clouds,
+InvariantRadii registration_radii_m(double largest_diagonal_m,
                                     const GlobalRegistrationConfig& config) {
     const bool automatic = std::all_of(config.radii_m.begin(), config.radii_m.end(),
                                        [](double r) { return r == 0.0; });
-    if (!automatic) return config.radii_m;
+    return automatic ? radii_for_object_size_m(largest_diagonal_m) : config.radii_m;
+}
+
+InvariantRadii registration_radii_m(std::span<const PointCloud* const> clouds,
+                                    const GlobalRegistrationConfig& config) {
     double size_m = 0.0;
     for (const PointCloud* cloud : clouds) {
         size_m = std::max(size_m, static_cast<double>(local_bounds(*cloud).extent().norm()));
     }
-    return radii_for_object_size_m(size_m);
+    return registration_radii_m(size_m, config);
 }
 
 IntegralInvariantResult describe_scan(const PointCloud& cloud, const InvariantRadii& radii_m,

@@ -5,10 +5,16 @@
 #include <tbb/parallel_sort.h>
 
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cassert>
 #include <cmath>
 #include <limits>
 #include <utility>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "anascan/processing/kdtree.hpp"
 
@@ -62,6 +68,7 @@ struct MortonGrid {
     std::vector<std::uint64_t> keys;      // Sorted point keys.
     std::vector<std::uint32_t> order;     // Point index of each sorted key.
     std::vector<Eigen::Vector3f> sorted;  // Positions in sorted order.
+    std::vector<float> sx, sy, sz;        // The same as arrays (vectorised linear scans).
     std::vector<std::uint64_t> cell_keys;
     std::vector<std::uint32_t> cell_begin;  // cell_keys.size() + 1 offsets into `sorted`.
 
@@ -85,26 +92,39 @@ void sort_points(std::span<const Eigen::Vector3f> points, MortonGrid& grid) {
         lo = lo.cwiseMin(p.cast<double>());
         hi = hi.cwiseMax(p.cast<double>());
     }
-    std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed;
-    keyed.reserve(points.size());
-    if (lo.x() <= hi.x()) {
-        grid.min_m = lo;
-        grid.units_per_m = kMaxCoord / std::max((hi - lo).maxCoeff(), 1e-9);
-        for (std::size_t i = 0; i < points.size(); ++i) {
-            if (!is_finite(points[i])) continue;
-            const Eigen::Vector3d u = grid.lattice(points[i]);
-            keyed.emplace_back(morton(u.array().floor().cast<std::int64_t>()), std::uint32_t(i));
+    if (!(lo.x() <= hi.x())) return;  // No finite point.
+    grid.min_m = lo;
+    grid.units_per_m = kMaxCoord / std::max((hi - lo).maxCoeff(), 1e-9);
+    // Keys in parallel (non-finite points get the largest key and are cut off after the
+    // sort: a finite key never reaches it, 63 bits are used).
+    constexpr std::uint64_t kNoKey = std::numeric_limits<std::uint64_t>::max();
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(points.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 4096), [&](auto r) {
+        for (std::size_t i = r.begin(); i < r.end(); ++i) {
+            const std::uint64_t key =
+                is_finite(points[i])
+                    ? morton(grid.lattice(points[i]).array().floor().cast<std::int64_t>())
+                    : kNoKey;
+            keyed[i] = {key, std::uint32_t(i)};
         }
-    }
+    });
     tbb::parallel_sort(keyed.begin(), keyed.end());  // Unique pairs: deterministic order.
-    grid.keys.resize(keyed.size());
-    grid.order.resize(keyed.size());
-    grid.sorted.resize(keyed.size());
-    for (std::size_t s = 0; s < keyed.size(); ++s) {
-        grid.keys[s] = keyed[s].first;
-        grid.order[s] = keyed[s].second;
-        grid.sorted[s] = points[keyed[s].second];
-    }
+    std::size_t finite = keyed.size();
+    while (finite > 0 && keyed[finite - 1].first == kNoKey) --finite;
+    grid.keys.resize(finite);
+    grid.order.resize(finite);
+    grid.sorted.resize(finite);
+    for (auto* axis : {&grid.sx, &grid.sy, &grid.sz}) axis->resize(finite);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, finite, 4096), [&](auto r) {
+        for (std::size_t s = r.begin(); s < r.end(); ++s) {
+            grid.keys[s] = keyed[s].first;
+            grid.order[s] = keyed[s].second;
+            grid.sorted[s] = points[keyed[s].second];
+            grid.sx[s] = grid.sorted[s].x();
+            grid.sy[s] = grid.sorted[s].y();
+            grid.sz[s] = grid.sorted[s].z();
+        }
+    });
 }
 
 std::size_t count_cells(const std::vector<std::uint64_t>& keys, int level) {
@@ -138,42 +158,52 @@ void choose_cells(double target, MortonGrid& grid) {
 }
 
 // The k best (squared distance, index) pairs seen so far, closest first, ties by index.
+// A pair is one 64-bit key, distance bits above the index: squared distances are >= 0, so
+// their IEEE bits order like the values and one integer comparison orders the pairs.
 class TopK {
 public:
-    TopK(std::size_t k, float max_d2) : k_(k), max_d2_(max_d2), d2_(k + 1), index_(k + 1) {}
+    TopK(std::size_t k, float max_d2) : k_(k), max_d2_(max_d2), keys_(k + 1) {}
     // Starts over, keeping only candidates within `bound_d2` (and the radius limit).
     void clear(float bound_d2) {
         size_ = 0;
         worst_ = std::min(bound_d2, max_d2_);
+        worst_key_ = pack(worst_, std::numeric_limits<std::uint32_t>::max());
     }
     float max_d2() const { return max_d2_; }
     std::size_t size() const { return size_; }
     std::size_t capacity() const { return k_; }
     float worst() const { return worst_; }
-    // Cheap rejection first: most candidates fail `d2 > worst()`.
+    // Cheap rejection first: most candidates fail `key > worst`.
     void offer(float d2, std::uint32_t index) {
-        if (d2 > worst_) return;
+        const std::uint64_t key = pack(d2, index);
+        if (key > worst_key_) return;
         std::size_t j = size_;
-        while (j > 0 && (d2_[j - 1] > d2 || (d2_[j - 1] == d2 && index_[j - 1] > index))) {
-            d2_[j] = d2_[j - 1];
-            index_[j] = index_[j - 1];
+        while (j > 0 && keys_[j - 1] > key) {
+            keys_[j] = keys_[j - 1];
             --j;
         }
-        d2_[j] = d2;
-        index_[j] = index;
+        keys_[j] = key;
         size_ = std::min(size_ + 1, k_);
-        if (size_ == k_) worst_ = d2_[k_ - 1];
+        if (size_ == k_) {
+            worst_key_ = keys_[k_ - 1];
+            worst_ = d2_of(worst_key_);
+        }
     }
-    float d2(std::size_t j) const { return d2_[j]; }
-    std::uint32_t index(std::size_t j) const { return index_[j]; }
+    float d2(std::size_t j) const { return d2_of(keys_[j]); }
+    std::uint32_t index(std::size_t j) const { return std::uint32_t(keys_[j]); }
 
 private:
+    static std::uint64_t pack(float d2, std::uint32_t index) {
+        return std::uint64_t(std::bit_cast<std::uint32_t>(d2)) << 32 | index;
+    }
+    static float d2_of(std::uint64_t key) { return std::bit_cast<float>(std::uint32_t(key >> 32)); }
+
     std::size_t k_;
     float max_d2_;
-    std::vector<float> d2_;  // k + 1 slots: an insertion may shift the k-th out.
-    std::vector<std::uint32_t> index_;
+    std::vector<std::uint64_t> keys_;  // k + 1 slots: an insertion may shift the k-th out.
     std::size_t size_ = 0;
     float worst_ = 0.0f;
+    std::uint64_t worst_key_ = 0;
 };
 
 void write_row(const TopK& top, std::size_t row, NeighborGraph& graph) {
@@ -184,39 +214,64 @@ void write_row(const TopK& top, std::size_t row, NeighborGraph& graph) {
     graph.counts[row] = std::uint32_t(top.size());
 }
 
+constexpr std::size_t kGroup = 4;  // Candidates compared at once (one SSE register).
+
+// Bit j set when d2[j] <= bound, for the kGroup values at d2.
+unsigned within_mask(const float* d2, float bound) {
+#if defined(__SSE2__)
+    return unsigned(_mm_movemask_ps(_mm_cmple_ps(_mm_loadu_ps(d2), _mm_set1_ps(bound))));
+#else
+    unsigned mask = 0;
+    for (std::size_t j = 0; j < kGroup; ++j) mask |= unsigned(d2[j] <= bound) << j;
+    return mask;
+#endif
+}
+
 // Positions of the (2r+1)^3 block of cells around `cell`.
 struct Block {
     std::vector<float> x, y, z;  // Structure of arrays: the distance loop vectorises.
     std::vector<std::uint32_t> indices;
-    std::vector<float> d2;
-    std::vector<std::uint32_t> picked;  // Slots of the candidates within the bound.
+    std::vector<float> d2;  // Padded to a multiple of kGroup.
     std::size_t size() const { return indices.size(); }
 };
 
+// The cell offsets of a (2r+1)^3 block, nearest first: the centre, faces, edges, corners.
+// Candidates near the query come first, so the k-th distance tightens early and most of
+// the later candidates are rejected four at a time.
+std::vector<Eigen::Array3<std::int64_t>> block_offsets(int r) {
+    std::vector<Eigen::Array3<std::int64_t>> offsets;
+    for (int dz = -r; dz <= r; ++dz) {
+        for (int dy = -r; dy <= r; ++dy) {
+            for (int dx = -r; dx <= r; ++dx) offsets.emplace_back(dx, dy, dz);
+        }
+    }
+    std::stable_sort(offsets.begin(), offsets.end(), [](const auto& a, const auto& b) {
+        return a.square().sum() < b.square().sum();
+    });
+    return offsets;
+}
+
 void gather_block(const MortonGrid& grid, std::size_t cell, int r, Block& block) {
+    static const std::vector<Eigen::Array3<std::int64_t>> kNear = block_offsets(1);
+    static const std::vector<Eigen::Array3<std::int64_t>> kWide = block_offsets(2);
     block.x.clear();
     block.y.clear();
     block.z.clear();
     block.indices.clear();
     const Eigen::Array3<std::int64_t> c = demorton(grid.cell_keys[cell]);
-    for (int dz = -r; dz <= r; ++dz) {
-        for (int dy = -r; dy <= r; ++dy) {
-            for (int dx = -r; dx <= r; ++dx) {
-                const std::ptrdiff_t other =
-                    grid.find_cell(c + Eigen::Array3<std::int64_t>(dx, dy, dz));
-                if (other < 0) continue;
-                for (std::uint32_t s = grid.cell_begin[other]; s < grid.cell_begin[other + 1];
-                     ++s) {
-                    block.x.push_back(grid.sorted[s].x());
-                    block.y.push_back(grid.sorted[s].y());
-                    block.z.push_back(grid.sorted[s].z());
-                    block.indices.push_back(grid.order[s]);
-                }
-            }
+    for (const Eigen::Array3<std::int64_t>& offset : r == 1 ? kNear : kWide) {
+        const std::ptrdiff_t other = grid.find_cell(c + offset);
+        if (other < 0) continue;
+        for (std::uint32_t s = grid.cell_begin[other]; s < grid.cell_begin[other + 1]; ++s) {
+            block.x.push_back(grid.sorted[s].x());
+            block.y.push_back(grid.sorted[s].y());
+            block.z.push_back(grid.sorted[s].z());
+            block.indices.push_back(grid.order[s]);
         }
     }
-    block.d2.resize(block.size());
-    block.picked.resize(block.size());
+    // Padded to whole groups of kGroup with NaN (never within any bound).
+    block.d2.assign((block.size() + kGroup - 1) / kGroup * kGroup,
+                    std::numeric_limits<float>::quiet_NaN());
 }
 
 // Distance (metres) from sorted point s to the outside of the (2r+1)^3 block of cells
@@ -234,25 +289,21 @@ float max_distance_sq(const NeighborGraphConfig& config) {
                                       : std::numeric_limits<float>::infinity();
 }
 
-// Offers the candidates within `bound_d2`: a branch-free pass picks them, so the
-// unpredictable comparison does not stall the pipeline for the many that fail.
+// Offers the candidates within `bound_d2`: groups of four are compared at once against the
+// current k-th distance, so the many candidates that fail cost no branch each.
 void offer_block(Block& block, const Eigen::Vector3f& q, std::uint32_t self, float bound_d2,
                  TopK& top) {
-    const float bound = std::min(bound_d2, top.max_d2());
     const std::size_t m = block.size();
     for (std::size_t c = 0; c < m; ++c) {  // Vectorises.
         const float dx = block.x[c] - q.x(), dy = block.y[c] - q.y(), dz = block.z[c] - q.z();
         block.d2[c] = dx * dx + dy * dy + dz * dz;
     }
-    std::size_t picked = 0;
-    for (std::size_t c = 0; c < m; ++c) {
-        block.picked[picked] = std::uint32_t(c);
-        picked += block.d2[c] <= bound;
-    }
-    top.clear(bound);
-    for (std::size_t p = 0; p < picked; ++p) {
-        const std::uint32_t c = block.picked[p];
-        if (block.indices[c] != self) top.offer(block.d2[c], block.indices[c]);
+    top.clear(bound_d2);
+    for (std::size_t c0 = 0; c0 < m; c0 += kGroup) {
+        for (unsigned mask = within_mask(&block.d2[c0], top.worst()); mask != 0; mask &= mask - 1) {
+            const std::size_t c = c0 + std::size_t(std::countr_zero(mask));
+            if (block.indices[c] != self) top.offer(block.d2[c], block.indices[c]);
+        }
     }
 }
 
@@ -319,12 +370,25 @@ void answer_cell(const MortonGrid& grid, std::size_t cell, const NeighborGraphCo
 // Exact answer for one row by a linear scan of all finite points.
 void brute_force_row(const MortonGrid& grid, std::uint32_t row, const Eigen::Vector3f& q, TopK& top,
                      NeighborGraph& graph) {
+    constexpr std::size_t kChunk = 1024;  // A multiple of kGroup.
+    std::array<float, kChunk> d2;
     top.clear(top.max_d2());
-    for (std::size_t s = 0; s < grid.sorted.size(); ++s) {
-        const Eigen::Vector3f& p = grid.sorted[s];
-        const float dx = p.x() - q.x(), dy = p.y() - q.y(), dz = p.z() - q.z();
-        const float d2 = dx * dx + dy * dy + dz * dz;  // As offer_block: same rounding.
-        if (d2 <= top.worst() && grid.order[s] != row) top.offer(d2, grid.order[s]);
+    const std::size_t n = grid.sorted.size();
+    for (std::size_t begin = 0; begin < n; begin += kChunk) {
+        const std::size_t m = std::min(kChunk, n - begin);
+        for (std::size_t c = 0; c < m; ++c) {  // Vectorises; same rounding as offer_block.
+            const float dx = grid.sx[begin + c] - q.x(), dy = grid.sy[begin + c] - q.y(),
+                        dz = grid.sz[begin + c] - q.z();
+            d2[c] = dx * dx + dy * dy + dz * dz;
+        }
+        std::fill(d2.begin() + std::ptrdiff_t(m), d2.end(),
+                  std::numeric_limits<float>::quiet_NaN());
+        for (std::size_t c0 = 0; c0 < m; c0 += kGroup) {
+            for (unsigned mask = within_mask(&d2[c0], top.worst()); mask != 0; mask &= mask - 1) {
+                const std::size_t c = c0 + std::size_t(std::countr_zero(mask));
+                if (grid.order[begin + c] != row) top.offer(d2[c], grid.order[begin + c]);
+            }
+        }
     }
     write_row(top, row, graph);
 }

@@ -24,16 +24,30 @@ struct LocalFit {
 Eigen::Matrix3d neighbourhood_covariance(std::span<const Eigen::Vector3f> positions, std::size_t i,
                                          std::span<const std::uint32_t> nbrs) {
     const Eigen::Vector3d p0 = positions[i].cast<double>();
-    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-    Eigen::Matrix3d sum_sq = Eigen::Matrix3d::Zero();
-    for (const std::uint32_t j : nbrs) {
-        const Eigen::Vector3d d = positions[j].cast<double>() - p0;
-        sum += d;
-        sum_sq.noalias() += d * d.transpose();
+    double sx = 0, sy = 0, sz = 0, sxx = 0, sxy = 0, sxz = 0, syy = 0, syz = 0, szz = 0;
+    for (const std::uint32_t j : nbrs) {  // The six distinct products only.
+        const double x = double(positions[j].x()) - p0.x(), y = double(positions[j].y()) - p0.y(),
+                     z = double(positions[j].z()) - p0.z();
+        sx += x;
+        sy += y;
+        sz += z;
+        sxx += x * x;
+        sxy += x * y;
+        sxz += x * z;
+        syy += y * y;
+        syz += y * z;
+        szz += z * z;
     }
     const double n = double(nbrs.size() + 1);  // The point itself adds d = 0.
-    const Eigen::Vector3d mean = sum / n;
-    return sum_sq / n - mean * mean.transpose();
+    const double mx = sx / n, my = sy / n, mz = sz / n;
+    Eigen::Matrix3d cov;
+    cov(0, 0) = sxx / n - mx * mx;
+    cov(1, 1) = syy / n - my * my;
+    cov(2, 2) = szz / n - mz * mz;
+    cov(0, 1) = cov(1, 0) = sxy / n - mx * my;
+    cov(0, 2) = cov(2, 0) = sxz / n - mx * mz;
+    cov(1, 2) = cov(2, 1) = syz / n - my * mz;
+    return cov;
 }
 
 // Local PCA: the normal is the eigenvector of the smallest eigenvalue.

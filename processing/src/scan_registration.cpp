@@ -34,52 +34,36 @@ double pair_weight(const GlobalRegistrationResult& global) {
     return global.overlap_fraction / (1.0 + global.rms_m / spacing);
 }
 
-/// Descriptors and patches of every usable scan (unusable ones get invalid features).
-void describe_all(detail::PreparedScans& scans, const GlobalRegistrationConfig& config,
-                  const RegistrationProgress& progress) {
-    std::vector<const PointCloud*> clouds;
-    for (const PointCloud& cloud : scans.clouds) clouds.push_back(&cloud);
-    const InvariantRadii radii_m = registration_radii_m(clouds, config);
-    std::vector<IntegralInvariantResult> invariants(scans.clouds.size());
-    for (std::size_t i = 0; i < scans.clouds.size(); ++i) {
-        if (scans.clouds[i].empty()) continue;
-        report(progress, "features of scan " + std::to_string(i));
-        invariants[i] = describe_scan(scans.clouds[i], radii_m, config);
-    }
-    scans.features = scan_features(std::move(invariants), scans.spacing_m, config);
-}
-
 bool features_usable(const ScanFeatures& f) {
     return f.invariants.status == IntegralInvariantStatus::kOk &&
            f.patches.status == FeaturePatchStatus::kOk;
 }
 
-/// Feature matching of every pair of usable scans (source = the later scan); one result per
-/// pair, in pair order.
-std::vector<FeatureMatchingResult> match_all_pairs(const std::vector<ScanFeatures>& features,
-                                                   const GlobalRegistrationConfig& config,
-                                                   std::vector<PairOutcome>& pairs,
-                                                   const RegistrationProgress& progress) {
-    const std::size_t n = features.size();
+/// Feature matching of the pairs to match (source = the later scan); one result per pair,
+/// in pair order.
+std::vector<FeatureMatchingResult> match_pairs(
+    const std::vector<ScanFeatures>& features,
+    const std::vector<std::pair<std::size_t, std::size_t>>& candidates,
+    const GlobalRegistrationConfig& config, std::vector<PairOutcome>& pairs,
+    const RegistrationProgress& progress) {
     std::vector<FeatureMatchingResult> matchings;
-    for (std::size_t source = 1; source < n; ++source) {
-        report(progress, "matching scan " + std::to_string(source) + " with " +
-                             std::to_string(source) + " earlier scans");
-        for (std::size_t target = 0; target < source; ++target) {
-            PairOutcome pair{.source = source, .target = target};
-            FeatureMatchingResult matching;
-            if (features_usable(features[source]) && features_usable(features[target])) {
-                matching = match_features(features[source].patches, features[target].patches,
-                                          config.matching);
-                pair.hypotheses = matching.hypotheses.size();
-                if (!matching.hypotheses.empty()) {
-                    pair.match_score = matching.hypotheses.front().score;
-                }
-                pair.global_status = GlobalRegistrationStatus::kNoConsensus;
-            }
-            pairs.push_back(pair);
-            matchings.push_back(std::move(matching));
+    std::size_t reported = features.size();
+    for (const auto& [source, target] : candidates) {
+        if (source != reported) {
+            report(progress, "matching scan " + std::to_string(source) + " with earlier scans");
+            reported = source;
         }
+        PairOutcome pair{.source = source, .target = target};
+        FeatureMatchingResult matching;
+        if (features_usable(features[source]) && features_usable(features[target])) {
+            matching =
+                match_features(features[source].patches, features[target].patches, config.matching);
+            pair.hypotheses = matching.hypotheses.size();
+            if (!matching.hypotheses.empty()) pair.match_score = matching.hypotheses.front().score;
+            pair.global_status = GlobalRegistrationStatus::kNoConsensus;
+        }
+        pairs.push_back(pair);
+        matchings.push_back(std::move(matching));
     }
     return matchings;
 }
@@ -96,10 +80,9 @@ void copy_global_figures(const GlobalRegistrationResult& g, PairOutcome& pair) {
 
 /// Refines and verifies the matched pairs, best consensus score first, until their scans
 /// are connected through verified pairs; pairs of connected scans are skipped.
-void verify_pairs(const detail::PreparedScans& scans, std::vector<FeatureMatchingResult> matchings,
+void verify_pairs(detail::PreparedScans& scans, std::vector<FeatureMatchingResult> matchings,
                   const ScanRegistrationConfig& config, std::vector<PairOutcome>& pairs,
                   const RegistrationProgress& progress) {
-    const std::vector<ScanFeatures>& features = scans.features;
     std::vector<std::size_t> order;
     for (std::size_t p = 0; p < pairs.size(); ++p) {
         if (pairs[p].hypotheses > 0) order.push_back(p);
@@ -107,20 +90,33 @@ void verify_pairs(const detail::PreparedScans& scans, std::vector<FeatureMatchin
     std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
         return pairs[a].match_score > pairs[b].match_score;
     });
-    detail::DisjointSets connected(scans.clouds.size());
+    detail::DisjointSets connected(scans.size());
+    std::vector<std::size_t> failures(scans.size(), 0);
+    const std::size_t max_failures = config.max_failed_refinements_per_scan;
+    const auto gave_up = [&](std::size_t i) {
+        return max_failures > 0 && failures[i] >= max_failures;
+    };
     std::size_t tried = 0;
     for (std::size_t p : order) {
         PairOutcome& pair = pairs[p];
-        if (connected.find(pair.source) == connected.find(pair.target)) {
+        if (connected.find(pair.source) == connected.find(pair.target) || gave_up(pair.source) ||
+            gave_up(pair.target)) {
             pair.global_skipped = true;
             continue;
         }
-        const GlobalRegistrationResult g =
-            detail::refine_and_verify({scans.clouds[pair.source], features[pair.source]},
-                                      {scans.clouds[pair.target], features[pair.target]},
-                                      std::move(matchings[p]), config.global);
+        const std::shared_ptr<const PointCloud> source = scans.cloud(pair.source);
+        const std::shared_ptr<const PointCloud> target = scans.cloud(pair.target);
+        const ScanFeatures source_f = scans.full_features(pair.source);
+        const ScanFeatures target_f = scans.full_features(pair.target);
+        const GlobalRegistrationResult g = detail::refine_and_verify(
+            {*source, source_f}, {*target, target_f}, std::move(matchings[p]), config.global);
         copy_global_figures(g, pair);
-        if (pair.verified) connected.unite(pair.source, pair.target);
+        if (pair.verified) {
+            connected.unite(pair.source, pair.target);
+        } else {
+            ++failures[pair.source];
+            ++failures[pair.target];
+        }
         report(progress, "global registration " + std::to_string(++tried) + ": scan " +
                              std::to_string(pair.source) + " onto " + std::to_string(pair.target) +
                              " (score " + std::to_string(static_cast<int>(pair.match_score)) +
@@ -174,16 +170,17 @@ ScanRegistrationResult register_scans(const std::vector<ScanInput>& scans,
     auto stage = std::chrono::steady_clock::now();
     detail::PreparedScans prepared = detail::load_and_prepare(scans, config, progress, result);
     std::vector<bool> usable(scans.size());
-    for (std::size_t i = 0; i < scans.size(); ++i) usable[i] = !prepared.clouds[i].empty();
+    for (std::size_t i = 0; i < scans.size(); ++i) usable[i] = prepared.usable(i);
     result.timings.prepare_s = seconds_since(stage);
 
     stage = std::chrono::steady_clock::now();
-    describe_all(prepared, config.global, progress);
+    detail::describe_all(prepared, config, progress);
     result.timings.features_s = seconds_since(stage);
 
     stage = std::chrono::steady_clock::now();
     std::vector<FeatureMatchingResult> matchings =
-        match_all_pairs(prepared.features, config.global, result.pairs, progress);
+        match_pairs(prepared.features, detail::candidate_pairs(prepared, config), config.global,
+                    result.pairs, progress);
     result.timings.matching_s = seconds_since(stage);
 
     stage = std::chrono::steady_clock::now();
@@ -209,6 +206,8 @@ ScanRegistrationResult register_scans(const std::vector<ScanInput>& scans,
 
     place_scans(graph, result);
     detail::warn_identical_scans(prepared, result);
+    result.cloud_reloads = prepared.store.reload_count();
+    result.spill_error = prepared.spill_error;
     result.timings.total_s = seconds_since(start);
     return result;
 }

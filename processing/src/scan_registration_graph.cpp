@@ -1,5 +1,6 @@
 // Pose graph, pairwise links and multi-view refinement of register_scans.
 #include <algorithm>
+#include <memory>
 #include <numeric>
 #include <string>
 #include <utility>
@@ -79,34 +80,30 @@ void copy_fine_figures(const FineRegistrationResult& fine, PairOutcome& pair) {
     pair.fine_time_s = fine.time_s;
 }
 
-/// Bounding sphere of a cloud in its own frame (centre with origin, metres).
-struct Sphere {
-    Eigen::Vector3d centre_m = Eigen::Vector3d::Zero();
-    double radius_m = 0.0;
-};
-
-Sphere bounding_sphere(const PointCloud& cloud) {
-    const Bounds bounds = local_bounds(cloud);
-    return {.centre_m = cloud.origin_m + (0.5 * (bounds.min + bounds.max)).cast<double>(),
-            .radius_m = 0.5 * static_cast<double>(bounds.extent().norm())};
-}
-
 /// Scans of one group whose spheres meet (with a margin of the fine search distance).
-bool may_overlap(const Sphere& a, const Pose& T_root_a, const Sphere& b, const Pose& T_root_b,
-                 double margin_m) {
+bool may_overlap(const ScanSummary& a, const Pose& T_root_a, const ScanSummary& b,
+                 const Pose& T_root_b, double margin_m) {
     const double gap = (T_root_a * a.centre_m - T_root_b * b.centre_m).norm();
     return gap <= a.radius_m + b.radius_m + margin_m;
 }
 
 /// Overlap of two scans' feature sites under the graph poses (a cheap forecast of the fine
 /// registration's overlap).
-double predicted_overlap(const PreparedScans& scans, const std::vector<KdTree>& site_trees,
-                         const Pose& T_target_source, std::size_t s, std::size_t t,
+double predicted_overlap(const ScanFeatures& source, const ScanFeatures& target,
+                         const KdTree& target_sites, const Pose& T_target_source,
                          const GlobalRegistrationConfig& config) {
-    const IntegralInvariantResult& target = scans.features[t].invariants;
-    return site_overlap_fraction(scans.features[s].invariants, target, site_trees[t],
-                                 T_target_source,
-                                 config.site_overlap_spacing_factor * target.site_spacing_m);
+    return site_overlap_fraction(
+        source.invariants, target.invariants, target_sites, T_target_source,
+        config.site_overlap_spacing_factor * target.invariants.site_spacing_m);
+}
+
+/// Every `step`-th correspondence, at most `max_count` (0: all).
+std::vector<FineCorrespondence> thinned(std::vector<FineCorrespondence> all,
+                                        std::size_t max_count) {
+    if (max_count == 0 || all.size() <= max_count) return all;
+    std::vector<FineCorrespondence> out(max_count);
+    for (std::size_t k = 0; k < max_count; ++k) out[k] = all[k * all.size() / max_count];
+    return out;
 }
 
 bool usable_link(const FineRegistrationResult& fine, double target_spacing_m,
@@ -155,33 +152,34 @@ PoseGraph build_pose_graph(const std::vector<bool>& usable, std::vector<PairOutc
     return graph;
 }
 
-PairLinks make_links(const PreparedScans& scans, const PoseGraph& graph,
-                     std::vector<PairOutcome>& pairs, const ScanRegistrationConfig& config,
-                     const RegistrationProgress& progress) {
+PairLinks make_links(PreparedScans& scans, const PoseGraph& graph, std::vector<PairOutcome>& pairs,
+                     const ScanRegistrationConfig& config, const RegistrationProgress& progress) {
     FineRegistrationConfig fine_config = config.fine;
     fine_config.keep_correspondences = true;
-    std::vector<Sphere> spheres;
-    std::vector<KdTree> site_trees;
-    for (std::size_t i = 0; i < scans.clouds.size(); ++i) {
-        spheres.push_back(bounding_sphere(scans.clouds[i]));
-        site_trees.emplace_back(scans.features[i].invariants.site_positions);
-    }
     PairLinks links;
+    std::size_t tree_scan = scans.size();  // Target of the cached site tree.
+    ScanFeatures target_f;
+    std::unique_ptr<KdTree> target_sites;
     for (std::size_t p = 0; p < pairs.size(); ++p) {
         PairOutcome& pair = pairs[p];
         const std::size_t s = pair.source, t = pair.target;
         if (graph.group[s] < 0 || graph.group[s] != graph.group[t]) continue;
-        if (!may_overlap(spheres[s], graph.T_root_scan[s], spheres[t], graph.T_root_scan[t],
-                         config.fine.max_correspondence_distance_m)) {
+        if (!may_overlap(scans.summary[s], graph.T_root_scan[s], scans.summary[t],
+                         graph.T_root_scan[t], config.fine.max_correspondence_distance_m)) {
             continue;
         }
+        if (tree_scan != t) {  // Rebuilt only when the target changes.
+            target_f = scans.full_features(t);
+            target_sites = std::make_unique<KdTree>(target_f.invariants.site_positions);
+            tree_scan = t;
+        }
         const Pose initial = graph.T_root_scan[t].inverse() * graph.T_root_scan[s];
-        if (predicted_overlap(scans, site_trees, initial, s, t, config.global) <
-            config.min_link_overlap_fraction) {
+        if (predicted_overlap(scans.full_features(s), target_f, *target_sites, initial,
+                              config.global) < config.min_link_overlap_fraction) {
             continue;
         }
         FineRegistrationResult fine =
-            register_fine(scans.clouds[s], scans.clouds[t], initial, fine_config);
+            register_fine(*scans.cloud(s), *scans.cloud(t), initial, fine_config);
         copy_fine_figures(fine, pair);
         if (progress) {
             progress("fine registration: scan " + std::to_string(s) + " onto " + std::to_string(t) +
@@ -191,7 +189,8 @@ PairLinks make_links(const PreparedScans& scans, const PoseGraph& graph,
         pair.linked = true;
         links.links.push_back({.target_index = t,
                                .source_index = s,
-                               .correspondences = std::move(fine.correspondences)});
+                               .correspondences = thinned(std::move(fine.correspondences),
+                                                          config.max_link_correspondences)});
         links.pair_of_link.push_back(p);
     }
     return links;

@@ -59,6 +59,15 @@ bool same_positions(const PointCloud& a, const PointCloud& b) {
                        sizeof(Eigen::Vector3f) * a.size()) == 0;
 }
 
+// Bounding sphere, diagonal and hash of a prepared cloud (points set by the caller).
+detail::ScanSummary summarize(const PointCloud& cloud) {
+    const Bounds bounds = local_bounds(cloud);
+    return {.centre_m = cloud.origin_m + (0.5 * (bounds.min + bounds.max)).cast<double>(),
+            .radius_m = 0.5 * static_cast<double>(bounds.extent().norm()),
+            .diagonal_m = static_cast<double>(bounds.extent().norm()),
+            .position_hash = position_hash(cloud)};
+}
+
 }  // namespace
 
 std::size_t prepare_scan(PointCloud& cloud, const std::optional<Eigen::Vector3d>& sensor_origin_m,
@@ -86,9 +95,10 @@ PreparedScans load_and_prepare(const std::vector<ScanInput>& inputs,
                                const ScanRegistrationConfig& config,
                                const RegistrationProgress& progress,
                                ScanRegistrationResult& result) {
-    PreparedScans prepared;
-    prepared.clouds.resize(inputs.size());
-    prepared.spacing_m.assign(inputs.size(), 0.0);
+    PreparedScans prepared{.store = CloudStore({.directory = config.spill_directory,
+                                                .max_loaded = config.max_loaded_clouds}),
+                           .summary = std::vector<ScanSummary>(inputs.size()),
+                           .spacing_m = std::vector<double>(inputs.size(), 0.0)};
     for (std::size_t i = 0; i < inputs.size(); ++i) {
         ScanOutcome& scan = result.scans[i];
         if (progress) progress("preparing " + inputs[i].name);
@@ -106,18 +116,26 @@ PreparedScans load_and_prepare(const std::vector<ScanInput>& inputs,
             unusable_reason(loaded_count, finite_count, scan.point_count, config.min_scan_points);
         if (!scan.reason.empty()) continue;
         prepared.spacing_m[i] = scan.spacing_m = median_sample_spacing_m(*loaded);
-        prepared.clouds[i] = std::move(*loaded);
+        const std::size_t points = loaded->size();
+        ScanSummary summary = summarize(*loaded);
+        if (auto put = prepared.store.put(2 * i, std::move(*loaded)); !put) {
+            scan.reason = "could not be spilled: " + put.error().message;
+            if (prepared.spill_error.empty()) prepared.spill_error = put.error().message;
+            continue;
+        }
+        summary.points = points;
+        prepared.summary[i] = summary;
     }
     return prepared;
 }
 
-void warn_identical_scans(const PreparedScans& scans, ScanRegistrationResult& result) {
-    std::vector<std::uint64_t> hashes;
-    for (const PointCloud& cloud : scans.clouds) hashes.push_back(position_hash(cloud));
-    for (std::size_t i = 0; i < scans.clouds.size(); ++i) {
-        if (scans.clouds[i].empty()) continue;
+void warn_identical_scans(PreparedScans& scans, ScanRegistrationResult& result) {
+    for (std::size_t i = 0; i < scans.size(); ++i) {
+        if (!scans.usable(i)) continue;
         for (std::size_t j = 0; j < i; ++j) {
-            if (hashes[i] != hashes[j] || !same_positions(scans.clouds[i], scans.clouds[j])) {
+            if (!scans.usable(j) ||
+                scans.summary[i].position_hash != scans.summary[j].position_hash ||
+                !same_positions(*scans.cloud(i), *scans.cloud(j))) {
                 continue;
             }
             result.scans[i].warning = "the same points as " + result.scans[j].name +

@@ -3,10 +3,15 @@
 #include <algorithm>
 #include <chrono>
 #include <cstddef>
+#include <cstdint>
+#include <memory>
 #include <numeric>
 #include <span>
+#include <string>
+#include <utility>
 #include <vector>
 
+#include "anascan/processing/cloud_store.hpp"
 #include "anascan/processing/scan_registration.hpp"
 
 namespace anascan::detail {
@@ -33,12 +38,32 @@ struct DisjointSets {
     }
 };
 
-/// The prepared clouds (empty: not usable), their median sample spacings (metres) and
-/// their features (filled by the features stage).
+/// What the later stages need of a prepared cloud without loading it.
+struct ScanSummary {
+    std::size_t points = 0;                              ///< 0: not usable.
+    Eigen::Vector3d centre_m = Eigen::Vector3d::Zero();  ///< Bounding sphere, own frame.
+    double radius_m = 0.0;
+    double diagonal_m = 0.0;  ///< Local bounds' diagonal.
+    std::uint64_t position_hash = 0;
+};
+
+/// The prepared clouds (in `store` under key 2i; not there: not usable), their summaries,
+/// median sample spacings (metres) and features (filled by the features stage). When
+/// spilling, the features' sites live in `store` under key 2i + 1 and `features` holds
+/// only the patches and figures (see `full_features`).
 struct PreparedScans {
-    std::vector<PointCloud> clouds;
+    CloudStore store;
+    std::vector<ScanSummary> summary;
     std::vector<double> spacing_m;
     std::vector<ScanFeatures> features;
+    std::string spill_error;  ///< The first store failure.
+
+    std::size_t size() const { return summary.size(); }
+    bool usable(std::size_t i) const { return summary[i].points > 0; }
+    /// Scan i's prepared cloud (empty when it cannot be had; the failure is recorded).
+    std::shared_ptr<const PointCloud> cloud(std::size_t i);
+    /// Scan i's features with their sites (reloaded when spilled).
+    ScanFeatures full_features(std::size_t i);
 };
 
 /// Loads and prepares every scan (one full cloud in memory at a time); fills the outcomes'
@@ -49,7 +74,18 @@ PreparedScans load_and_prepare(const std::vector<ScanInput>& inputs,
                                ScanRegistrationResult& result);
 
 /// Adds a warning to every placed scan whose prepared points equal an earlier scan's.
-void warn_identical_scans(const PreparedScans& scans, ScanRegistrationResult& result);
+void warn_identical_scans(PreparedScans& scans, ScanRegistrationResult& result);
+
+/// Descriptors and patches of every usable scan (features stage). In memory: descriptors
+/// of all scans, saliency levels pooled over all sites. Spilling: two passes, descriptors
+/// on disk in between, levels pooled over at most `max_level_sites_per_scan` sites a scan.
+void describe_all(PreparedScans& scans, const ScanRegistrationConfig& config,
+                  const RegistrationProgress& progress);
+
+/// The pairs to match (source > target, in pair order): all of them, or the candidates of
+/// the feature signatures when `max_candidates_per_scan` > 0.
+std::vector<std::pair<std::size_t, std::size_t>> candidate_pairs(
+    const PreparedScans& scans, const ScanRegistrationConfig& config);
 
 /// Connected components of the verified pairs and the spanning-tree poses within each.
 struct PoseGraph {
@@ -70,9 +106,8 @@ struct PairLinks {
 
 /// Final fine registration, from the graph poses, of every pair of one group whose bounding
 /// spheres meet; fills the pairs' fine figures and returns one link per pair good enough.
-PairLinks make_links(const PreparedScans& scans, const PoseGraph& graph,
-                     std::vector<PairOutcome>& pairs, const ScanRegistrationConfig& config,
-                     const RegistrationProgress& progress);
+PairLinks make_links(PreparedScans& scans, const PoseGraph& graph, std::vector<PairOutcome>& pairs,
+                     const ScanRegistrationConfig& config, const RegistrationProgress& progress);
 
 /// Multi-view refinement of each group with more than one scan, in place on
 /// `graph.T_root_scan`; marks dropped links. Returns the largest group's status.

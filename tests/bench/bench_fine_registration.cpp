@@ -94,6 +94,20 @@ void BM_AnascanFineRegistration(benchmark::State& state) {
     report_error(state, p.truth, result.T_target_source, result.iterations);
 }
 
+// Without the symmetric polish (target normals only, as before it existed).
+void BM_AnascanFineRegistrationNoPolish(benchmark::State& state) {
+    if (!bunny()) return state.SkipWithError("Stanford bunny scans not found");
+    const BunnyPair& p = *bunny();
+    const FineRegistrationConfig config{
+        .max_correspondence_distance_m = kMaxCorrespondenceDistanceM, .symmetric_polish = false};
+    FineRegistrationResult result;
+    for (auto _ : state) {
+        result = register_fine(p.source, p.target, p.initial, config);
+        benchmark::DoNotOptimize(result.T_target_source);
+    }
+    report_error(state, p.truth, result.T_target_source, result.iterations);
+}
+
 // The session case: the target's k-d tree is built once and reused.
 void BM_AnascanFineRegistrationPrebuiltTree(benchmark::State& state) {
     if (!bunny()) return state.SkipWithError("Stanford bunny scans not found");
@@ -108,6 +122,9 @@ void BM_AnascanFineRegistrationPrebuiltTree(benchmark::State& state) {
 }
 
 BENCHMARK(BM_AnascanFineRegistration)->Unit(benchmark::kMillisecond)->MinWarmUpTime(kWarmUpSeconds);
+BENCHMARK(BM_AnascanFineRegistrationNoPolish)
+    ->Unit(benchmark::kMillisecond)
+    ->MinWarmUpTime(kWarmUpSeconds);
 BENCHMARK(BM_AnascanFineRegistrationPrebuiltTree)
     ->Unit(benchmark::kMillisecond)
     ->MinWarmUpTime(kWarmUpSeconds);

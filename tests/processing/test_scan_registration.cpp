@@ -4,9 +4,11 @@
 // unrelated shape (a hemisphere), an empty scan and a scan that fails to load are reported not
 // placed with a reason.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <random>
 #include <string>
@@ -104,6 +106,47 @@ TEST(ScanRegistration, PlacesViewsAndReportsTheOthers) {
     EXPECT_NE(result.scans[5].reason.find("gone"), std::string::npos);
     EXPECT_GE(result.link_count, 2u);
     EXPECT_GT(result.timings.total_s, 0.0);
+}
+
+// The scale code paths on a small strip: pair pruning (2 candidates per scan) and the
+// out-of-core store (clouds and sites spilled, at most 2 in memory) place every window as
+// accurately as before, match fewer than all pairs, reload from disk and clean up.
+TEST(ScanRegistration, PrunedAndSpilledStripIsPlaced) {
+    std::mt19937 rng(5);
+    const std::vector<Bump> bumps = random_bumps(3, 60);
+    std::vector<SyntheticScan> views;
+    std::vector<ScanInput> inputs;
+    for (int k = 0; k < 6; ++k) {
+        const double x = -0.1 + 0.024 * k;
+        views.push_back(make_view(bumpy_window(bumps, x, x + 0.08, 0.0002 * k), rng,
+                                  "window" + std::to_string(k)));
+    }
+    for (int k : {3, 0, 5, 1, 4, 2}) inputs.push_back(views[std::size_t(k)].input);  // Shuffled.
+    const std::filesystem::path spill =
+        std::filesystem::temp_directory_path() / ("anascan_test_spill_" + std::to_string(getpid()));
+    const ScanRegistrationResult result = register_scans(inputs,
+                                                         {.max_candidates_per_scan = 2,
+                                                          .spill_directory = spill,
+                                                          .max_loaded_clouds = 2,
+                                                          .max_link_correspondences = 200},
+                                                         {});
+    EXPECT_TRUE(result.spill_error.empty()) << result.spill_error;
+    EXPECT_EQ(result.placed_count, inputs.size());
+    EXPECT_LT(result.pairs.size(), inputs.size() * (inputs.size() - 1) / 2);
+    EXPECT_GT(result.cloud_reloads, 0u);
+    const std::size_t ref = result.reference_scan;
+    const SyntheticScan& ref_view = views[std::size_t(std::stoi(result.scans[ref].name.substr(6)))];
+    for (const ScanOutcome& scan : result.scans) {
+        ASSERT_TRUE(scan.placed) << scan.name << ": " << scan.reason;
+        const SyntheticScan& view = views[std::size_t(std::stoi(scan.name.substr(6)))];
+        const Pose truth = ref_view.T_object_scan.inverse() * view.T_object_scan;
+        const Pose estimate = result.scans[ref].T_world_scan.inverse() * scan.T_world_scan;
+        const Eigen::Vector3d c = view.centroid_scan_m;
+        EXPECT_LT(pose_difference(estimate, truth).rotation_deg, 0.5) << scan.name;
+        EXPECT_LT((estimate * c - truth * c).norm(), 0.001) << scan.name;
+    }
+    EXPECT_TRUE(!std::filesystem::exists(spill) || std::filesystem::is_empty(spill));
+    std::filesystem::remove_all(spill);
 }
 
 /// A loader returning a fixed cloud.

@@ -64,6 +64,13 @@ struct FineRegistrationConfig {
     std::size_t min_correspondences = 30;
     /// Pairs whose normals (when the source has normals) differ by more are ignored.
     double max_normal_angle_deg = 60.0;
+    /// Symmetric polish: after converging with the target's normals, iterate on from there
+    /// with the plane of each correspondence given by the mean of both normals (symmetric
+    /// point-to-plane, Rusinkiewicz 2019), whose optimum is not biased toward the target's
+    /// side. Only when the source has normals; the polished pose is kept only when it
+    /// converges within `max_polish_iterations` (else the first result stands).
+    bool symmetric_polish = true;
+    int max_polish_iterations = 10;     ///< Steps allowed to the symmetric polish.
     bool keep_correspondences = false;  ///< Fill FineRegistrationResult::correspondences.
     /// TBB work unit (samples per chunk). The chunking, not the thread count, fixes the
     /// summation order, so results are identical for any number of threads.
@@ -111,7 +118,10 @@ struct FineRegistrationResult {
     /// Maps source points into the target frame. The initial guess when the input was
     /// invalid; otherwise the last estimate (also for degenerate and max_iterations).
     Pose T_target_source = Pose::Identity();
-    int iterations = 0;                 ///< Steps taken (solve + helical move).
+    int iterations = 0;  ///< Steps taken (solve + helical move), polish included.
+    /// Steps of the symmetric polish (included in `iterations`); 0 when it did not run.
+    int polish_iterations = 0;
+    bool polished = false;              ///< The symmetric polish converged and gave the final pose.
     std::size_t sample_count = 0;       ///< Valid source samples used.
     std::size_t inlier_count = 0;       ///< Correspondences within the final gate.
     double rms_m = 0.0;                 ///< RMS point-to-plane residual of the inliers.

@@ -180,6 +180,10 @@ struct ScanFeatures {
 InvariantRadii registration_radii_m(std::span<const PointCloud* const> clouds,
                                     const GlobalRegistrationConfig& config);
 
+/// The same from the largest local-bounds diagonal of the clouds (metres).
+InvariantRadii registration_radii_m(double largest_diagonal_m,
+                                    const GlobalRegistrationConfig& config);
+
 /// Descriptors of one scan at `radii_m` (config.invariants with its radii replaced).
 IntegralInvariantResult describe_scan(const PointCloud& cloud, const InvariantRadii& radii_m,
                                       const GlobalRegistrationConfig& config);

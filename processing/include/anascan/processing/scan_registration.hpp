@@ -18,18 +18,21 @@
 /// world frame and only the largest group's scans are placed. A scan that is not placed is
 /// reported with the reason. See docs/scan-registration.md.
 ///
-/// Cost: N features, N(N-1)/2 feature matchings (~0.05 s each for 40k-point scans), about
-/// N-1 to a few N refinements, and the links' fine registrations.
+/// Cost: N features, N(N-1)/2 feature matchings (~0.05 s each for 40k-point scans; about
+/// k N with pruning), about N-1 to a few N refinements, and the links' fine registrations.
 ///
 /// Memory: each scan's loader is called exactly once, in input order, and the full cloud is
 /// released right after preparation; only the prepared clouds (down-sampled to
-/// `ScanRegistrationConfig::voxel_size_m` when that is positive) and their features are kept.
-/// The multi-view stage needs only the stored correspondences.
+/// `ScanRegistrationConfig::voxel_size_m` when that is positive) and their features are kept,
+/// or, with `spill_directory`, only the patches while clouds and sites wait on disk (at
+/// most `max_loaded_clouds` loaded). The multi-view stage needs only the stored
+/// correspondences. For thousands of scans see `max_candidates_per_scan` (pair pruning).
 ///
 /// Thread safety: `register_scans` is reentrant; it calls `progress` from the calling
 /// thread only. Results do not depend on the number of threads.
 #include <Eigen/Core>
 #include <cstddef>
+#include <filesystem>
 #include <functional>
 #include <optional>
 #include <string>
@@ -80,6 +83,27 @@ struct ScanRegistrationConfig {
     /// farther than the verification's, so the limit is looser).
     double max_link_rms_spacing_factor = 2.0;
     MultiviewRefinementConfig multiview{};  ///< fixed_scan_index is set per group.
+
+    // ---- Scale (thousands of scans; see docs/scan-registration.md "Scale") ----------------
+    /// Pair pruning: 0 matches every pair (N(N-1)/2 matchings). Otherwise each scan is
+    /// matched only with the scans whose feature signature (a histogram of the distances
+    /// between its feature patches, per patch class) is among its `max_candidates_per_scan`
+    /// most similar; a pair is matched when either of its scans lists the other.
+    std::size_t max_candidates_per_scan = 0;
+    /// Out-of-core: when set, prepared clouds and feature sites are written to this
+    /// directory (created when missing, files removed at the end) and reloaded on demand,
+    /// at most `max_loaded_clouds` in memory; descriptors are kept on disk between the two
+    /// feature passes. Empty: everything stays in memory.
+    std::filesystem::path spill_directory;
+    std::size_t max_loaded_clouds = 8;  ///< Clouds and site sets held in memory when spilling.
+    /// Sites pooled per scan for the saliency levels when spilling (evenly thinned).
+    std::size_t max_level_sites_per_scan = 500;
+    /// Pairwise stage: a pair is not refined once one of its scans has failed this many
+    /// refinements (0 = no limit). With pruning, a scan whose true partners failed would
+    /// otherwise have all its remaining candidates refined, each failing slowly.
+    std::size_t max_failed_refinements_per_scan = 0;
+    /// Correspondences a multi-view link keeps (evenly thinned; 0 = all of them).
+    std::size_t max_link_correspondences = 0;
 };
 
 /// One scan's outcome.
@@ -105,7 +129,8 @@ struct PairOutcome {
     std::size_t source = 0, target = 0;  ///< Scan indices (input order).
     double match_score = 0.0;            ///< Best hypothesis's consensus score (0: none).
     std::size_t hypotheses = 0;          ///< Distinct pose hypotheses from matching.
-    /// Not refined: its scans were already connected by verified pairs of higher score.
+    /// Not refined: its scans were already connected by verified pairs of higher score (or
+    /// one of them had max_failed_refinements_per_scan failures).
     bool global_skipped = false;
     GlobalRegistrationStatus global_status = GlobalRegistrationStatus::kInvalidInput;
     bool verified = false;  ///< Global status success.
@@ -141,7 +166,8 @@ struct ScanRegistrationTimings {
 
 struct ScanRegistrationResult {
     std::vector<ScanOutcome> scans;  ///< Input order.
-    std::vector<PairOutcome> pairs;  ///< Every pair, (1,0), (2,0), (2,1), ...
+    /// Every pair, (1,0), (2,0), (2,1), ... (only the candidate pairs when pruned).
+    std::vector<PairOutcome> pairs;
     std::size_t reference_scan = 0;  ///< The world frame's scan (when any is placed).
     std::size_t placed_count = 0;
     std::size_t group_count = 0;  ///< Connected components among the loaded scans.
@@ -151,6 +177,10 @@ struct ScanRegistrationResult {
     /// Multi-view status of the largest group (converged when it has one scan).
     MultiviewStatus multiview_status = MultiviewStatus::kConverged;
     ScanRegistrationTimings timings;
+    /// Out-of-core figures: clouds and site sets read back from the spill directory, and
+    /// the first spill failure (empty when none; the affected pairs are not registered).
+    std::size_t cloud_reloads = 0;
+    std::string spill_error;
 };
 
 /// Progress messages ("global registration 3 of 45: ..."), for a log; may be empty.
