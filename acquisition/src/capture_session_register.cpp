@@ -156,7 +156,8 @@ bool CaptureSession::Impl::refine_in_background() {
     const std::vector<PoseUpdate> updates = registrar.refine();
     const LiveRefineReport& report = registrar.last_refine_report();
     // refine() works to a budget per call: call again while it still finds work.
-    const bool more = !updates.empty() || report.new_links > 0 || report.merges > 0;
+    const bool more =
+        !updates.empty() || report.new_links > 0 || report.merges > 0 || report.merge_attempts > 0;
     refine_due = more;
     if (updates.empty()) return more;
     std::vector<std::pair<std::int64_t, PoseInGroup>> poses;

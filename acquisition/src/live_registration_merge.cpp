@@ -5,6 +5,7 @@
 // near-symmetric block this rejects the look-alike that maps the old top face onto the new
 // top (the old bottom): measured on the demo session (docs/live-registration.md).
 #include <algorithm>
+#include <cmath>
 
 #include "live_registration_state.hpp"
 
@@ -48,15 +49,19 @@ std::optional<AxisConstraint> LiveRegistrar::State::up_constraint(int target, in
 }
 
 std::vector<PoseUpdate> LiveRegistrar::State::merge_whole_groups() {
-    if (!config.whole_group_merges) return {};
+    // Without the session's own noise level (enough links) a look-alike cannot be told from
+    // the right pose by its RMS: wait.
+    if (!config.whole_group_merges || !std::isfinite(rms_gate())) return {};
     const std::vector<int> ids = groups();
     for (std::size_t b = 1; b < ids.size(); ++b) {
         for (std::size_t a = 0; a < b; ++a) {
-            // Tried again only once the two groups have doubled (each try costs seconds).
-            const std::size_t scans_now = members(ids[a]).size() + members(ids[b]).size();
-            std::size_t& tried = whole_merge_tried[{ids[a], ids[b]}];
-            if (scans_now < 2 * tried) continue;
-            tried = scans_now;
+            // Tried again only once one of the groups has doubled (each try costs seconds).
+            const std::size_t size_a = members(ids[a]).size(), size_b = members(ids[b]).size();
+            const std::size_t smaller = std::min(size_a, size_b), larger = std::max(size_a, size_b);
+            auto [it, first] = whole_merge_tried.try_emplace({ids[a], ids[b]}, smaller, larger);
+            if (!first && smaller < 2 * it->second.first && larger < 2 * it->second.second)
+                continue;
+            it->second = {smaller, larger};
             // The smaller group is the source: verification asks for overlap of the source.
             const bool a_smaller = members(ids[a]).size() < members(ids[b]).size();
             const int source_id = a_smaller ? ids[a] : ids[b];
@@ -67,7 +72,9 @@ std::vector<PoseUpdate> LiveRegistrar::State::merge_whole_groups() {
                 register_global(group_cloud(source_id), group_cloud(target_id), global);
             ++report.merge_attempts;
             // One try per call: it costs seconds, and a new scan may be waiting.
-            if (g.status != GlobalRegistrationStatus::kSuccess || g.rms_m > rms_gate()) return {};
+            if (g.status != GlobalRegistrationStatus::kSuccess || g.rms_m > rms_gate() ||
+                g.rms_m > limits().max_rms_m)
+                return {};
             // Into the lower id: T_a_b.
             return merge(ids[a], ids[b],
                          a_smaller ? Pose(g.T_target_source.inverse()) : g.T_target_source);

@@ -149,8 +149,8 @@ struct LiveRegistrar::State {
     /// Up kept (same side) or turned down (after a turn-over) between two groups, if known.
     std::optional<AxisConstraint> up_constraint(int target, int source) const;
     int turn_count = 0;  ///< Turn-overs marked so far.
-    /// Group pairs tried whole (lower id first) and their scans then.
-    std::map<std::pair<int, int>, std::size_t> whole_merge_tried;
+    /// Group pairs tried whole (lower id first) and the smaller and larger group's scans then.
+    std::map<std::pair<int, int>, std::pair<std::size_t, std::size_t>> whole_merge_tried;
     /// The group's stone-only clouds in its frame, merged and voxel down-sampled.
     PointCloud group_cloud(int group) const;
     /// The voted transform between two groups refined by fine registration of the groups'
