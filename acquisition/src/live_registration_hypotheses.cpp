@@ -33,10 +33,12 @@ LiveAttempt attempt_of(std::string method, const Verified& v, std::int64_t targe
             .time_s = v.fine.time_s};
 }
 
+}  // namespace
+
 /// Why the refined pose cannot come from the hypothesis `T_prior` (too far from it).
-std::string correction_problem(const ScanEntry& entry, const Pose& T_prior,
-                               const FineRegistrationResult& fine,
-                               const LiveRegistrationConfig& config) {
+std::string live::correction_problem(const ScanEntry& entry, const Pose& T_prior,
+                                     const FineRegistrationResult& fine,
+                                     const LiveRegistrationConfig& config) {
     const double rotation_deg = rotation_angle_deg(T_prior.inverse() * fine.T_target_source);
     const double moved_m =
         (T_prior * entry.centroid_m - fine.T_target_source * entry.centroid_m).norm();
@@ -46,7 +48,23 @@ std::string correction_problem(const ScanEntry& entry, const Pose& T_prior,
     return {};
 }
 
-}  // namespace
+std::vector<std::pair<std::string, Pose>> live::motion_priors(const std::vector<Pose>& recent) {
+    // Walking around the stone moves the sensor by a rotation about the stone's vertical
+    // axis (world frame): repeat the last step (constant velocity), or the last double step
+    // applied to the scan before last (elevations alternating between two heights).
+    std::vector<std::pair<std::string, Pose>> hypotheses;
+    if (recent.empty()) return hypotheses;
+    if (recent.size() >= 2) {
+        hypotheses.emplace_back("motion-prior",
+                                orthonormalized(recent[0] * recent[1].inverse() * recent[0]));
+    }
+    if (recent.size() >= 3) {
+        hypotheses.emplace_back("motion-prior-2",
+                                orthonormalized(recent[0] * recent[2].inverse() * recent[1]));
+    }
+    hypotheses.emplace_back("previous-pose", recent[0]);
+    return hypotheses;
+}
 
 void LiveRegistrar::State::probe_slides(const ScanEntry& entry, const PointCloud& model,
                                         const KdTree& tree, Verified& v) const {
@@ -198,23 +216,14 @@ std::vector<std::pair<std::string, Pose>> LiveRegistrar::State::priors(std::int6
     }
     if (!latest) return hypotheses;
     group = scans[*latest].group;
-    const std::vector<std::size_t> recent = members(group);
-    // Walking around the stone moves the sensor by a rotation about the stone's vertical
-    // axis (world frame): repeat the last step (constant velocity), or the last double step
-    // applied to the scan before last (elevations alternating between two heights).
-    const auto pose_of = [&](std::size_t k) -> const Pose& {
-        return scans[recent[k]].T_group_scan;
-    };
-    if (recent.size() >= 2) {
-        hypotheses.emplace_back("motion-prior",
-                                orthonormalized(pose_of(0) * pose_of(1).inverse() * pose_of(0)));
+    std::vector<Pose> recent;
+    for (std::size_t i : members(group)) {
+        if (recent.size() == 3) break;
+        recent.push_back(scans[i].T_group_scan);
     }
-    if (recent.size() >= 3) {
-        hypotheses.emplace_back("motion-prior-2",
-                                orthonormalized(pose_of(0) * pose_of(2).inverse() * pose_of(1)));
-        if (last_prior == "motion-prior-2") std::swap(hypotheses[0], hypotheses[1]);
-    }
-    hypotheses.emplace_back("previous-pose", pose_of(0));
+    hypotheses = live::motion_priors(recent);
+    if (hypotheses.size() == 3 && last_prior == "motion-prior-2")
+        std::swap(hypotheses[0], hypotheses[1]);
     return hypotheses;
 }
 
@@ -225,7 +234,7 @@ std::optional<live::Verified> LiveRegistrar::State::try_cheap(const ScanEntry& e
     for (const auto& [name, T] : hypotheses) {
         const Clock::time_point start = Clock::now();
         Verified v = verify_hypothesis(entry, group, T);
-        if (v.rejection.empty()) v.rejection = correction_problem(entry, T, v.fine, config);
+        if (v.rejection.empty()) v.rejection = live::correction_problem(entry, T, v.fine, config);
         decision.attempts.push_back(attempt_of(name, v, scans[members(group)[0]].seq, group));
         decision.attempts.back().time_s = seconds_since(start);  // Model, fine and probes.
         if (v.rejection.empty()) {

@@ -4,6 +4,7 @@
 #include <map>
 
 #include "anascan/processing/kdtree.hpp"
+#include "anascan/processing/link_compression.hpp"
 #include "anascan/processing/voxel_grid.hpp"
 #include "live_registration_state.hpp"
 #include "live_registration_votes.hpp"
@@ -13,12 +14,6 @@ namespace {
 
 using live::ScanEntry;
 using Clock = std::chrono::steady_clock;
-
-Eigen::Vector3d group_centroid(const PointCloud& cloud) {
-    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-    for (std::size_t i = 0; i < cloud.size(); ++i) sum += cloud.world_position(i);
-    return cloud.empty() ? sum : Eigen::Vector3d(sum / static_cast<double>(cloud.size()));
-}
 
 /// Fraction of (about `samples`) source points that land within `distance_m` of the target
 /// under `T_target_source`: a cheap forecast of a pair's overlap.
@@ -52,6 +47,12 @@ bool active(const ScanEntry& e) { return e.registered && !e.excluded; }
 
 }  // namespace
 
+Eigen::Vector3d live::cloud_centroid(const PointCloud& cloud) {
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    for (std::size_t i = 0; i < cloud.size(); ++i) sum += cloud.world_position(i);
+    return cloud.empty() ? sum : Eigen::Vector3d(sum / static_cast<double>(cloud.size()));
+}
+
 std::size_t LiveRegistrar::State::make_links() {
     const auto tree_of = [&](std::size_t i) -> const KdTree& {
         std::shared_ptr<const KdTree>& tree = scans[i].tree;  // Kept: the cloud never changes.
@@ -83,8 +84,11 @@ std::size_t LiveRegistrar::State::make_links() {
                                                         initial, config.link_fine);
             if (!usable_link(fine, config)) continue;
             link_rms_m.push_back(fine.rms_m);
-            links.push_back(
-                {.target = t, .source = s, .correspondences = std::move(fine.correspondences)});
+            links.push_back({.target = t,
+                             .source = s,
+                             .correspondences = compress_link(std::move(fine.correspondences),
+                                                              fine.T_target_source,
+                                                              config.max_link_correspondences)});
             ++added;
         }
     }
@@ -145,8 +149,9 @@ Pose LiveRegistrar::State::refined_merge(int into, int from, const Pose& T_into_
     const KdTree tree(target.positions);
     const FineRegistrationResult fine =
         register_fine(source, target, tree, T_into_from, config.fine);
-    const bool agrees = live::poses_agree(T_into_from, fine.T_target_source, group_centroid(source),
-                                          config.vote_rotation_deg, config.vote_displacement_m);
+    const bool agrees =
+        live::poses_agree(T_into_from, fine.T_target_source, live::cloud_centroid(source),
+                          config.vote_rotation_deg, config.vote_displacement_m);
     const live::VerificationLimits absolute{
         .max_rms_m = config.max_rms_voxel_factor * config.voxel_size_m,
         .max_normal_deviation_deg = config.max_normal_deviation_deg};
@@ -209,7 +214,9 @@ std::vector<PoseUpdate> LiveRegistrar::refine() {
     State& s = *state_;
     s.report = {};
     std::map<std::int64_t, PoseUpdate> changed;
-    for (const PoseUpdate& u : s.merge_whole_groups()) changed[u.seq] = u;
+    for (const PoseUpdate& u : s.merge_by_sequence()) changed[u.seq] = u;
+    if (s.report.merges == 0)
+        for (const PoseUpdate& u : s.merge_whole_groups()) changed[u.seq] = u;
     if (s.report.merges == 0)
         for (const PoseUpdate& u : s.merge_groups()) changed[u.seq] = u;
     std::size_t described = 0;

@@ -74,6 +74,21 @@ struct VerificationLimits {
 std::string rejection(const FineRegistrationResult& fine, const LiveRegistrationConfig& config,
                       const VerificationLimits& limits);
 
+/// Why a pose refined from the hypothesis `T_prior` cannot come from it (moved too far, so
+/// the fine registration fell into another minimum); empty when it can.
+std::string correction_problem(const ScanEntry& entry, const Pose& T_prior,
+                               const FineRegistrationResult& fine,
+                               const LiveRegistrationConfig& config);
+
+/// The operator's predicted poses from the poses of the scans next to it in the capture order
+/// (`recent[0]` the nearest, at most 3 used): constant velocity ("motion-prior"), double step
+/// ("motion-prior-2", elevations alternating), "previous-pose". Time-symmetric: scans after
+/// it, nearest first, predict it backwards.
+std::vector<std::pair<std::string, Pose>> motion_priors(const std::vector<Pose>& recent);
+
+/// Mean of a cloud's points (its frame; zero when empty).
+Eigen::Vector3d cloud_centroid(const PointCloud& cloud);
+
 /// Seconds since `start`.
 double seconds_since(std::chrono::steady_clock::time_point start);
 
@@ -142,6 +157,11 @@ struct LiveRegistrar::State {
     /// Group merges by global registration of the whole groups' clouds under the up
     /// constraint (live_registration_merge.cpp).
     std::vector<PoseUpdate> merge_whole_groups();
+    /// The pose to merge two groups on from their whole-group registration: the verified
+    /// hypothesis of least RMS, within the groups' RMS gate, fitting clearly better than
+    /// every other verified pose (distinct at the source group's centroid); else none.
+    std::optional<Pose> clear_whole_group_match(const GlobalRegistrationResult& g,
+                                                const Eigen::Vector3d& source_centroid_m) const;
     /// Mean viewing direction of a group's scans (its frame): the stone's up; none for a
     /// group of too few scans or of views that do not agree on a side.
     std::optional<Eigen::Vector3d> group_up(int group) const;
@@ -149,6 +169,16 @@ struct LiveRegistrar::State {
     /// Up kept (same side) or turned down (after a turn-over) between two groups, if known.
     std::optional<AxisConstraint> up_constraint(int target, int source) const;
     int turn_count = 0;  ///< Turn-overs marked so far.
+    /// Group merges by the capture order (live_registration_sequence_merge.cpp): a scan whose
+    /// neighbour in the order lies in another group of the same side is predicted there by
+    /// the motion priors (run backwards when the neighbour comes after it) and verified.
+    std::vector<PoseUpdate> merge_by_sequence();
+    /// The operator's predicted poses of entry `i` in group `group` from the entries next to
+    /// it in the capture order (`direction` +1: those after it, run backwards; -1: before).
+    std::vector<std::pair<std::string, Pose>> sequence_priors(std::size_t i, int group,
+                                                              int direction) const;
+    /// Sequence merges tried: (entry, direction) and the other group's scans then.
+    std::map<std::pair<std::size_t, int>, std::size_t> sequence_merge_tried;
     /// Group pairs tried whole (lower id first) and the smaller and larger group's scans then.
     std::map<std::pair<int, int>, std::pair<std::size_t, std::size_t>> whole_merge_tried;
     /// The group's stone-only clouds in its frame, merged and voxel down-sampled.

@@ -160,6 +160,39 @@ TEST_F(LiveRegistrationWalk, AScanRegisteredAgainIsPlacedGloballyAndOnce) {
     EXPECT_EQ(r.group_count(), 1u);
 }
 
+TEST_F(LiveRegistrationWalk, ScansAfterAGapPlaceTheScanBeforeItByTheCaptureOrder) {
+    // The walk without its second view: a first step of 24°, beyond what a previous-pose
+    // hypothesis may correct, and no global registration: scan 2 opens a group, scans 3-4
+    // join it on the cheap hypotheses. refine() then runs the motion priors backwards from
+    // scans 2-4, places scan 1 in their group and merges the groups (the merges by global
+    // registration are off).
+    LiveRegistrar r({.max_global_targets = 0,
+                     .whole_group_merges = false,
+                     .max_merge_attempts = 0,
+                     .max_features_per_refine = 0});
+    const std::vector<std::size_t> views = {0, 2, 3, 4};
+    std::vector<LiveDecision> d;
+    for (std::size_t k = 0; k < views.size(); ++k)
+        d.push_back(
+            r.add({.seq = static_cast<std::int64_t>(k + 1), .cloud = (*scans_)[views[k]].cloud}));
+    ASSERT_EQ(d[1].method, "new-group") << d[1].message;
+    EXPECT_EQ(r.group_count(), 2u);
+    for (int round = 0; round < 3 && r.group_count() > 1; ++round) r.refine();
+    ASSERT_EQ(r.group_count(), 1u);
+    const std::optional<PoseUpdate> first = r.pose(1);
+    ASSERT_TRUE(first.has_value());
+    for (std::size_t k = 0; k < views.size(); ++k) {
+        const std::optional<PoseUpdate> pose = r.pose(static_cast<std::int64_t>(k + 1));
+        ASSERT_TRUE(pose.has_value());
+        // In the frame of scan 1 (the surviving group is the lower id, scan 1's).
+        const anascan::testing::PoseError e = anascan::testing::pose_error(
+            first->T_group_scan.inverse() * pose->T_group_scan, (*scans_)[0].T_true,
+            (*scans_)[views[k]].T_true, anascan::testing::centroid_of((*scans_)[views[k]].cloud));
+        EXPECT_LT(e.rotation_deg, 0.05) << "scan " << k + 1;
+        EXPECT_LT(e.translation_m, 0.0002) << "scan " << k + 1;
+    }
+}
+
 TEST(LiveRegistration, UnusableScansAreReportedAndNotPlaced) {
     LiveRegistrar registrar;
     const LiveDecision empty = registrar.add({.seq = 1});

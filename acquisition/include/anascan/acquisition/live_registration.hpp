@@ -19,8 +19,10 @@
 /// stone turned over, the cheap hypotheses are skipped until a scan is placed. See
 /// docs/live-registration.md.
 ///
-/// `refine` (background work, bounded per call) merges groups whose stone-only scans
-/// register globally (votes over pairs), computes a few missing features, fine-registers
+/// `refine` (background work, bounded per call) merges groups by the capture order (a scan
+/// next to another group's scans is predicted there by the motion priors, run backwards
+/// when they come after it), by global registration of whole groups under the stone's up,
+/// or by votes of scan pairs; computes a few missing features, fine-registers
 /// every new pair of overlapping scans of a group keeping the correspondences (multi-view
 /// links) and solves each group's poses at once (`refine_multiview`, paper eq. 4); it
 /// returns the poses that changed.
@@ -126,11 +128,19 @@ struct LiveRegistrationConfig {
     /// Links for multi-view refinement: pairs of one group whose predicted overlap (feature
     /// sites) reaches this fraction are fine registered from their current poses.
     double min_link_overlap_fraction = 0.15;
+    /// The links sample many points: along a weakly constrained direction (two faces in
+    /// view) a link's error falls with the square root of its samples, and the chain of
+    /// links around the stone adds them up (3000 samples: 0.6 mm at the far side of the
+    /// demo session; 20 000: 0.17 mm, docs/live-registration.md).
     FineRegistrationConfig link_fine{.max_correspondence_distance_m = 0.006,
                                      .min_correspondence_distance_m = 0.002,
                                      .max_iterations = 30,
+                                     .sample_count = 20000,
                                      .overlap_distance_m = 0.003,
                                      .keep_correspondences = true};
+    /// Correspondences a link keeps for the multi-view solve (`compress_link`: same optimum
+    /// and stiffness as all of them, a tenth of the memory). 0 = all.
+    std::size_t max_link_correspondences = 2000;
     /// A tried pair is tried again when its scans' relative pose moved by more than these
     /// since (degrees, metres at the source's centroid): a scan corrected by the refinement
     /// gets links to its true neighbours, and links computed from a wrong pose are redone.
@@ -142,10 +152,15 @@ struct LiveRegistrationConfig {
     MultiviewRefinementConfig multiview{};  ///< fixed_scan_index is set per group.
     /// Group merges by global registration of the whole groups' clouds, with the stone's up
     /// (each group's mean viewing direction) kept within `max_same_side_up_deg` on the same
-    /// side and turned by at least 90° across a turn-over; tried again when the two groups
-    /// together have doubled their scans.
+    /// side and turned by at least 90° across a turn-over; tried again when one of the two
+    /// groups has grown by half.
     bool whole_group_merges = true;
     std::size_t min_group_scans_for_up = 3;
+    /// A whole-group match counts with an RMS up to this multiple of the session's gates
+    /// (merged clouds of several scans fit looser than one pair) ...
+    double whole_group_rms_factor = 1.5;
+    /// ... and, when other poses verified too, an RMS at most this fraction of theirs.
+    double whole_group_rms_ratio = 0.7;
     double max_same_side_up_deg = 30.0;
     /// With fewer scans in a group its up is one viewing direction: the bounds widen by this.
     double few_scans_up_slack_deg = 45.0;
