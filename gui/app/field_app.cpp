@@ -2,6 +2,7 @@
 
 #include <GL/gl.h>
 #include <imgui.h>
+#include <imgui_internal.h>
 
 #include <chrono>
 #include <cstdio>
@@ -15,6 +16,7 @@
 #include "demo_clouds.hpp"
 #include "field_window.hpp"
 #include "frame_times.hpp"
+#include "headless_device.hpp"
 #include "screenshot.hpp"
 #include "session_link.hpp"
 #include "state_dump.hpp"
@@ -35,12 +37,25 @@ struct AppState {
     bool fit_pending = true;  ///< Fit the camera in the next frame (its aspect is known there).
     std::unique_ptr<SessionLink> link;  ///< With --session.
     bool reregister_sent = false;       ///< Headless --reregister-scan done.
+    bool connect_sent = false;          ///< Headless --connect done.
+    bool settings_sent = false;         ///< Headless --apply-setting done.
 };
 
 /// A headless run with a session: capture (--capture-views), wait until the session has
 /// settled (registration done, points loaded), re-register a scan (--reregister-scan) and
 /// settle again, then count the --frames.
 enum class Phase { kCapturing, kSettling, kReregistering, kCounting };
+
+/// The camera preview's child window in the last frame (for the state dump).
+std::optional<std::array<float, 4>> camera_preview_rect() {
+    const std::string suffix = std::string("/") + gui::kCameraPreviewChild + "_";
+    for (const ImGuiWindow* w : ImGui::GetCurrentContext()->Windows) {
+        if (!w->WasActive || std::string_view(w->Name).find(suffix) == std::string_view::npos)
+            continue;
+        return std::array<float, 4>{w->Pos.x, w->Pos.y, w->Size.x, w->Size.y};
+    }
+    return std::nullopt;
+}
 
 /// Loads the PLY files and the synthetic stone into the renderer and the scan list; the
 /// renderer keeps the only copy of the points (on the GPU).
@@ -170,6 +185,25 @@ Phase initial_phase(const FieldAppConfig& config, const AppState& app) {
     return config.capture_views > 0 ? Phase::kCapturing : Phase::kSettling;
 }
 
+/// Headless device panel steps once settled: "Connect", then the settings typed and
+/// applied; true when one was taken (the session then settles again).
+bool device_steps(const FieldAppConfig& config, AppState& app, gui::UiActions& actions) {
+    if (config.connect_device && !std::exchange(app.connect_sent, true)) {
+        actions.push_back({.kind = gui::UiActionKind::kOpenDevice});
+        return true;
+    }
+    if (config.apply_settings.empty() || std::exchange(app.settings_sent, true)) return false;
+    auto steps = setting_actions(app.view.device.settings, config.apply_settings);
+    if (!steps) {
+        app.view.device.settings.message = "Not applied: " + steps.error().message;
+        app.view.device.settings.message_is_error = true;
+        std::fprintf(stderr, "anascan-field: error: %s\n", steps.error().message.c_str());
+        return false;
+    }
+    actions.insert(actions.end(), steps->begin(), steps->end());
+    return true;
+}
+
 /// The capture action, as the button gives it, whenever no capture runs, until
 /// `capture_views` captures have finished; then wait for registration and the view.
 Phase drive_session(const FieldAppConfig& config, AppState& app, Phase phase,
@@ -187,6 +221,7 @@ Phase drive_session(const FieldAppConfig& config, AppState& app, Phase phase,
         return Phase::kSettling;
     }
     if (phase == Phase::kSettling && app.link->settled()) {
+        if (device_steps(config, app, actions)) return Phase::kSettling;  // then settle again
         if (config.reregister_seq > 0 && !app.reregister_sent) {
             actions.push_back(
                 {.kind = gui::UiActionKind::kReRegister, .seq = config.reregister_seq});
@@ -357,7 +392,8 @@ int run_field_app(const FieldAppConfig& config) {
     const int code = run_loop(config, **window, app);
     if (config.dump_state_json) {
         const ViewFigures figures{.points_total = app.renderer->total_points(),
-                                  .chunks = app.link ? app.link->shown_scans() : 0};
+                                  .chunks = app.link ? app.link->shown_scans() : 0,
+                                  .camera_preview_rect = camera_preview_rect()};
         if (auto ok = write_state_json(*config.dump_state_json, app.view, figures); !ok) {
             std::fprintf(stderr, "anascan-field: error: %s\n", ok.error().message.c_str());
             return 1;

@@ -42,6 +42,12 @@ void add_session_options(CLI::App& app, anascan::field::FieldAppConfig& config) 
                    "Headless: once the session has settled, re-register this scan through the "
                    "scan list's action and wait for its result (needs --session and --frames)")
         ->check(CLI::PositiveNumber);
+    app.add_flag("--connect", config.connect_device,
+                 "Headless: press the device panel's Connect at start (reads the device's "
+                 "settings, starts the camera preview; needs --session)");
+    app.add_option("--apply-setting", config.apply_settings,
+                   "Headless: once settled, type KEY=VALUE into the device panel's settings "
+                   "(e.g. exposure_us=20000, max_range_m=2.5) and press Apply; repeatable");
     // Fault injection for the tests: hidden (empty group).
     app.add_option("--sim-unplug-after", config.sim_unplug_after,
                    "Simulated device unplugged during the capture after this many")

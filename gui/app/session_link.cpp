@@ -12,6 +12,10 @@ namespace {
 
 using acquisition::SessionEventKind;
 
+/// A new scan's points go to the GPU in steps of this many per frame (glBufferSubData of
+/// 240 kB of positions and 60 kB of colours), so that no frame copies a whole scan.
+constexpr std::size_t kUploadPointsPerFrame = 20'000;
+
 template <typename T>
 bool ready(const std::optional<std::future<T>>& future) {
     return future && future->wait_for(std::chrono::seconds(0)) == std::future_status::ready;
@@ -92,6 +96,7 @@ void SessionLink::poll(gui::FieldViewState& view, gui::PointRenderer& renderer) 
     if (coverage_dirty_) refresh_coverage(view, renderer);
     poll_load(renderer);
     poll_preview(view);
+    poll_device(view);
 }
 
 /// The newest scan's preview, read and projected off the UI thread (its points are freed
@@ -247,7 +252,9 @@ void SessionLink::poll_load(gui::PointRenderer& renderer) {
         const std::int64_t seq = std::exchange(loading_seq_, -1);
         const auto wanted = wanted_.find(seq);
         if (scan && wanted != wanted_.end()) {
-            renderer.add_chunk(seq, std::move(scan->cloud), wanted->second);
+            // Shuffled on the load thread; uploaded over the next frames (upload_step).
+            renderer.add_chunk(seq, std::move(scan->cloud), wanted->second,
+                               {.shuffled = true, .points_per_step = kUploadPointsPerFrame});
             shown_[seq] = wanted->second;
         } else if (!scan) {
             load_error_ = scan.error().message;
@@ -255,13 +262,17 @@ void SessionLink::poll_load(gui::PointRenderer& renderer) {
         }
         dirty_ = true;  // the pose may have moved meanwhile; the row may have gone
     }
-    if (pending_load_ || to_load_.empty() || store() == nullptr) return;
+    uploading_ = renderer.upload_step();
+    // One scan's points in CPU memory at a time: the next is read once this one is uploaded.
+    if (pending_load_ || uploading_ || to_load_.empty() || store() == nullptr) return;
     loading_seq_ = to_load_.front();
     to_load_.erase(to_load_.begin());
     pending_load_ = std::async(std::launch::async,
                                [store = store(), seq = loading_seq_, n = config_.worker_nice] {
                                    lower_this_thread_priority(n);
-                                   return store->load_scan(seq);
+                                   auto scan = store->load_scan(seq);
+                                   if (scan) gui::shuffle_chunk_points(scan->cloud, seq);
+                                   return scan;
                                });
 }
 
@@ -279,9 +290,10 @@ void SessionLink::refresh_coverage(gui::FieldViewState& view, gui::PointRenderer
 }
 
 bool SessionLink::settled() const {
-    return !pending_capture_ && !pending_load_ && !pending_check_ && !pending_idle_ && !dirty_ &&
-           to_load_.empty() && reregistering_.empty() && !pending_preview_ &&
-           newest_seq_ <= preview_seq_;
+    return !pending_capture_ && !pending_load_ && !uploading_ && !pending_check_ &&
+           !pending_idle_ && !dirty_ && to_load_.empty() && reregistering_.empty() &&
+           !pending_preview_ && newest_seq_ <= preview_seq_ && !pending_settings_ &&
+           !(cameras_wanted_ && cameras_due_);
 }
 
 bool SessionLink::busy(const gui::FieldViewState& view) const {

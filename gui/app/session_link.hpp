@@ -98,6 +98,12 @@ private:
     void poll_preview(gui::FieldViewState& view);
     void refresh_coverage(gui::FieldViewState& view, gui::PointRenderer& renderer);
     void set_device_status(gui::FieldViewState& view, bool connected, std::string status);
+    // The device panel's device (session_link_device.cpp).
+    void open_device(gui::FieldViewState& view);
+    void apply_settings(gui::FieldViewState& view);
+    void poll_device(gui::FieldViewState& view);
+    void take_settings(gui::DevicePanelState& device);
+    void poll_cameras(gui::DevicePanelState& device);
 
     SessionLinkConfig config_;
     std::shared_ptr<EventQueue> events_ = std::make_shared<EventQueue>();
@@ -119,13 +125,22 @@ private:
     std::int64_t newest_seq_ = -1;          ///< The newest scan in the session.
     std::int64_t preview_seq_ = -1;         ///< The scan previewed (or being read for it).
     PreviewTexture preview_texture_;
+    CameraTextures camera_textures_;
+    bool settings_applying_ = false;  ///< pending_settings_ is an apply (not a read).
+    bool cameras_wanted_ = false;     ///< The device has cameras (until a preview says none).
+    bool cameras_due_ = false;        ///< No preview since the device was attached or captured.
+    int captures_seen_ = 0;
+    std::chrono::steady_clock::time_point next_camera_grab_{};
     // Futures last: destroyed (and waited for) before the session they use.
     std::optional<std::future<Expected<std::int64_t>>> pending_capture_;
     std::optional<std::future<Expected<Scan>>> pending_load_;
     std::int64_t loading_seq_ = -1;
+    bool uploading_ = false;  ///< The renderer is still uploading a loaded scan.
     std::optional<std::future<Expected<acquisition::SessionCheckReport>>> pending_check_;
     std::optional<std::future<Expected<gui::ScanPreview>>> pending_preview_;
     std::optional<std::future<void>> pending_idle_;
+    std::optional<std::future<Expected<acquisition::DeviceSettingsForm>>> pending_settings_;
+    std::optional<std::future<Expected<acquisition::CameraPreview>>> pending_cameras_;
 };
 
 }  // namespace anascan::field
