@@ -348,7 +348,8 @@ SessionLinkConfig session_link_config(const FieldAppConfig& config) {
         .tour = {.views = config.tour_views,
                  .flip_after = config.flip_after < 0 ? config.tour_views / 2 : config.flip_after},
         .sim_unplug_after = config.sim_unplug_after,
-        .worker_nice = config.worker_nice};
+        .worker_nice = config.worker_nice,
+        .upload_points_per_frame = config.upload_points_per_frame};
     link.settings.angular_step_deg = config.angular_step_deg;
     return link;
 }

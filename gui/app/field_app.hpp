@@ -40,6 +40,9 @@ struct FieldAppConfig {
     std::optional<double> angular_step_deg;  ///< Terrestrial scanner setting, degrees.
     int sim_unplug_after = -1;               ///< Fault injection (simulated scanners).
     int worker_nice = 10;  ///< Capture/registration threads' nice value over the UI thread.
+    /// A loaded scan goes to the GPU in steps of this many points a frame; 0: all in one
+    /// frame, shuffled on the UI thread (as before the staged upload; for measuring).
+    std::size_t upload_points_per_frame = 20'000;
     std::optional<std::filesystem::path> dump_state_json;  ///< The view state at the end.
     double session_timeout_s = 600.0;  ///< Headless: give up waiting for the session.
 };

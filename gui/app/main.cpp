@@ -48,6 +48,10 @@ void add_session_options(CLI::App& app, anascan::field::FieldAppConfig& config) 
     app.add_option("--apply-setting", config.apply_settings,
                    "Headless: once settled, type KEY=VALUE into the device panel's settings "
                    "(e.g. exposure_us=20000, max_range_m=2.5) and press Apply; repeatable");
+    app.add_option("--upload-points-per-frame", config.upload_points_per_frame,
+                   "A loaded scan goes to the GPU in steps of this many points a frame "
+                   "(default 20000); 0: all in one frame, shuffled on the drawing thread")
+        ->group("");  // hidden: for the before/after measurement
     // Fault injection for the tests: hidden (empty group).
     app.add_option("--sim-unplug-after", config.sim_unplug_after,
                    "Simulated device unplugged during the capture after this many")

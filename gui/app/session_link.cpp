@@ -12,10 +12,6 @@ namespace {
 
 using acquisition::SessionEventKind;
 
-/// A new scan's points go to the GPU in steps of this many per frame (glBufferSubData of
-/// 240 kB of positions and 60 kB of colours), so that no frame copies a whole scan.
-constexpr std::size_t kUploadPointsPerFrame = 20'000;
-
 template <typename T>
 bool ready(const std::optional<std::future<T>>& future) {
     return future && future->wait_for(std::chrono::seconds(0)) == std::future_status::ready;
@@ -252,9 +248,11 @@ void SessionLink::poll_load(gui::PointRenderer& renderer) {
         const std::int64_t seq = std::exchange(loading_seq_, -1);
         const auto wanted = wanted_.find(seq);
         if (scan && wanted != wanted_.end()) {
-            // Shuffled on the load thread; uploaded over the next frames (upload_step).
+            // Shuffled on the load thread; uploaded over the next frames (upload_step): 20 000
+            // points a frame are 240 kB of positions and 60 kB of colours.
+            const std::size_t step = config_.upload_points_per_frame;
             renderer.add_chunk(seq, std::move(scan->cloud), wanted->second,
-                               {.shuffled = true, .points_per_step = kUploadPointsPerFrame});
+                               {.shuffled = step > 0, .points_per_step = step});
             shown_[seq] = wanted->second;
         } else if (!scan) {
             load_error_ = scan.error().message;
@@ -268,10 +266,11 @@ void SessionLink::poll_load(gui::PointRenderer& renderer) {
     loading_seq_ = to_load_.front();
     to_load_.erase(to_load_.begin());
     pending_load_ = std::async(std::launch::async,
-                               [store = store(), seq = loading_seq_, n = config_.worker_nice] {
+                               [store = store(), seq = loading_seq_, n = config_.worker_nice,
+                                shuffle = config_.upload_points_per_frame > 0] {
                                    lower_this_thread_priority(n);
                                    auto scan = store->load_scan(seq);
-                                   if (scan) gui::shuffle_chunk_points(scan->cloud, seq);
+                                   if (scan && shuffle) gui::shuffle_chunk_points(scan->cloud, seq);
                                    return scan;
                                });
 }

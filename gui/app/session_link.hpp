@@ -40,6 +40,9 @@ struct SessionLinkConfig {
     /// Nice increment of the capture session's threads and the scan loads over the UI
     /// thread (thread_priority.hpp); 0: same priority.
     int worker_nice = 10;
+    /// A loaded scan's points go to the GPU in steps of this many a frame (glBufferSubData),
+    /// shuffled on the load thread; 0: shuffled and uploaded in one frame.
+    std::size_t upload_points_per_frame = 20'000;
 };
 
 /// Session events, pushed by acquisition's threads, drained by the UI thread.
