@@ -252,8 +252,34 @@ void report_busy(const std::vector<double>& busy_ms, std::size_t points) {
                  busy_ms.size(), b.median_ms, b.p95_ms, b.max_ms, points);
 }
 
+/// Frames that copied a new scan's points to the GPU (all of a scan, or a step of it).
+/// and the time the upload itself took in them (taking the scan, copying its points).
+void report_uploads(const std::vector<double>& upload_ms, const std::vector<double>& work_ms) {
+    if (upload_ms.empty()) return;
+    const FrameTimeSummary u = summarize_frame_times(upload_ms);
+    const FrameTimeSummary w = summarize_frame_times(work_ms);
+    std::fprintf(stderr,
+                 "anascan-field: %zu frames uploaded points: frame time median %.1f ms, p95 "
+                 "%.1f ms, max %.1f ms; the upload's own work median %.2f ms, max %.2f ms\n",
+                 upload_ms.size(), u.median_ms, u.p95_ms, u.max_ms, w.median_ms, w.max_ms);
+}
+
+/// Frames over the threshold: the mean of each part, and of the UI thread's CPU time.
+void report_slow(const SlowFrames& slow) {
+    if (slow.count == 0) return;
+    const double n = slow.count;
+    std::fprintf(stderr,
+                 "anascan-field: %d frames over %.0f ms: mean %.0f ms = session poll %.1f + "
+                 "panels, scene and ImGui draw %.1f + swap %.1f ms; the UI thread ran %.1f "
+                 "ms of it on a CPU\n",
+                 slow.count, slow.threshold_ms, slow.wall_ms / n, slow.poll_ms / n,
+                 slow.draw_ms / n, slow.swap_ms / n, slow.cpu_ms / n);
+}
+
 struct FrameLog {
+    SlowFrames slow;
     std::vector<double> frame_ms, busy_ms;
+    std::vector<double> upload_ms;  ///< Frames that copied a new scan's points to the GPU.
     std::vector<bool> drew;
 };
 
@@ -294,10 +320,12 @@ int run_loop(const FieldAppConfig& config, FieldWindow& window, AppState& app) {
                           !ImGui::IsAnyMouseDown();
         window.wait_events(idle ? 0.05 : 0.0);
         const auto start = std::chrono::steady_clock::now();
+        const double cpu_start = thread_cpu_ms();
         window.begin_frame();
         poll_session(app);
         gui::UiActions actions;
         if (app.link) phase = drive_session(config, app, phase, actions);
+        const auto polled = std::chrono::steady_clock::now();
         const bool counting = phase == Phase::kCounting;
         const bool busy = app.link && app.link->busy(app.view);
         const std::size_t budget = config.point_budget > 0 ? config.point_budget : lod.budget();
@@ -310,15 +338,22 @@ int run_loop(const FieldAppConfig& config, FieldWindow& window, AppState& app) {
                 return 1;
             }
         }
+        const auto drawn = std::chrono::steady_clock::now();
         window.swap();
-        const std::chrono::duration<double, std::milli> took =
-            std::chrono::steady_clock::now() - start;
+        const auto end = std::chrono::steady_clock::now();
+        const std::chrono::duration<double, std::milli> took = end - start;
+        if (frame > 0) {
+            using Ms = std::chrono::duration<double, std::milli>;
+            log.slow.add(took.count(), Ms(polled - start).count(), Ms(drawn - polled).count(),
+                         Ms(end - drawn).count(), thread_cpu_ms() - cpu_start);
+        }
         if (counting) {
             log.frame_ms.push_back(took.count());
             log.drew.push_back(stats.points_drawn > 0);
             ++counted;
         }
         if (busy && frame > 0) log.busy_ms.push_back(took.count());
+        if (app.link && app.link->uploaded_in_last_poll()) log.upload_ms.push_back(took.count());
         // Only frames that drew points tell the cost of a budget (cached frames are copies).
         if (frame > 0 && stats.points_drawn > 0) {
             lod.update(took.count(), app.renderer->total_points());
@@ -337,6 +372,8 @@ int run_loop(const FieldAppConfig& config, FieldWindow& window, AppState& app) {
                config.point_budget > 0 ? config.point_budget : lod.budget(),
                window.renderer_name());
         report_busy(log.busy_ms, app.renderer->total_points());
+        if (app.link) report_uploads(log.upload_ms, app.link->upload_work_ms());
+        report_slow(log.slow);
     }
     return 0;
 }

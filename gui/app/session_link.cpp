@@ -242,6 +242,8 @@ void SessionLink::update_chunks(const std::vector<acquisition::ScanRecord>& scan
 /// One scan read at a time, off the UI thread; its points go to the renderer (the only
 /// copy) and the cloud is freed.
 void SessionLink::poll_load(gui::PointRenderer& renderer) {
+    uploaded_in_last_poll_ = uploading_;  // a step below
+    const auto started = std::chrono::steady_clock::now();
     if (ready(pending_load_)) {
         Expected<Scan> scan = pending_load_->get();
         pending_load_.reset();
@@ -253,6 +255,7 @@ void SessionLink::poll_load(gui::PointRenderer& renderer) {
             const std::size_t step = config_.upload_points_per_frame;
             renderer.add_chunk(seq, std::move(scan->cloud), wanted->second,
                                {.shuffled = step > 0, .points_per_step = step});
+            uploaded_in_last_poll_ = true;
             shown_[seq] = wanted->second;
         } else if (!scan) {
             load_error_ = scan.error().message;
@@ -261,6 +264,10 @@ void SessionLink::poll_load(gui::PointRenderer& renderer) {
         dirty_ = true;  // the pose may have moved meanwhile; the row may have gone
     }
     uploading_ = renderer.upload_step();
+    if (uploaded_in_last_poll_)
+        upload_work_ms_.push_back(
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started)
+                .count());
     // One scan's points in CPU memory at a time: the next is read once this one is uploaded.
     if (pending_load_ || uploading_ || to_load_.empty() || store() == nullptr) return;
     loading_seq_ = to_load_.front();

@@ -83,6 +83,10 @@ public:
     bool busy(const gui::FieldViewState& view) const;
     int captures_finished() const { return captures_finished_; }
     bool capturing() const { return pending_capture_.has_value(); }
+    /// The last poll() copied points to the GPU (a new scan, or a step of it).
+    bool uploaded_in_last_poll() const { return uploaded_in_last_poll_; }
+    /// Time each uploading poll spent taking the loaded scan and copying points, ms.
+    const std::vector<double>& upload_work_ms() const { return upload_work_ms_; }
     std::size_t shown_scans() const { return shown_.size(); }
 
 private:
@@ -139,6 +143,8 @@ private:
     std::optional<std::future<Expected<Scan>>> pending_load_;
     std::int64_t loading_seq_ = -1;
     bool uploading_ = false;  ///< The renderer is still uploading a loaded scan.
+    bool uploaded_in_last_poll_ = false;
+    std::vector<double> upload_work_ms_;
     std::optional<std::future<Expected<acquisition::SessionCheckReport>>> pending_check_;
     std::optional<std::future<Expected<gui::ScanPreview>>> pending_preview_;
     std::optional<std::future<void>> pending_idle_;
