@@ -20,6 +20,9 @@ namespace anascan::acquisition {
 struct PendingCapture {
     CaptureRequest request;
     std::promise<Expected<std::int64_t>> acknowledged;
+    /// Instead of a capture (settings, preview): runs with the open scanner or the error
+    /// that kept it from opening (capture_session_device.cpp).
+    std::function<void(Expected<drivers::Scanner*>)> device_task;
 };
 
 /// A captured scan until it is saved.
@@ -55,6 +58,9 @@ struct CaptureSession::Impl {
     // Scanner thread (capture_session.cpp).
     void scanner_loop(std::stop_token stop);
     Expected<CapturedScan> capture_one(PendingCapture& pending, std::stop_token stop);
+    /// Opens the scanner when it is not open, with the operator's applied settings.
+    Expected<void> open_if_needed();
+    void run_device_task(PendingCapture& pending);
     // Persistence thread (capture_session_save.cpp).
     void save_loop();
     void save_one(CapturedScan captured);
@@ -77,6 +83,8 @@ struct CaptureSession::Impl {
     ScannerOpener open_scanner;
     std::unique_ptr<drivers::Scanner> scanner;  ///< Scanner thread only.
     bool scanner_failed = false;                ///< Last capture failed: say when it is back.
+    /// Settings the operator applied: again at every opening (scanner thread only).
+    std::optional<drivers::DeviceSettings> applied_settings;
 
     BoundedQueue<std::shared_ptr<PendingCapture>> requests{64};
     BoundedQueue<std::shared_ptr<CapturedScan>> to_save;

@@ -15,6 +15,10 @@ void record_device_event(SessionStore& store, std::string_view kind, std::string
 
 void CaptureSession::Impl::scanner_loop(std::stop_token stop) {
     while (auto pending = requests.pop()) {
+        if ((*pending)->device_task) {
+            run_device_task(**pending);
+            continue;
+        }
         auto captured = capture_one(**pending, stop);
         if (!captured) {
             (*pending)->acknowledged.set_value(fail(captured.error()));
@@ -32,27 +36,34 @@ void CaptureSession::Impl::scanner_loop(std::stop_token stop) {
     if (scanner) scanner->close();
 }
 
+Expected<void> CaptureSession::Impl::open_if_needed() {
+    if (scanner) return {};
+    auto opened = open_scanner();
+    if (opened && applied_settings) {
+        if (auto ok = (*opened)->configure(*applied_settings); !ok) opened = fail(ok.error());
+    }
+    if (!opened) {
+        scanner_failed = true;
+        record_device_event(*store, "device-error", scanner_uri, opened.error().message);
+        emit({.kind = SessionEventKind::kDeviceError,
+              .device = scanner_uri,
+              .message = opened.error().message});
+        return fail(opened.error());
+    }
+    scanner = std::move(*opened);
+    if (scanner_failed) {
+        scanner_failed = false;
+        record_device_event(*store, "device-back", scanner_uri, "opened again");
+        emit({.kind = SessionEventKind::kDeviceBack,
+              .device = scanner_uri,
+              .message = scanner_uri + ": back, capturing again"});
+    }
+    return {};
+}
+
 Expected<CapturedScan> CaptureSession::Impl::capture_one(PendingCapture& pending,
                                                          std::stop_token stop) {
-    if (!scanner) {
-        auto opened = open_scanner();
-        if (!opened) {
-            scanner_failed = true;
-            record_device_event(*store, "device-error", scanner_uri, opened.error().message);
-            emit({.kind = SessionEventKind::kDeviceError,
-                  .device = scanner_uri,
-                  .message = opened.error().message});
-            return fail(opened.error());
-        }
-        scanner = std::move(*opened);
-        if (scanner_failed) {
-            scanner_failed = false;
-            record_device_event(*store, "device-back", scanner_uri, "opened again");
-            emit({.kind = SessionEventKind::kDeviceBack,
-                  .device = scanner_uri,
-                  .message = scanner_uri + ": back, capturing again"});
-        }
-    }
+    if (auto ok = open_if_needed(); !ok) return fail(ok.error());
     std::optional<Pose> to_truth_frame;
     if (pending.request.before) to_truth_frame = pending.request.before(*scanner);
     const drivers::CaptureControl control{.stop = stop, .timeout = config.capture_timeout};

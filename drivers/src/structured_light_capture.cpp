@@ -172,3 +172,45 @@ Expected<Scan> StructuredLightScanner::decode(std::vector<cv::Mat>& images1,
 }
 
 }  // namespace anascan::drivers
+
+namespace anascan::drivers {
+
+Expected<std::vector<Frame>> StructuredLightScanner::preview_frames(
+    std::chrono::milliseconds timeout) {
+    if (closed_) return fail(ErrorCode::kDisconnected, parts_.info.uri + ": closed");
+    if (disconnected_)
+        return fail(ErrorCode::kDisconnected, parts_.info.uri + ": a part went away");
+    const CaptureControl control{.timeout = timeout};
+    Streams streams(*parts_.cam1, *parts_.cam2);
+    if (auto ok = streams.start("cam1", "cam2"); !ok) return fail(gone(ok.error()));
+    const auto white = static_cast<std::size_t>(parts_.decode.sequence.gray.white_index());
+    auto shown = parts_.projector->show(white);
+    if (!shown)
+        return fail(gone({shown.error().code,
+                          parts_.projector->name() + " at the preview: " + shown.error().message}));
+    const FrameWait wait{control, steady_clock::now() + timeout,
+                         *shown,  parts_.frame_latency,
+                         timeout, "the preview"};
+    std::size_t stale1 = 0, stale2 = 0;
+    Expected<cv::Mat> a = cv::Mat(), b = cv::Mat();
+    tbb::parallel_invoke([&] { a = fresh_frame(*parts_.cam1, "cam1", wait, stale1); },
+                         [&] { b = fresh_frame(*parts_.cam2, "cam2", wait, stale2); });
+    if (!a) return fail(gone(a.error()));
+    if (!b) return fail(gone(b.error()));
+    std::vector<Frame> frames;
+    for (const cv::Mat* image : {&*a, &*b}) {
+        Frame frame{.width = image->cols,
+                    .height = image->rows,
+                    .format = PixelFormat::kGrey8,
+                    .stride_bytes = static_cast<std::size_t>(image->cols),
+                    .timestamp_ns = *shown};
+        frame.data.resize(frame.stride_bytes * static_cast<std::size_t>(image->rows));
+        for (int r = 0; r < image->rows; ++r)
+            std::copy_n(image->ptr<std::uint8_t>(r), image->cols,
+                        frame.data.data() + frame.stride_bytes * static_cast<std::size_t>(r));
+        frames.push_back(std::move(frame));
+    }
+    return frames;
+}
+
+}  // namespace anascan::drivers

@@ -2,6 +2,7 @@
 
 #include <GL/gl.h>
 #include <imgui.h>
+#include <imgui_internal.h>
 
 #include <chrono>
 #include <cstdio>
@@ -15,6 +16,7 @@
 #include "demo_clouds.hpp"
 #include "field_window.hpp"
 #include "frame_times.hpp"
+#include "headless_device.hpp"
 #include "screenshot.hpp"
 #include "session_link.hpp"
 #include "state_dump.hpp"
@@ -35,12 +37,25 @@ struct AppState {
     bool fit_pending = true;  ///< Fit the camera in the next frame (its aspect is known there).
     std::unique_ptr<SessionLink> link;  ///< With --session.
     bool reregister_sent = false;       ///< Headless --reregister-scan done.
+    bool connect_sent = false;          ///< Headless --connect done.
+    bool settings_sent = false;         ///< Headless --apply-setting done.
 };
 
 /// A headless run with a session: capture (--capture-views), wait until the session has
 /// settled (registration done, points loaded), re-register a scan (--reregister-scan) and
 /// settle again, then count the --frames.
 enum class Phase { kCapturing, kSettling, kReregistering, kCounting };
+
+/// The camera preview's child window in the last frame (for the state dump).
+std::optional<std::array<float, 4>> camera_preview_rect() {
+    const std::string suffix = std::string("/") + gui::kCameraPreviewChild + "_";
+    for (const ImGuiWindow* w : ImGui::GetCurrentContext()->Windows) {
+        if (!w->WasActive || std::string_view(w->Name).find(suffix) == std::string_view::npos)
+            continue;
+        return std::array<float, 4>{w->Pos.x, w->Pos.y, w->Size.x, w->Size.y};
+    }
+    return std::nullopt;
+}
 
 /// Loads the PLY files and the synthetic stone into the renderer and the scan list; the
 /// renderer keeps the only copy of the points (on the GPU).
@@ -170,6 +185,25 @@ Phase initial_phase(const FieldAppConfig& config, const AppState& app) {
     return config.capture_views > 0 ? Phase::kCapturing : Phase::kSettling;
 }
 
+/// Headless device panel steps once settled: "Connect", then the settings typed and
+/// applied; true when one was taken (the session then settles again).
+bool device_steps(const FieldAppConfig& config, AppState& app, gui::UiActions& actions) {
+    if (config.connect_device && !std::exchange(app.connect_sent, true)) {
+        actions.push_back({.kind = gui::UiActionKind::kOpenDevice});
+        return true;
+    }
+    if (config.apply_settings.empty() || std::exchange(app.settings_sent, true)) return false;
+    auto steps = setting_actions(app.view.device.settings, config.apply_settings);
+    if (!steps) {
+        app.view.device.settings.message = "Not applied: " + steps.error().message;
+        app.view.device.settings.message_is_error = true;
+        std::fprintf(stderr, "anascan-field: error: %s\n", steps.error().message.c_str());
+        return false;
+    }
+    actions.insert(actions.end(), steps->begin(), steps->end());
+    return true;
+}
+
 /// The capture action, as the button gives it, whenever no capture runs, until
 /// `capture_views` captures have finished; then wait for registration and the view.
 Phase drive_session(const FieldAppConfig& config, AppState& app, Phase phase,
@@ -187,6 +221,7 @@ Phase drive_session(const FieldAppConfig& config, AppState& app, Phase phase,
         return Phase::kSettling;
     }
     if (phase == Phase::kSettling && app.link->settled()) {
+        if (device_steps(config, app, actions)) return Phase::kSettling;  // then settle again
         if (config.reregister_seq > 0 && !app.reregister_sent) {
             actions.push_back(
                 {.kind = gui::UiActionKind::kReRegister, .seq = config.reregister_seq});
@@ -217,8 +252,34 @@ void report_busy(const std::vector<double>& busy_ms, std::size_t points) {
                  busy_ms.size(), b.median_ms, b.p95_ms, b.max_ms, points);
 }
 
+/// Frames that copied a new scan's points to the GPU (all of a scan, or a step of it).
+/// and the time the upload itself took in them (taking the scan, copying its points).
+void report_uploads(const std::vector<double>& upload_ms, const std::vector<double>& work_ms) {
+    if (upload_ms.empty()) return;
+    const FrameTimeSummary u = summarize_frame_times(upload_ms);
+    const FrameTimeSummary w = summarize_frame_times(work_ms);
+    std::fprintf(stderr,
+                 "anascan-field: %zu frames uploaded points: frame time median %.1f ms, p95 "
+                 "%.1f ms, max %.1f ms; the upload's own work median %.2f ms, max %.2f ms\n",
+                 upload_ms.size(), u.median_ms, u.p95_ms, u.max_ms, w.median_ms, w.max_ms);
+}
+
+/// Frames over the threshold: the mean of each part, and of the UI thread's CPU time.
+void report_slow(const SlowFrames& slow) {
+    if (slow.count == 0) return;
+    const double n = slow.count;
+    std::fprintf(stderr,
+                 "anascan-field: %d frames over %.0f ms: mean %.0f ms = session poll %.1f + "
+                 "panels, scene and ImGui draw %.1f + swap %.1f ms; the UI thread ran %.1f "
+                 "ms of it on a CPU\n",
+                 slow.count, slow.threshold_ms, slow.wall_ms / n, slow.poll_ms / n,
+                 slow.draw_ms / n, slow.swap_ms / n, slow.cpu_ms / n);
+}
+
 struct FrameLog {
+    SlowFrames slow;
     std::vector<double> frame_ms, busy_ms;
+    std::vector<double> upload_ms;  ///< Frames that copied a new scan's points to the GPU.
     std::vector<bool> drew;
 };
 
@@ -259,10 +320,12 @@ int run_loop(const FieldAppConfig& config, FieldWindow& window, AppState& app) {
                           !ImGui::IsAnyMouseDown();
         window.wait_events(idle ? 0.05 : 0.0);
         const auto start = std::chrono::steady_clock::now();
+        const double cpu_start = thread_cpu_ms();
         window.begin_frame();
         poll_session(app);
         gui::UiActions actions;
         if (app.link) phase = drive_session(config, app, phase, actions);
+        const auto polled = std::chrono::steady_clock::now();
         const bool counting = phase == Phase::kCounting;
         const bool busy = app.link && app.link->busy(app.view);
         const std::size_t budget = config.point_budget > 0 ? config.point_budget : lod.budget();
@@ -275,15 +338,22 @@ int run_loop(const FieldAppConfig& config, FieldWindow& window, AppState& app) {
                 return 1;
             }
         }
+        const auto drawn = std::chrono::steady_clock::now();
         window.swap();
-        const std::chrono::duration<double, std::milli> took =
-            std::chrono::steady_clock::now() - start;
+        const auto end = std::chrono::steady_clock::now();
+        const std::chrono::duration<double, std::milli> took = end - start;
+        if (frame > 0) {
+            using Ms = std::chrono::duration<double, std::milli>;
+            log.slow.add(took.count(), Ms(polled - start).count(), Ms(drawn - polled).count(),
+                         Ms(end - drawn).count(), thread_cpu_ms() - cpu_start);
+        }
         if (counting) {
             log.frame_ms.push_back(took.count());
             log.drew.push_back(stats.points_drawn > 0);
             ++counted;
         }
         if (busy && frame > 0) log.busy_ms.push_back(took.count());
+        if (app.link && app.link->uploaded_in_last_poll()) log.upload_ms.push_back(took.count());
         // Only frames that drew points tell the cost of a budget (cached frames are copies).
         if (frame > 0 && stats.points_drawn > 0) {
             lod.update(took.count(), app.renderer->total_points());
@@ -302,6 +372,8 @@ int run_loop(const FieldAppConfig& config, FieldWindow& window, AppState& app) {
                config.point_budget > 0 ? config.point_budget : lod.budget(),
                window.renderer_name());
         report_busy(log.busy_ms, app.renderer->total_points());
+        if (app.link) report_uploads(log.upload_ms, app.link->upload_work_ms());
+        report_slow(log.slow);
     }
     return 0;
 }
@@ -313,7 +385,8 @@ SessionLinkConfig session_link_config(const FieldAppConfig& config) {
         .tour = {.views = config.tour_views,
                  .flip_after = config.flip_after < 0 ? config.tour_views / 2 : config.flip_after},
         .sim_unplug_after = config.sim_unplug_after,
-        .worker_nice = config.worker_nice};
+        .worker_nice = config.worker_nice,
+        .upload_points_per_frame = config.upload_points_per_frame};
     link.settings.angular_step_deg = config.angular_step_deg;
     return link;
 }
@@ -357,7 +430,8 @@ int run_field_app(const FieldAppConfig& config) {
     const int code = run_loop(config, **window, app);
     if (config.dump_state_json) {
         const ViewFigures figures{.points_total = app.renderer->total_points(),
-                                  .chunks = app.link ? app.link->shown_scans() : 0};
+                                  .chunks = app.link ? app.link->shown_scans() : 0,
+                                  .camera_preview_rect = camera_preview_rect()};
         if (auto ok = write_state_json(*config.dump_state_json, app.view, figures); !ok) {
             std::fprintf(stderr, "anascan-field: error: %s\n", ok.error().message.c_str());
             return 1;

@@ -32,11 +32,17 @@ struct FieldAppConfig {
     std::string device = "sim:structured-light/small-block";  ///< Active device at start.
     int capture_views = 0;            ///< Headless: this many captures through the capture action.
     std::int64_t reregister_seq = 0;  ///< Headless: re-register this scan once settled (0: none).
-    int tour_views = 24;              ///< The simulated operator's tour around the block.
-    int flip_after = -1;              ///< Turned over after this many views (-1: half the tour).
+    bool connect_device = false;      ///< Headless: the device panel's "Connect" at start.
+    std::vector<std::string>
+        apply_settings;   ///< Headless: KEY=VALUE typed and applied once settled.
+    int tour_views = 24;  ///< The simulated operator's tour around the block.
+    int flip_after = -1;  ///< Turned over after this many views (-1: half the tour).
     std::optional<double> angular_step_deg;  ///< Terrestrial scanner setting, degrees.
     int sim_unplug_after = -1;               ///< Fault injection (simulated scanners).
     int worker_nice = 10;  ///< Capture/registration threads' nice value over the UI thread.
+    /// A loaded scan goes to the GPU in steps of this many points a frame; 0: all in one
+    /// frame, shuffled on the UI thread (as before the staged upload; for measuring).
+    std::size_t upload_points_per_frame = 20'000;
     std::optional<std::filesystem::path> dump_state_json;  ///< The view state at the end.
     double session_timeout_s = 600.0;  ///< Headless: give up waiting for the session.
 };

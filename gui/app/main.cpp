@@ -42,6 +42,16 @@ void add_session_options(CLI::App& app, anascan::field::FieldAppConfig& config) 
                    "Headless: once the session has settled, re-register this scan through the "
                    "scan list's action and wait for its result (needs --session and --frames)")
         ->check(CLI::PositiveNumber);
+    app.add_flag("--connect", config.connect_device,
+                 "Headless: press the device panel's Connect at start (reads the device's "
+                 "settings, starts the camera preview; needs --session)");
+    app.add_option("--apply-setting", config.apply_settings,
+                   "Headless: once settled, type KEY=VALUE into the device panel's settings "
+                   "(e.g. exposure_us=20000, max_range_m=2.5) and press Apply; repeatable");
+    app.add_option("--upload-points-per-frame", config.upload_points_per_frame,
+                   "A loaded scan goes to the GPU in steps of this many points a frame "
+                   "(default 20000); 0: all in one frame, shuffled on the drawing thread")
+        ->group("");  // hidden: for the before/after measurement
     // Fault injection for the tests: hidden (empty group).
     app.add_option("--sim-unplug-after", config.sim_unplug_after,
                    "Simulated device unplugged during the capture after this many")

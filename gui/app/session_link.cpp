@@ -92,6 +92,7 @@ void SessionLink::poll(gui::FieldViewState& view, gui::PointRenderer& renderer) 
     if (coverage_dirty_) refresh_coverage(view, renderer);
     poll_load(renderer);
     poll_preview(view);
+    poll_device(view);
 }
 
 /// The newest scan's preview, read and projected off the UI thread (its points are freed
@@ -241,13 +242,20 @@ void SessionLink::update_chunks(const std::vector<acquisition::ScanRecord>& scan
 /// One scan read at a time, off the UI thread; its points go to the renderer (the only
 /// copy) and the cloud is freed.
 void SessionLink::poll_load(gui::PointRenderer& renderer) {
+    uploaded_in_last_poll_ = uploading_;  // a step below
+    const auto started = std::chrono::steady_clock::now();
     if (ready(pending_load_)) {
         Expected<Scan> scan = pending_load_->get();
         pending_load_.reset();
         const std::int64_t seq = std::exchange(loading_seq_, -1);
         const auto wanted = wanted_.find(seq);
         if (scan && wanted != wanted_.end()) {
-            renderer.add_chunk(seq, std::move(scan->cloud), wanted->second);
+            // Shuffled on the load thread; uploaded over the next frames (upload_step): 20 000
+            // points a frame are 240 kB of positions and 60 kB of colours.
+            const std::size_t step = config_.upload_points_per_frame;
+            renderer.add_chunk(seq, std::move(scan->cloud), wanted->second,
+                               {.shuffled = step > 0, .points_per_step = step});
+            uploaded_in_last_poll_ = true;
             shown_[seq] = wanted->second;
         } else if (!scan) {
             load_error_ = scan.error().message;
@@ -255,13 +263,22 @@ void SessionLink::poll_load(gui::PointRenderer& renderer) {
         }
         dirty_ = true;  // the pose may have moved meanwhile; the row may have gone
     }
-    if (pending_load_ || to_load_.empty() || store() == nullptr) return;
+    uploading_ = renderer.upload_step();
+    if (uploaded_in_last_poll_)
+        upload_work_ms_.push_back(
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started)
+                .count());
+    // One scan's points in CPU memory at a time: the next is read once this one is uploaded.
+    if (pending_load_ || uploading_ || to_load_.empty() || store() == nullptr) return;
     loading_seq_ = to_load_.front();
     to_load_.erase(to_load_.begin());
     pending_load_ = std::async(std::launch::async,
-                               [store = store(), seq = loading_seq_, n = config_.worker_nice] {
+                               [store = store(), seq = loading_seq_, n = config_.worker_nice,
+                                shuffle = config_.upload_points_per_frame > 0] {
                                    lower_this_thread_priority(n);
-                                   return store->load_scan(seq);
+                                   auto scan = store->load_scan(seq);
+                                   if (scan && shuffle) gui::shuffle_chunk_points(scan->cloud, seq);
+                                   return scan;
                                });
 }
 
@@ -279,9 +296,10 @@ void SessionLink::refresh_coverage(gui::FieldViewState& view, gui::PointRenderer
 }
 
 bool SessionLink::settled() const {
-    return !pending_capture_ && !pending_load_ && !pending_check_ && !pending_idle_ && !dirty_ &&
-           to_load_.empty() && reregistering_.empty() && !pending_preview_ &&
-           newest_seq_ <= preview_seq_;
+    return !pending_capture_ && !pending_load_ && !uploading_ && !pending_check_ &&
+           !pending_idle_ && !dirty_ && to_load_.empty() && reregistering_.empty() &&
+           !pending_preview_ && newest_seq_ <= preview_seq_ && !pending_settings_ &&
+           !(cameras_wanted_ && cameras_due_);
 }
 
 bool SessionLink::busy(const gui::FieldViewState& view) const {

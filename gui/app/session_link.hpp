@@ -40,6 +40,9 @@ struct SessionLinkConfig {
     /// Nice increment of the capture session's threads and the scan loads over the UI
     /// thread (thread_priority.hpp); 0: same priority.
     int worker_nice = 10;
+    /// A loaded scan's points go to the GPU in steps of this many a frame (glBufferSubData),
+    /// shuffled on the load thread; 0: shuffled and uploaded in one frame.
+    std::size_t upload_points_per_frame = 20'000;
 };
 
 /// Session events, pushed by acquisition's threads, drained by the UI thread.
@@ -80,6 +83,10 @@ public:
     bool busy(const gui::FieldViewState& view) const;
     int captures_finished() const { return captures_finished_; }
     bool capturing() const { return pending_capture_.has_value(); }
+    /// The last poll() copied points to the GPU (a new scan, or a step of it).
+    bool uploaded_in_last_poll() const { return uploaded_in_last_poll_; }
+    /// Time each uploading poll spent taking the loaded scan and copying points, ms.
+    const std::vector<double>& upload_work_ms() const { return upload_work_ms_; }
     std::size_t shown_scans() const { return shown_.size(); }
 
 private:
@@ -98,6 +105,12 @@ private:
     void poll_preview(gui::FieldViewState& view);
     void refresh_coverage(gui::FieldViewState& view, gui::PointRenderer& renderer);
     void set_device_status(gui::FieldViewState& view, bool connected, std::string status);
+    // The device panel's device (session_link_device.cpp).
+    void open_device(gui::FieldViewState& view);
+    void apply_settings(gui::FieldViewState& view);
+    void poll_device(gui::FieldViewState& view);
+    void take_settings(gui::DevicePanelState& device);
+    void poll_cameras(gui::DevicePanelState& device);
 
     SessionLinkConfig config_;
     std::shared_ptr<EventQueue> events_ = std::make_shared<EventQueue>();
@@ -119,13 +132,24 @@ private:
     std::int64_t newest_seq_ = -1;          ///< The newest scan in the session.
     std::int64_t preview_seq_ = -1;         ///< The scan previewed (or being read for it).
     PreviewTexture preview_texture_;
+    CameraTextures camera_textures_;
+    bool settings_applying_ = false;  ///< pending_settings_ is an apply (not a read).
+    bool cameras_wanted_ = false;     ///< The device has cameras (until a preview says none).
+    bool cameras_due_ = false;        ///< No preview since the device was attached or captured.
+    int captures_seen_ = 0;
+    std::chrono::steady_clock::time_point next_camera_grab_{};
     // Futures last: destroyed (and waited for) before the session they use.
     std::optional<std::future<Expected<std::int64_t>>> pending_capture_;
     std::optional<std::future<Expected<Scan>>> pending_load_;
     std::int64_t loading_seq_ = -1;
+    bool uploading_ = false;  ///< The renderer is still uploading a loaded scan.
+    bool uploaded_in_last_poll_ = false;
+    std::vector<double> upload_work_ms_;
     std::optional<std::future<Expected<acquisition::SessionCheckReport>>> pending_check_;
     std::optional<std::future<Expected<gui::ScanPreview>>> pending_preview_;
     std::optional<std::future<void>> pending_idle_;
+    std::optional<std::future<Expected<acquisition::DeviceSettingsForm>>> pending_settings_;
+    std::optional<std::future<Expected<acquisition::CameraPreview>>> pending_cameras_;
 };
 
 }  // namespace anascan::field

@@ -141,6 +141,12 @@ bool SessionLink::apply(const gui::UiAction& action, gui::FieldViewState& view) 
         case gui::UiActionKind::kReRegister:
             reregister(action.seq, view);
             return true;
+        case gui::UiActionKind::kOpenDevice:
+            open_device(view);
+            return true;
+        case gui::UiActionKind::kApplySettings:
+            apply_settings(view);
+            return true;
         case gui::UiActionKind::kConnectDevice:
             if (action.device_index >= 0 &&
                 action.device_index < static_cast<int>(view.device.devices.size()))

@@ -60,6 +60,37 @@ nlohmann::json devices_json(const gui::FieldViewState& view) {
     return devices;
 }
 
+nlohmann::json device_settings_json(const gui::DevicePanelState& device) {
+    nlohmann::json fields = nlohmann::json::array();
+    for (const acquisition::DeviceSetting& s : device.settings.applied.settings) {
+        nlohmann::json field{{"key", s.key}, {"label", s.label}, {"unit", s.unit}};
+        if (s.kind == acquisition::DeviceSettingKind::kNumber) {
+            field["value"] = s.value;
+            field["min"] = s.min;
+            field["max"] = s.max;
+        } else {
+            field["choices"] = s.choices;
+            field["choice"] = s.choice;
+        }
+        fields.push_back(std::move(field));
+    }
+    return {{"connected", device.connected},
+            {"device", device.settings.applied.device},
+            {"applied", std::move(fields)},
+            {"message", device.settings.message},
+            {"message_is_error", device.settings.message_is_error}};
+}
+
+nlohmann::json cameras_json(const gui::DevicePanelState& device,
+                            const std::optional<std::array<float, 4>>& rect) {
+    nlohmann::json cameras = nlohmann::json::array();
+    for (const gui::CameraPreviewView& c : device.cameras)
+        cameras.push_back({{"name", c.name}, {"width_px", c.width_px}, {"height_px", c.height_px}});
+    return {{"images", std::move(cameras)},
+            {"caption", device.cameras_caption},
+            {"rect", rect ? nlohmann::json(*rect) : nlohmann::json(nullptr)}};
+}
+
 }  // namespace
 
 Expected<void> write_state_json(const std::filesystem::path& file, const gui::FieldViewState& view,
@@ -88,6 +119,8 @@ Expected<void> write_state_json(const std::filesystem::path& file, const gui::Fi
           {"width_px", view.device.preview_width_px},
           {"height_px", view.device.preview_height_px},
           {"caption", view.device.preview_caption}}},
+        {"device_settings", device_settings_json(view.device)},
+        {"camera_preview", cameras_json(view.device, figures.camera_preview_rect)},
         {"points_total", figures.points_total},
         {"chunks", figures.chunks}};
     std::ofstream out(file);

@@ -3,8 +3,10 @@
 /// `--dump-state FILE.json`: the field app's view state as JSON, so that a test can compare
 /// what the app shows with `anascan session info --json` and `anascan coverage --json`.
 
+#include <array>
 #include <cstddef>
 #include <filesystem>
+#include <optional>
 
 #include "anascan/gui/field_view_state.hpp"
 #include "anascan/processing/expected.hpp"
@@ -15,6 +17,9 @@ namespace anascan::field {
 struct ViewFigures {
     std::size_t points_total = 0;  ///< Points of the chunks in the renderer.
     std::size_t chunks = 0;
+    /// Where the camera preview was drawn in the last frame: x, y, width, height in window
+    /// pixels (top left origin); absent when it was not drawn.
+    std::optional<std::array<float, 4>> camera_preview_rect;
 };
 
 /// {"session", "session_check", "scans": [{"seq", "device_id", "state" (queued|registered|

@@ -85,6 +85,9 @@ void draw_device_panel(const FieldViewState& state, const PanelLayout& layout, U
     draw_devices(state.device, actions);
     ImGui::Separator();
     draw_capture_buttons(state.device, actions);
+    draw_camera_preview(state.device);  // right under the buttons: aiming the scanner
+    ImGui::Separator();
+    draw_device_settings(state.device, actions);
     ImGui::Separator();
     draw_view_options(state, actions);
     ImGui::TextWrapped("X excludes the newest scan, C cycles the colours.");

@@ -40,19 +40,9 @@ constexpr float kNoColorGrey = 0.7f;
 
 Eigen::Vector3f to_float_rgb(Rgb8 c) { return Eigen::Vector3f(c.r, c.g, c.b) / 255.0f; }
 
-/// Shuffles positions and colours together (fixed seed): any prefix is a uniform sample.
-void shuffle_for_lod(PointCloud& cloud, std::uint64_t seed) {
-    std::mt19937_64 rng(seed);
-    const bool colors = cloud.has_colors();
-    for (std::size_t i = cloud.size(); i > 1; --i) {
-        const std::size_t j = std::uniform_int_distribution<std::size_t>(0, i - 1)(rng);
-        std::swap(cloud.positions[i - 1], cloud.positions[j]);
-        if (colors) std::swap(cloud.colors[i - 1], cloud.colors[j]);
-    }
-}
-
 /// A buffer for vertex attribute `index` of the bound vertex array: `components` values of
-/// `type` per vertex (bytes are normalised to 0..1).
+/// `type` per vertex (bytes are normalised to 0..1). `bytes` of size only (null data):
+/// filled later with glBufferSubData.
 GLuint upload_attribute(GLuint index, std::span<const std::byte> bytes, GLint components,
                         GLenum type) {
     GLuint buffer = 0;
@@ -76,6 +66,32 @@ struct VertexArray {
         if (!c.empty()) colors = upload_attribute(1, std::as_bytes(c), 3, GL_UNSIGNED_BYTE);
         glBindVertexArray(0);
     }
+    /// Buffers of n points (with colours or not), filled later by fill().
+    void allocate(std::size_t n, bool with_colors) {
+        const std::span<const std::byte> p{static_cast<const std::byte*>(nullptr),
+                                           n * sizeof(Eigen::Vector3f)};
+        const std::span<const std::byte> c{static_cast<const std::byte*>(nullptr),
+                                           n * sizeof(Rgb8)};
+        glGenVertexArrays(1, &vao);
+        glBindVertexArray(vao);
+        positions = upload_attribute(0, p, 3, GL_FLOAT);
+        if (with_colors) colors = upload_attribute(1, c, 3, GL_UNSIGNED_BYTE);
+        glBindVertexArray(0);
+    }
+    /// Points [begin, end) of the cloud into the buffers.
+    void fill(const PointCloud& cloud, std::size_t begin, std::size_t end) const {
+        glBindBuffer(GL_ARRAY_BUFFER, positions);
+        glBufferSubData(GL_ARRAY_BUFFER, static_cast<GLintptr>(begin * sizeof(Eigen::Vector3f)),
+                        static_cast<GLsizeiptr>((end - begin) * sizeof(Eigen::Vector3f)),
+                        cloud.positions.data() + begin);
+        if (colors != 0) {
+            glBindBuffer(GL_ARRAY_BUFFER, colors);
+            glBufferSubData(GL_ARRAY_BUFFER, static_cast<GLintptr>(begin * sizeof(Rgb8)),
+                            static_cast<GLsizeiptr>((end - begin) * sizeof(Rgb8)),
+                            cloud.colors.data() + begin);
+        }
+        glBindBuffer(GL_ARRAY_BUFFER, 0);
+    }
     void release() {
         if (colors != 0) glDeleteBuffers(1, &colors);
         if (positions != 0) glDeleteBuffers(1, &positions);
@@ -94,6 +110,10 @@ struct PointRenderer::Chunk {
     Eigen::Isometry3d T_world_chunk = Eigen::Isometry3d::Identity();
     BoundingSphere local_sphere;  ///< Relative to origin_m, chunk frame.
     ChunkStyle style;
+    std::size_t uploaded = 0;  ///< Points on the GPU; drawn once uploaded == count.
+    PointCloud pending;        ///< The cloud until it is all uploaded (then freed).
+    std::size_t points_per_step = 0;
+    bool complete() const { return uploaded == count; }
     ~Chunk() { buffers.release(); }
 };
 
@@ -125,8 +145,18 @@ Expected<std::unique_ptr<PointRenderer>> PointRenderer::create() {
     return renderer;
 }
 
+void shuffle_chunk_points(PointCloud& cloud, std::int64_t id) {
+    std::mt19937_64 rng(0x5eed0000ull + static_cast<std::uint64_t>(id));
+    const bool colors = cloud.has_colors();
+    for (std::size_t i = cloud.size(); i > 1; --i) {
+        const std::size_t j = std::uniform_int_distribution<std::size_t>(0, i - 1)(rng);
+        std::swap(cloud.positions[i - 1], cloud.positions[j]);
+        if (colors) std::swap(cloud.colors[i - 1], cloud.colors[j]);
+    }
+}
+
 void PointRenderer::add_chunk(std::int64_t id, PointCloud cloud,
-                              const Eigen::Isometry3d& T_world_chunk) {
+                              const Eigen::Isometry3d& T_world_chunk, ChunkUpload upload) {
     remove_chunk(id);
     if (cloud.empty()) return;
     auto chunk = std::make_unique<Chunk>();
@@ -137,11 +167,38 @@ void PointRenderer::add_chunk(std::int64_t id, PointCloud cloud,
     chunk->has_colors = cloud.has_colors();
     chunk->origin_m = cloud.origin_m;
     chunk->T_world_chunk = T_world_chunk;
-    shuffle_for_lod(cloud, 0x5eed0000ull + static_cast<std::uint64_t>(id));
-    chunk->buffers.upload(cloud.positions, cloud.colors);
+    if (!upload.shuffled) shuffle_chunk_points(cloud, id);
+    if (upload.points_per_step == 0 || upload.points_per_step >= cloud.size()) {
+        chunk->buffers.upload(cloud.positions, cloud.colors);
+        chunk->uploaded = chunk->count;
+        ++revision_;
+        // `cloud` (the only CPU copy) is freed on return.
+    } else {
+        chunk->buffers.allocate(chunk->count, chunk->has_colors);
+        chunk->points_per_step = upload.points_per_step;
+        chunk->pending = std::move(cloud);  // the only CPU copy, freed when uploaded
+    }
     chunks_[id] = std::move(chunk);
-    ++revision_;
-    // `cloud` (the only CPU copy) is freed on return.
+}
+
+bool PointRenderer::upload_step() {
+    for (auto& [id, c] : chunks_) {
+        if (c->complete()) continue;
+        const std::size_t end = std::min(c->count, c->uploaded + c->points_per_step);
+        c->buffers.fill(c->pending, c->uploaded, end);
+        c->uploaded = end;
+        if (c->complete()) {
+            c->pending = PointCloud{};
+            ++revision_;  // drawn from now on
+        }
+        return uploading();
+    }
+    return false;
+}
+
+bool PointRenderer::uploading() const {
+    return std::any_of(chunks_.begin(), chunks_.end(),
+                       [](const auto& c) { return !c.second->complete(); });
 }
 
 void PointRenderer::set_pose(std::int64_t id, const Eigen::Isometry3d& T_world_chunk) {
@@ -178,7 +235,7 @@ BoundingSphere PointRenderer::bounds() const {
     Eigen::Vector3d centre = Eigen::Vector3d::Zero();
     double weight = 0.0;
     for (const auto& [id, c] : chunks_) {
-        if (!c->style.visible) continue;
+        if (!c->style.visible || !c->complete()) continue;
         centre += static_cast<double>(c->count) *
                   (c->T_world_chunk * (c->origin_m + c->local_sphere.centre_m));
         weight += static_cast<double>(c->count);
@@ -187,7 +244,7 @@ BoundingSphere PointRenderer::bounds() const {
     centre /= weight;
     double radius = 0.0;
     for (const auto& [id, c] : chunks_) {
-        if (!c->style.visible) continue;
+        if (!c->style.visible || !c->complete()) continue;
         const Eigen::Vector3d ci = c->T_world_chunk * (c->origin_m + c->local_sphere.centre_m);
         radius = std::max(radius, (ci - centre).norm() + c->local_sphere.radius_m);
     }
@@ -196,13 +253,13 @@ BoundingSphere PointRenderer::bounds() const {
 
 std::size_t PointRenderer::total_points() const {
     std::size_t n = 0;
-    for (const auto& [id, c] : chunks_) n += c->count;
+    for (const auto& [id, c] : chunks_) n += c->complete() ? c->count : 0;
     return n;
 }
 
 std::size_t PointRenderer::gpu_bytes() const {
     std::size_t bytes = 0;
-    for (const auto& [id, c] : chunks_) bytes += c->count * (c->has_colors ? 15 : 12);
+    for (const auto& [id, c] : chunks_) bytes += c->uploaded * (c->has_colors ? 15 : 12);
     return bytes;
 }
 
@@ -255,7 +312,7 @@ DrawStats PointRenderer::draw(const OrbitCamera& camera, double aspect, const Dr
     std::vector<const Chunk*> visible;
     std::vector<std::size_t> sizes;
     for (const auto& [id, c] : chunks_) {
-        if (!c->style.visible) continue;
+        if (!c->style.visible || !c->complete()) continue;
         visible.push_back(c.get());
         sizes.push_back(c->count);
     }

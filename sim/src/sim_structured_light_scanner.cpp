@@ -118,12 +118,18 @@ void SimStructuredLightScanner::close() {
     head_->close();
 }
 
-void SimStructuredLightScanner::place_parts(const StructuredLightRig& head,
-                                            const std::shared_ptr<const SimWorld>& world) {
+void SimStructuredLightScanner::set_camera_views(const StructuredLightRig& head,
+                                                 const std::shared_ptr<const SimWorld>& world) {
     StructuredLightRenderConfig render = config_.render;
     render.seed += static_cast<std::uint64_t>(sequence());  // new noise each capture
     cam1_->set_view({world, head.cam1, head.projector, render});
     cam2_->set_view({world, head.cam2, head.projector, render});
+    parts_placed_ = true;
+}
+
+void SimStructuredLightScanner::place_parts(const StructuredLightRig& head,
+                                            const std::shared_ptr<const SimWorld>& world) {
+    set_camera_views(head, world);
     cam1_->set_device_faults(faults());
     // The whole device going away: the projector leaves half-way through the patterns.
     if (detail::take_from_budget(faults().get()))
@@ -156,6 +162,7 @@ Expected<Scan> SimStructuredLightScanner::capture_scan(const drivers::CaptureCon
     const StructuredLightRig head = rig();
     place_parts(head, *world);
     if (auto ok = head_->configure(settings()); !ok) return fail(ok.error());
+    head_settings_ = settings();
     auto scan = head_->capture_scan(control);
     if (!scan) {
         if (scan.error().code == ErrorCode::kDisconnected) set_unplugged();
@@ -164,6 +171,21 @@ Expected<Scan> SimStructuredLightScanner::capture_scan(const drivers::CaptureCon
     stamp(*scan, head.cam1.T_world_device);
     station_.azimuth_deg += config_.advance_deg;
     return scan;
+}
+
+Expected<std::vector<drivers::Frame>> SimStructuredLightScanner::preview_frames(
+    std::chrono::milliseconds timeout) {
+    auto world = begin_capture();
+    if (!world) return fail(world.error());
+    if (!parts_placed_) set_camera_views(rig(), *world);  // no fault budget: not a capture
+    // Configuring the cameras drops their rendered images: only when the settings changed.
+    if (head_settings_ != settings()) {
+        if (auto ok = head_->configure(settings()); !ok) return fail(ok.error());
+        head_settings_ = settings();
+    }
+    auto frames = head_->preview_frames(timeout);
+    if (!frames && frames.error().code == ErrorCode::kDisconnected) set_unplugged();
+    return frames;
 }
 
 }  // namespace anascan::sim

@@ -18,6 +18,7 @@
 #include <optional>
 #include <string>
 
+#include "anascan/acquisition/device_control.hpp"
 #include "anascan/acquisition/live_registration.hpp"
 #include "anascan/acquisition/session_events.hpp"
 #include "anascan/acquisition/session_store.hpp"
@@ -98,6 +99,19 @@ public:
     Expected<void> add_note(std::optional<std::int64_t> seq, std::string_view text);
 
     SessionStore& store();
+
+    /// The attached device's settings (opened first when it is not). Runs on the scanner
+    /// thread between captures (capture_session_device.cpp).
+    std::future<Expected<DeviceSettingsForm>> device_settings();
+    /// Applies the form's values, validated by the device (kInvalidArgument naming the
+    /// setting and its range; nothing changes then), keeps them for later openings (after
+    /// an unplug) and records a "device-settings" session event; the settings now in
+    /// effect. Later scans carry them in their settings_json.
+    std::future<Expected<DeviceSettingsForm>> apply_device_settings(DeviceSettingsForm form);
+    /// What the device's cameras see now (structured light: cam1 and cam2 under the
+    /// projector's white), each at most `max_width_px` wide; no images for a scanner
+    /// without cameras. Queued behind the captures asked for before.
+    std::future<Expected<CameraPreview>> preview_cameras(int max_width_px);
 
 private:
     struct Impl;

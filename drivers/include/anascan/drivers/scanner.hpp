@@ -6,8 +6,10 @@
 #include <functional>
 #include <stop_token>
 #include <string>
+#include <vector>
 
 #include "anascan/drivers/device.hpp"
+#include "anascan/drivers/frame.hpp"
 #include "anascan/processing/scan.hpp"
 
 namespace anascan::drivers {
@@ -34,6 +36,14 @@ public:
     /// One scan in the sensor frame with meta.sensor_origin_scan_m, device id and kind,
     /// settings_json and (when the device knows it) meta.T_world_scan.
     virtual Expected<Scan> capture_scan(const CaptureControl& control) = 0;
+
+    /// What the scanner's cameras see now, one grey8 frame per camera (structured light:
+    /// cam1, cam2 under the projector's full light), for the operator's live preview
+    /// between captures; none for a scanner without cameras. Same thread as capture_scan.
+    virtual Expected<std::vector<Frame>> preview_frames(std::chrono::milliseconds timeout) {
+        (void)timeout;
+        return std::vector<Frame>{};
+    }
 };
 
 }  // namespace anascan::drivers

@@ -64,6 +64,9 @@ public:
     /// kDisconnected when a camera or the projector goes away (the scanner stays gone),
     /// kCancelled on a stop request; both streams are stopped on every path.
     Expected<Scan> capture_scan(const CaptureControl& control) override;
+    /// Shows the all-white pattern and takes each camera's first frame exposed after it
+    /// (structured_light_preview.cpp); both streams stopped on every path.
+    Expected<std::vector<Frame>> preview_frames(std::chrono::milliseconds timeout) override;
 
     const StructuredLightCaptureStats& last_capture() const { return stats_; }
     const StructuredLightParts& parts() const { return parts_; }

@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "anascan/acquisition/device_control.hpp"
+
 namespace anascan::gui {
 
 /// Registration state of one scan (mirrors acquisition::ScanState).
@@ -40,6 +42,26 @@ struct DeviceRow {
     std::string status;  ///< Last status line ("ready", "unplugged", ...).
 };
 
+/// The connected device's settings as the device panel edits them (acquisition's form).
+struct DeviceSettingsState {
+    acquisition::DeviceSettingsForm applied;  ///< In effect on the device (read or applied).
+    acquisition::DeviceSettingsForm edited;   ///< As the operator typed (starts as applied).
+    bool busy = false;                        ///< Reading or applying in progress.
+    std::string message;                      ///< The device's answer to the last apply.
+    bool message_is_error = false;
+};
+
+/// "Exposure 50000 µs is outside 1000-40000 µs" for a value outside the device's range or
+/// not a number, else empty (the device checks again when applied).
+std::string setting_problem(const acquisition::DeviceSetting& setting);
+
+/// One camera of the live preview: a texture of its latest image.
+struct CameraPreviewView {
+    std::uintptr_t texture = 0;  ///< OpenGL texture (0: none).
+    int width_px = 0, height_px = 0;
+    std::string name;  ///< "cam1", "cam2".
+};
+
 /// The device panel: the devices, which one captures, whether a capture is running.
 struct DevicePanelState {
     std::vector<DeviceRow> devices;
@@ -49,6 +71,11 @@ struct DevicePanelState {
     std::uintptr_t preview_texture = 0;
     int preview_width_px = 0, preview_height_px = 0;
     std::string preview_caption;  ///< "Scan 12 as the scanner saw it (153 204 points)".
+    bool connected = false;       ///< The active device is attached to the session.
+    DeviceSettingsState settings;
+    /// Live camera preview (structured light: cam1, cam2), empty when none.
+    std::vector<CameraPreviewView> cameras;
+    std::string cameras_caption;  ///< "Cameras at 21:03:04 (0.4 s old)", or why not.
 };
 
 /// The status bar figures; an absent figure shows as "-".

@@ -45,8 +45,20 @@ void draw_scan_list(const FieldViewState& state, const PanelLayout& layout, UiAc
 void draw_status_bar(const FieldViewState& state, const PanelLayout& layout);
 
 /// The device panel window ("Device"): devices with connect buttons, the capture and
-/// turned-over buttons, the colour mode and theme switches.
+/// turned-over buttons, the live camera preview, the device's settings, the colour mode and
+/// theme switches, the last scan as the scanner saw it.
 void draw_device_panel(const FieldViewState& state, const PanelLayout& layout, UiActions& actions);
+
+/// Inside the device panel: "Connect" until the device is attached, then its settings as
+/// editable fields (number with unit and range, or a choice), each out-of-range value in
+/// red with the allowed range, "Apply settings" (only with valid changes) and "Revert",
+/// and the device's answer to the last apply (device_settings_panel.cpp).
+void draw_device_settings(const DevicePanelState& device, UiActions& actions);
+
+/// Inside the device panel: the cameras' latest images side by side (in the child window
+/// kCameraPreviewChild), with their time.
+void draw_camera_preview(const DevicePanelState& device);
+inline constexpr const char* kCameraPreviewChild = "Cameras";
 
 /// The banner over the view, drawn only when session_banner(state) has a value: a failed
 /// capture ("Capture failed", red), a failed registration ("Registration failed", red) or

@@ -5,9 +5,10 @@
 /// level of detail (see level_of_detail.hpp).
 ///
 /// Memory rule: the GUI never holds more than one copy of the points. add_chunk() takes the
-/// cloud by value, shuffles it in place (for the LOD prefix), uploads positions and colours
-/// straight from its arrays and frees it; afterwards only the GPU buffers and a bounding
-/// sphere remain. Not thread-safe: use it on the thread that owns the GL context.
+/// cloud by value, shuffles it in place (for the LOD prefix; or the loading thread did),
+/// uploads positions and colours straight from its arrays (at once, or in steps over
+/// frames) and frees it; afterwards only the GPU buffers and a bounding sphere remain. Not
+/// thread-safe: use it on the thread that owns the GL context.
 
 #include <Eigen/Geometry>
 #include <cstdint>
@@ -57,6 +58,19 @@ struct DrawStats {
     bool complete = false;            ///< Every visible point is now in the image.
 };
 
+/// How add_chunk uploads a chunk.
+struct ChunkUpload {
+    /// The cloud was shuffled already (shuffle_chunk_points, on the loading thread).
+    bool shuffled = false;
+    /// > 0: upload this many points per upload_step() call (one per frame), so that no frame
+    /// copies a whole scan; the chunk is drawn once it is complete. 0: all at once.
+    std::size_t points_per_step = 0;
+};
+
+/// The LOD shuffle add_chunk does (fixed seed per chunk id: any prefix is a uniform
+/// sample), for a loading thread; then add_chunk with ChunkUpload::shuffled.
+void shuffle_chunk_points(PointCloud& cloud, std::int64_t id);
+
 class PointRenderer {
 public:
     /// Compiles the shaders; needs a current OpenGL 3.3 (core or compatibility) context.
@@ -69,7 +83,14 @@ public:
     /// world position is T_world_chunk · (origin_m + position). The cloud's colours, if any,
     /// are shown in ColorMode::kByCoverage (coverage samples carry green/red). Empty clouds
     /// are ignored.
-    void add_chunk(std::int64_t id, PointCloud cloud, const Eigen::Isometry3d& T_world_chunk);
+    void add_chunk(std::int64_t id, PointCloud cloud, const Eigen::Isometry3d& T_world_chunk,
+                   ChunkUpload upload = {});
+    /// Uploads the next points_per_step points of the chunks still uploading (glBufferSubData)
+    /// and frees each cloud once it is on the GPU; returns true while any remains. Once a
+    /// frame.
+    bool upload_step();
+    /// A chunk is still being uploaded (its cloud is still in CPU memory).
+    bool uploading() const;
     /// Moves a chunk (after refinement or a group merge).
     void set_pose(std::int64_t id, const Eigen::Isometry3d& T_world_chunk);
     void set_style(std::int64_t id, const ChunkStyle& style);
@@ -79,9 +100,9 @@ public:
     /// Draws into the current viewport (the caller set glViewport and cleared).
     DrawStats draw(const OrbitCamera& camera, double aspect, const DrawConfig& config);
 
-    /// Bounding sphere of the visible chunks (world frame); radius 0 when empty.
+    /// Bounding sphere of the visible, uploaded chunks (world frame); radius 0 when empty.
     BoundingSphere bounds() const;
-    std::size_t total_points() const;
+    std::size_t total_points() const;  ///< Of the uploaded chunks.
     /// Bytes of point data in GPU buffers (the CPU keeps none).
     std::size_t gpu_bytes() const;
     /// Changes whenever the drawn image would change for an unchanged camera (chunks, poses,

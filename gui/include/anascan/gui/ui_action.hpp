@@ -21,6 +21,10 @@ enum class UiActionKind {
     kSetColorMode,    ///< color_mode (view only).
     kToggleContrast,  ///< Switch the high-contrast theme (view only).
     kFitView,         ///< Fit the camera to the stone (view only).
+    kOpenDevice,      ///< Connect the active device: read its settings, preview its cameras.
+    kEditSetting,     ///< setting_index, value: the operator typed a setting (view only).
+    kApplySettings,   ///< Apply the edited settings to the device.
+    kRevertSettings,  ///< Forget the edits: back to the settings in effect (view only).
 };
 
 /// One operator request.
@@ -29,6 +33,8 @@ struct UiAction {
     std::int64_t seq = -1;                      ///< For the scan actions.
     int device_index = -1;                      ///< For kConnectDevice.
     ColorMode color_mode = ColorMode::kByScan;  ///< For kSetColorMode.
+    int setting_index = -1;                     ///< For kEditSetting: into the form.
+    double value = 0.0;                         ///< For kEditSetting: number, or choice index.
     friend bool operator==(const UiAction&, const UiAction&) = default;
 };
 

@@ -7,6 +7,7 @@
 /// with its true pose.
 
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "anascan/drivers/structured_light_scanner.hpp"
@@ -61,6 +62,10 @@ public:
     /// Places the cameras, then drivers::StructuredLightScanner::capture_scan: show each
     /// pattern, take each camera's frame of it, decode.
     Expected<Scan> capture_scan(const drivers::CaptureControl& control) override;
+    /// The cameras' view under the projector's white: where the last capture left them
+    /// (their images are rendered already), or at the next station before the first.
+    Expected<std::vector<drivers::Frame>> preview_frames(
+        std::chrono::milliseconds timeout) override;
 
     /// Sim-only: the viewpoint of the next capture.
     void move_to(const Viewpoint& station) { station_ = station; }
@@ -76,6 +81,8 @@ public:
 private:
     explicit SimStructuredLightScanner(SimStructuredLightConfig config);
     void place_parts(const StructuredLightRig& head, const std::shared_ptr<const SimWorld>& world);
+    void set_camera_views(const StructuredLightRig& head,
+                          const std::shared_ptr<const SimWorld>& world);
 
     SimStructuredLightConfig config_;
     Viewpoint station_;
@@ -83,6 +90,8 @@ private:
     SimCamera* cam1_ = nullptr;  ///< Owned by head_.
     SimCamera* cam2_ = nullptr;
     std::unique_ptr<drivers::StructuredLightScanner> head_;
+    bool parts_placed_ = false;  ///< The cameras have a view (a capture or preview placed them).
+    std::optional<drivers::DeviceSettings> head_settings_;  ///< Last given to head_.
 };
 
 }  // namespace anascan::sim
