@@ -21,140 +21,31 @@
 namespace anascan {
 namespace {
 
-constexpr int kMortonBits = 21;  // Per axis: 63-bit keys.
-constexpr double kMaxCoord = double((1u << kMortonBits) - 1);
+// Cell side over the (median, sampled) distance to the k-th neighbour: about k/2 points
+// per cell on a surface, and the 3x3x3 block around a query proves most rows.
+constexpr double kCellPerRadius = 2.0;
+constexpr std::size_t kRadiusSamples = 16;  // Queries answered by brute force to size cells.
 // The previous query's squared k-th distance times this bounds the next one's search
-// first (a neighbour in Morton order has a similar neighbourhood); any value is exact.
-constexpr float kHintGrowth = 1.5f;
+// first (a neighbour in the same cell has a similar neighbourhood); any value is exact.
+constexpr float kHintGrowth = 1.25f;
+constexpr std::size_t kGroup = 4;
+// Rows the 3x3x3 block cannot prove are retried on the 5x5x5 block, and so on up to
+// (2 kMaxRing + 1)^3; the few left (outliers) are answered by linear scans or a k-d tree.
+constexpr int kMaxRing = 4;
+// Up to this many times k candidates within the bound are ranked all pairs at once (no
+// data-dependent branch); more are inserted one by one.
+constexpr std::size_t kMaxRanked = 3;
+// Candidates compared at once (one SSE register).
 
-std::uint64_t spread_bits(std::uint64_t v) {  // 21 bits -> every third bit.
-    v &= 0x1fffff;
-    v = (v | v << 32) & 0x1f00000000ffffULL;
-    v = (v | v << 16) & 0x1f0000ff0000ffULL;
-    v = (v | v << 8) & 0x100f00f00f00f00fULL;
-    v = (v | v << 4) & 0x10c30c30c30c30c3ULL;
-    v = (v | v << 2) & 0x1249249249249249ULL;
-    return v;
-}
-
-std::uint64_t compact_bits(std::uint64_t v) {  // Inverse of spread_bits.
-    v &= 0x1249249249249249ULL;
-    v = (v ^ (v >> 2)) & 0x10c30c30c30c30c3ULL;
-    v = (v ^ (v >> 4)) & 0x100f00f00f00f00fULL;
-    v = (v ^ (v >> 8)) & 0x1f0000ff0000ffULL;
-    v = (v ^ (v >> 16)) & 0x1f00000000ffffULL;
-    v = (v ^ (v >> 32)) & 0x1fffff;
-    return v;
-}
-
-std::uint64_t morton(const Eigen::Array3<std::int64_t>& c) {
-    return spread_bits(std::uint64_t(c.x())) | spread_bits(std::uint64_t(c.y())) << 1 |
-           spread_bits(std::uint64_t(c.z())) << 2;
-}
-
-Eigen::Array3<std::int64_t> demorton(std::uint64_t key) {
-    return {std::int64_t(compact_bits(key)), std::int64_t(compact_bits(key >> 1)),
-            std::int64_t(compact_bits(key >> 2))};
-}
-
-bool is_finite(const Eigen::Vector3f& p) { return p.allFinite(); }
-
-// Finite points quantised to a 2^21 lattice over their bounds and sorted along the Morton
-// curve; cells of side 2^level lattice units are runs of equal key >> (3 * level).
-struct MortonGrid {
-    Eigen::Vector3d min_m = Eigen::Vector3d::Zero();
-    double units_per_m = 1.0;
-    int level = 0;
-    std::vector<std::uint64_t> keys;      // Sorted point keys.
-    std::vector<std::uint32_t> order;     // Point index of each sorted key.
-    std::vector<Eigen::Vector3f> sorted;  // Positions in sorted order.
-    std::vector<float> sx, sy, sz;        // The same as arrays (vectorised linear scans).
-    std::vector<std::uint64_t> cell_keys;
-    std::vector<std::uint32_t> cell_begin;  // cell_keys.size() + 1 offsets into `sorted`.
-
-    Eigen::Vector3d lattice(const Eigen::Vector3f& p) const {
-        return ((p.cast<double>() - min_m) * units_per_m).cwiseMax(0.0).cwiseMin(kMaxCoord);
-    }
-    // Index of the cell with these cell coordinates, or -1.
-    std::ptrdiff_t find_cell(const Eigen::Array3<std::int64_t>& c) const {
-        const std::int64_t max_c = std::int64_t(kMaxCoord) >> level;
-        if ((c < 0).any() || (c > max_c).any()) return -1;
-        const std::uint64_t key = morton(c);
-        const auto it = std::lower_bound(cell_keys.begin(), cell_keys.end(), key);
-        return it != cell_keys.end() && *it == key ? it - cell_keys.begin() : -1;
-    }
-};
-
-void sort_points(std::span<const Eigen::Vector3f> points, MortonGrid& grid) {
-    Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = -lo;
-    for (const Eigen::Vector3f& p : points) {
-        if (!is_finite(p)) continue;
-        lo = lo.cwiseMin(p.cast<double>());
-        hi = hi.cwiseMax(p.cast<double>());
-    }
-    if (!(lo.x() <= hi.x())) return;  // No finite point.
-    grid.min_m = lo;
-    grid.units_per_m = kMaxCoord / std::max((hi - lo).maxCoeff(), 1e-9);
-    // Keys in parallel (non-finite points get the largest key and are cut off after the
-    // sort: a finite key never reaches it, 63 bits are used).
-    constexpr std::uint64_t kNoKey = std::numeric_limits<std::uint64_t>::max();
-    std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(points.size());
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 4096), [&](auto r) {
-        for (std::size_t i = r.begin(); i < r.end(); ++i) {
-            const std::uint64_t key =
-                is_finite(points[i])
-                    ? morton(grid.lattice(points[i]).array().floor().cast<std::int64_t>())
-                    : kNoKey;
-            keyed[i] = {key, std::uint32_t(i)};
-        }
-    });
-    tbb::parallel_sort(keyed.begin(), keyed.end());  // Unique pairs: deterministic order.
-    std::size_t finite = keyed.size();
-    while (finite > 0 && keyed[finite - 1].first == kNoKey) --finite;
-    grid.keys.resize(finite);
-    grid.order.resize(finite);
-    grid.sorted.resize(finite);
-    for (auto* axis : {&grid.sx, &grid.sy, &grid.sz}) axis->resize(finite);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, finite, 4096), [&](auto r) {
-        for (std::size_t s = r.begin(); s < r.end(); ++s) {
-            grid.keys[s] = keyed[s].first;
-            grid.order[s] = keyed[s].second;
-            grid.sorted[s] = points[keyed[s].second];
-            grid.sx[s] = grid.sorted[s].x();
-            grid.sy[s] = grid.sorted[s].y();
-            grid.sz[s] = grid.sorted[s].z();
-        }
-    });
-}
-
-std::size_t count_cells(const std::vector<std::uint64_t>& keys, int level) {
-    std::size_t cells = 0;
-    for (std::size_t s = 0; s < keys.size(); ++s) {
-        cells += s == 0 || (keys[s] >> (3 * level)) != (keys[s - 1] >> (3 * level));
-    }
-    return cells;
-}
-
-// The coarsest level whose mean cell occupancy stays near `target` points.
-void choose_cells(double target, MortonGrid& grid) {
-    const double n = double(grid.keys.size());
-    int level = 0;
-    double occupancy = n / double(std::max<std::size_t>(count_cells(grid.keys, 0), 1));
-    while (level < kMortonBits && occupancy < target) {
-        const double next = n / double(std::max<std::size_t>(count_cells(grid.keys, level + 1), 1));
-        if (next > target && next / target > target / occupancy) break;  // Previous is closer.
-        ++level;
-        occupancy = next;
-    }
-    grid.level = level;
-    for (std::size_t s = 0; s < grid.keys.size(); ++s) {
-        const std::uint64_t cell = grid.keys[s] >> (3 * level);
-        if (grid.cell_keys.empty() || grid.cell_keys.back() != cell) {
-            grid.cell_keys.push_back(cell);
-            grid.cell_begin.push_back(std::uint32_t(s));
-        }
-    }
-    grid.cell_begin.push_back(std::uint32_t(grid.keys.size()));
+// Bit j set when d2[j] <= bound, for the kGroup values at d2.
+unsigned within_mask(const float* d2, float bound) {
+#if defined(__SSE2__)
+    return unsigned(_mm_movemask_ps(_mm_cmple_ps(_mm_loadu_ps(d2), _mm_set1_ps(bound))));
+#else
+    unsigned mask = 0;
+    for (std::size_t j = 0; j < kGroup; ++j) mask |= unsigned(d2[j] <= bound) << j;
+    return mask;
+#endif
 }
 
 // The k best (squared distance, index) pairs seen so far, closest first, ties by index.
@@ -189,6 +80,15 @@ public:
             worst_ = d2_of(worst_key_);
         }
     }
+    // Puts a pair at its known rank; set_size then ends the row.
+    void place(std::size_t rank, float d2, std::uint32_t index) { keys_[rank] = pack(d2, index); }
+    void set_size(std::size_t size) {
+        size_ = size;
+        if (size_ == k_) {
+            worst_key_ = keys_[k_ - 1];
+            worst_ = d2_of(worst_key_);
+        }
+    }
     float d2(std::size_t j) const { return d2_of(keys_[j]); }
     std::uint32_t index(std::size_t j) const { return std::uint32_t(keys_[j]); }
 
@@ -206,6 +106,280 @@ private:
     std::uint64_t worst_key_ = 0;
 };
 
+// Candidate positions as arrays (the distance loop vectorises) with their point indices.
+struct Candidates {
+    std::vector<float> x, y, z;
+    std::vector<std::uint32_t> indices;
+    std::size_t origin = 0;  // Of a block: where the first point of its centre cell is.
+    std::size_t size() const { return indices.size(); }
+    void clear() {
+        x.clear();
+        y.clear();
+        z.clear();
+        indices.clear();
+    }
+    void push_back(float px, float py, float pz, std::uint32_t index) {
+        x.push_back(px);
+        y.push_back(py);
+        z.push_back(pz);
+        indices.push_back(index);
+    }
+    void append(const Candidates& from, std::size_t begin, std::size_t end) {
+        const auto b = std::ptrdiff_t(begin), e = std::ptrdiff_t(end);
+        x.insert(x.end(), from.x.begin() + b, from.x.begin() + e);
+        y.insert(y.end(), from.y.begin() + b, from.y.begin() + e);
+        z.insert(z.end(), from.z.begin() + b, from.z.begin() + e);
+        indices.insert(indices.end(), from.indices.begin() + b, from.indices.begin() + e);
+    }
+};
+
+// Offers candidates [begin, end) to `top` (which the caller cleared): groups of four are
+// compared at once against the current k-th distance, so the many candidates that fail
+// cost no branch each. `self` is never offered; `d2` is scratch.
+void offer_range(const Candidates& c, std::size_t begin, std::size_t end, const Eigen::Vector3f& q,
+                 std::uint32_t self, std::vector<float>& d2, TopK& top) {
+    const std::size_t m = end - begin;
+    d2.resize((m + kGroup - 1) / kGroup * kGroup);
+    const float *x = c.x.data() + begin, *y = c.y.data() + begin, *z = c.z.data() + begin;
+    for (std::size_t j = 0; j < m; ++j) {  // Vectorises.
+        const float dx = x[j] - q.x(), dy = y[j] - q.y(), dz = z[j] - q.z();
+        d2[j] = dx * dx + dy * dy + dz * dz;
+    }
+    std::fill(d2.begin() + std::ptrdiff_t(m), d2.end(), std::numeric_limits<float>::quiet_NaN());
+    const std::uint32_t* indices = c.indices.data() + begin;
+    for (std::size_t j0 = 0; j0 < m; j0 += kGroup) {
+        for (unsigned mask = within_mask(&d2[j0], top.worst()); mask != 0; mask &= mask - 1) {
+            const std::size_t j = j0 + std::size_t(std::countr_zero(mask));
+            if (indices[j] != self) top.offer(d2[j], indices[j]);
+        }
+    }
+}
+
+// Exact k nearest among all of `all` by a linear scan, in chunks (the scratch stays small).
+void scan_all(const Candidates& all, const Eigen::Vector3f& q, std::uint32_t self,
+              std::vector<float>& d2, TopK& top) {
+    constexpr std::size_t kChunk = 1024;
+    top.clear(top.max_d2());
+    for (std::size_t begin = 0; begin < all.size(); begin += kChunk) {
+        offer_range(all, begin, std::min(begin + kChunk, all.size()), q, self, d2, top);
+    }
+}
+
+// Open addressing from cell key to cell number (keys < 2^63; the empty slot is ~0).
+class CellTable {
+public:
+    void build(const std::vector<std::uint64_t>& keys) {
+        const std::size_t capacity = std::bit_ceil(std::max<std::size_t>(2 * keys.size(), 16));
+        shift_ = 64 - std::countr_zero(capacity);
+        mask_ = capacity - 1;
+        slots_.assign(capacity, {kEmpty, 0});
+        for (std::size_t c = 0; c < keys.size(); ++c) {
+            std::size_t h = hash(keys[c]);
+            while (slots_[h].first != kEmpty) h = (h + 1) & mask_;
+            slots_[h] = {keys[c], std::uint32_t(c)};
+        }
+    }
+    // The cell number of `key`, or -1.
+    std::ptrdiff_t find(std::uint64_t key) const {
+        for (std::size_t h = hash(key);; h = (h + 1) & mask_) {
+            if (slots_[h].first == key) return slots_[h].second;
+            if (slots_[h].first == kEmpty) return -1;
+        }
+    }
+
+private:
+    static constexpr std::uint64_t kEmpty = std::numeric_limits<std::uint64_t>::max();
+    std::size_t hash(std::uint64_t key) const {
+        return std::size_t((key * 0x9E3779B97F4A7C15ULL) >> shift_);
+    }
+    int shift_ = 60;
+    std::size_t mask_ = 0;
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> slots_;
+};
+
+// Finite points sorted by cell, cells numbered row by row (x fastest), so the cells
+// x - r .. x + r of a row hold one contiguous run of points.
+struct CellGrid {
+    Eigen::Vector3d min_m = Eigen::Vector3d::Zero();
+    double cell_m = 1.0;
+    Eigen::Array3<std::int64_t> dims = Eigen::Array3<std::int64_t>::Ones();
+    Candidates sorted;                      // Finite points in cell order, original indices.
+    std::vector<std::uint64_t> cell_keys;   // Sorted, unique.
+    std::vector<std::uint32_t> cell_begin;  // cell_keys.size() + 1 offsets into `sorted`.
+    CellTable table;
+
+    std::uint64_t key(const Eigen::Array3<std::int64_t>& c) const {
+        return std::uint64_t((c.z() * dims.y() + c.y()) * dims.x() + c.x());
+    }
+    Eigen::Array3<std::int64_t> coords(std::uint64_t key) const {
+        const auto k = std::int64_t(key);
+        return {k % dims.x(), k / dims.x() % dims.y(), k / (dims.x() * dims.y())};
+    }
+    Eigen::Array3<std::int64_t> cell_of(float x, float y, float z) const {
+        const Eigen::Array3d u = (Eigen::Vector3d(x, y, z) - min_m).array() / cell_m;
+        return u.floor().cast<std::int64_t>().max(0).min(dims - 1);
+    }
+    Eigen::Vector3f position(std::size_t s) const {
+        return {sorted.x[s], sorted.y[s], sorted.z[s]};
+    }
+};
+
+// Finite points as arrays, in index order.
+Candidates finite_points(std::span<const Eigen::Vector3f> points) {
+    Candidates out;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        if (points[i].allFinite()) {
+            out.push_back(points[i].x(), points[i].y(), points[i].z(), std::uint32_t(i));
+        }
+    }
+    return out;
+}
+
+// Median distance to the k-th neighbour over evenly spaced sample points (exact, by linear
+// scans); infinite when the cloud has k points or fewer.
+double sampled_knn_radius(const Candidates& finite, std::size_t k) {
+    const std::size_t n = finite.size(), m = std::min(kRadiusSamples, n);
+    std::vector<double> radii(m);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m, 1), [&](auto r) {
+        std::vector<float> d2;
+        TopK top(k, std::numeric_limits<float>::infinity());
+        for (std::size_t j = r.begin(); j < r.end(); ++j) {
+            const std::size_t s = j * n / m;
+            const Eigen::Vector3f q(finite.x[s], finite.y[s], finite.z[s]);
+            scan_all(finite, q, finite.indices[s], d2, top);
+            radii[j] = top.size() == k ? std::sqrt(double(top.worst()))
+                                       : std::numeric_limits<double>::infinity();
+        }
+    });
+    std::nth_element(radii.begin(), radii.begin() + std::ptrdiff_t(m / 2), radii.end());
+    return radii[m / 2];
+}
+
+// Cell side from the sampled k-th neighbour distance (or the radius limit, when smaller),
+// at least 2^-20 of the extent so that cell keys fit in 63 bits.
+void size_cells(const Candidates& finite, const NeighborGraphConfig& config, std::size_t k,
+                CellGrid& grid) {
+    Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = -lo;
+    for (std::size_t s = 0; s < finite.size(); ++s) {
+        const Eigen::Vector3d p(finite.x[s], finite.y[s], finite.z[s]);
+        lo = lo.cwiseMin(p);
+        hi = hi.cwiseMax(p);
+    }
+    const double extent = (hi - lo).maxCoeff();
+    double cell = kCellPerRadius * sampled_knn_radius(finite, k);
+    if (config.max_radius_m > 0.0f) cell = std::min(cell, double(config.max_radius_m));
+    cell = std::min(cell, extent);  // Infinite when the cloud is tiny: one cell.
+    cell = std::max(cell, std::max(extent, 1e-9) / double(1 << 20));
+    grid.min_m = lo;
+    grid.cell_m = cell;
+    grid.dims = ((hi - lo) / cell).array().floor().cast<std::int64_t>() + 1;
+}
+
+// Sorts the finite points by cell (ties by index: deterministic) and numbers the cells.
+void sort_into_cells(const Candidates& finite, CellGrid& grid) {
+    const std::size_t n = finite.size();
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(n);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](auto r) {
+        for (std::size_t s = r.begin(); s < r.end(); ++s) {
+            keyed[s] = {grid.key(grid.cell_of(finite.x[s], finite.y[s], finite.z[s])),
+                        std::uint32_t(s)};
+        }
+    });
+    tbb::parallel_sort(keyed.begin(), keyed.end());
+    Candidates& out = grid.sorted;
+    out.x.resize(n);
+    out.y.resize(n);
+    out.z.resize(n);
+    out.indices.resize(n);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](auto r) {
+        for (std::size_t s = r.begin(); s < r.end(); ++s) {
+            const std::uint32_t from = keyed[s].second;
+            out.x[s] = finite.x[from];
+            out.y[s] = finite.y[from];
+            out.z[s] = finite.z[from];
+            out.indices[s] = finite.indices[from];
+        }
+    });
+    for (std::size_t s = 0; s < n; ++s) {
+        if (s == 0 || keyed[s].first != keyed[s - 1].first) {
+            grid.cell_keys.push_back(keyed[s].first);
+            grid.cell_begin.push_back(std::uint32_t(s));
+        }
+    }
+    grid.cell_begin.push_back(std::uint32_t(n));
+    grid.table.build(grid.cell_keys);
+}
+
+// Row offsets (dy, dz) of a (2r+1)^3 block, nearest first, so that the k-th distance
+// tightens early and most later candidates are rejected four at a time.
+std::vector<Eigen::Array2<std::int64_t>> row_offsets(int r) {
+    std::vector<Eigen::Array2<std::int64_t>> offsets;
+    for (int dz = -r; dz <= r; ++dz) {
+        for (int dy = -r; dy <= r; ++dy) offsets.emplace_back(dy, dz);
+    }
+    std::stable_sort(offsets.begin(), offsets.end(), [](const auto& a, const auto& b) {
+        return a.square().sum() < b.square().sum();
+    });
+    return offsets;
+}
+
+// The points of the (2r+1)^3 block of cells around `cell`, one contiguous run per row,
+// nearest rows first.
+void gather_block(const CellGrid& grid, std::size_t cell, int r, Candidates& block) {
+    static const std::array<std::vector<Eigen::Array2<std::int64_t>>, kMaxRing + 1> kRows = [] {
+        std::array<std::vector<Eigen::Array2<std::int64_t>>, kMaxRing + 1> rows;
+        for (int ring = 1; ring <= kMaxRing; ++ring) rows[std::size_t(ring)] = row_offsets(ring);
+        return rows;
+    }();
+    block.clear();
+    const Eigen::Array3<std::int64_t> c = grid.coords(grid.cell_keys[cell]);
+    const std::int64_t x0 = std::max<std::int64_t>(c.x() - r, 0);
+    const std::int64_t x1 = std::min<std::int64_t>(c.x() + r, grid.dims.x() - 1);
+    for (const Eigen::Array2<std::int64_t>& offset : kRows[std::size_t(r)]) {
+        const std::int64_t y = c.y() + offset.x(), z = c.z() + offset.y();
+        if (y < 0 || z < 0 || y >= grid.dims.y() || z >= grid.dims.z()) continue;
+        std::ptrdiff_t first = -1;
+        for (std::int64_t x = x0; x <= x1 && first < 0; ++x)
+            first = grid.table.find(grid.key({x, y, z}));
+        if (first < 0) continue;
+        const std::uint64_t last_key = grid.key({x1, y, z});
+        auto last = std::size_t(first);
+        while (last + 1 < grid.cell_keys.size() && grid.cell_keys[last + 1] <= last_key) ++last;
+        if (offset.isZero())
+            block.origin =
+                block.size() + grid.cell_begin[cell] - grid.cell_begin[std::size_t(first)];
+        block.append(grid.sorted, grid.cell_begin[std::size_t(first)], grid.cell_begin[last + 1]);
+    }
+}
+
+// Distance (metres) from sorted point s to the outside of the (2r+1)^3 block of cells
+// around its cell: every point closer than that lies in the block.
+double block_reach_m(const CellGrid& grid, std::size_t cell, int r, std::size_t s) {
+    const Eigen::Array3d lo =
+        grid.min_m.array() + grid.coords(grid.cell_keys[cell]).cast<double>() * grid.cell_m;
+    const Eigen::Array3d u = grid.position(s).cast<double>().array();
+    const double margin = std::max(((u - lo).min(lo + grid.cell_m - u)).minCoeff(), 0.0);
+    return (double(r) * grid.cell_m + margin) * (1.0 - 1e-6);
+}
+
+float max_distance_sq(const NeighborGraphConfig& config) {
+    return config.max_radius_m > 0.0f ? config.max_radius_m * config.max_radius_m
+                                      : std::numeric_limits<float>::infinity();
+}
+
+// Whether `top`, found in the (2r+1)^3 block around `cell`, is provably the exact answer
+// for sorted point s: its k-th neighbour (or the radius limit) lies within the block.
+bool proven(const CellGrid& grid, std::size_t cell, int r, std::size_t s, const TopK& top) {
+    const double reach = block_reach_m(grid, cell, r, s);
+    const bool full = top.size() == top.capacity();
+    const double needed = full ? double(top.worst()) : double(top.max_d2());
+    return needed <= reach * reach;
+}
+
+bool too_dense(const Candidates& block, std::size_t k) {  // Piles of duplicates: fall back.
+    return block.size() > 64 * k + 1024;
+}
+
 void write_row(const TopK& top, std::size_t row, NeighborGraph& graph) {
     for (std::size_t j = 0; j < top.size(); ++j) {
         graph.distances_sq_m2[row * graph.k + j] = top.d2(j);
@@ -214,190 +388,180 @@ void write_row(const TopK& top, std::size_t row, NeighborGraph& graph) {
     graph.counts[row] = std::uint32_t(top.size());
 }
 
-constexpr std::size_t kGroup = 4;  // Candidates compared at once (one SSE register).
-
-// Bit j set when d2[j] <= bound, for the kGroup values at d2.
-unsigned within_mask(const float* d2, float bound) {
+// Number of entries ordered before entry c: smaller distance, or equal and smaller index.
+std::size_t rank_of(const float* d2, const std::uint32_t* index, std::size_t padded,
+                    std::size_t c) {
 #if defined(__SSE2__)
-    return unsigned(_mm_movemask_ps(_mm_cmple_ps(_mm_loadu_ps(d2), _mm_set1_ps(bound))));
+    const __m128 dc = _mm_set1_ps(d2[c]);
+    const __m128i flip = _mm_set1_epi32(std::int32_t(0x80000000u));  // Unsigned compare.
+    const __m128i ic = _mm_xor_si128(_mm_set1_epi32(std::int32_t(index[c])), flip);
+    __m128i count = _mm_setzero_si128();
+    for (std::size_t j = 0; j < padded; j += kGroup) {
+        const __m128 dj = _mm_loadu_ps(d2 + j);
+        const __m128i ij =
+            _mm_xor_si128(_mm_loadu_si128(reinterpret_cast<const __m128i*>(index + j)), flip);
+        const __m128 before =
+            _mm_or_ps(_mm_cmplt_ps(dj, dc),
+                      _mm_and_ps(_mm_cmpeq_ps(dj, dc), _mm_castsi128_ps(_mm_cmplt_epi32(ij, ic))));
+        count = _mm_sub_epi32(count, _mm_castps_si128(before));  // A true lane is -1.
+    }
+    alignas(16) std::array<std::int32_t, kGroup> lanes;
+    _mm_store_si128(reinterpret_cast<__m128i*>(lanes.data()), count);
+    return std::size_t(lanes[0] + lanes[1] + lanes[2] + lanes[3]);
 #else
-    unsigned mask = 0;
-    for (std::size_t j = 0; j < kGroup; ++j) mask |= unsigned(d2[j] <= bound) << j;
-    return mask;
+    std::size_t rank = 0;
+    for (std::size_t j = 0; j < padded; ++j) {
+        rank += d2[j] < d2[c] || (d2[j] == d2[c] && index[j] < index[c]);
+    }
+    return rank;
 #endif
-}
-
-// Positions of the (2r+1)^3 block of cells around `cell`.
-struct Block {
-    std::vector<float> x, y, z;  // Structure of arrays: the distance loop vectorises.
-    std::vector<std::uint32_t> indices;
-    std::vector<float> d2;  // Padded to a multiple of kGroup.
-    std::size_t size() const { return indices.size(); }
-};
-
-// The cell offsets of a (2r+1)^3 block, nearest first: the centre, faces, edges, corners.
-// Candidates near the query come first, so the k-th distance tightens early and most of
-// the later candidates are rejected four at a time.
-std::vector<Eigen::Array3<std::int64_t>> block_offsets(int r) {
-    std::vector<Eigen::Array3<std::int64_t>> offsets;
-    for (int dz = -r; dz <= r; ++dz) {
-        for (int dy = -r; dy <= r; ++dy) {
-            for (int dx = -r; dx <= r; ++dx) offsets.emplace_back(dx, dy, dz);
-        }
-    }
-    std::stable_sort(offsets.begin(), offsets.end(), [](const auto& a, const auto& b) {
-        return a.square().sum() < b.square().sum();
-    });
-    return offsets;
-}
-
-void gather_block(const MortonGrid& grid, std::size_t cell, int r, Block& block) {
-    static const std::vector<Eigen::Array3<std::int64_t>> kNear = block_offsets(1);
-    static const std::vector<Eigen::Array3<std::int64_t>> kWide = block_offsets(2);
-    block.x.clear();
-    block.y.clear();
-    block.z.clear();
-    block.indices.clear();
-    const Eigen::Array3<std::int64_t> c = demorton(grid.cell_keys[cell]);
-    for (const Eigen::Array3<std::int64_t>& offset : r == 1 ? kNear : kWide) {
-        const std::ptrdiff_t other = grid.find_cell(c + offset);
-        if (other < 0) continue;
-        for (std::uint32_t s = grid.cell_begin[other]; s < grid.cell_begin[other + 1]; ++s) {
-            block.x.push_back(grid.sorted[s].x());
-            block.y.push_back(grid.sorted[s].y());
-            block.z.push_back(grid.sorted[s].z());
-            block.indices.push_back(grid.order[s]);
-        }
-    }
-    // Padded to whole groups of kGroup with NaN (never within any bound).
-    block.d2.assign((block.size() + kGroup - 1) / kGroup * kGroup,
-                    std::numeric_limits<float>::quiet_NaN());
-}
-
-// Distance (metres) from sorted point s to the outside of the (2r+1)^3 block of cells
-// around its cell: every point closer than that lies in the block.
-double block_reach_m(const MortonGrid& grid, std::size_t cell, int r, std::uint32_t s) {
-    const double side = double(std::int64_t(1) << grid.level);
-    const Eigen::Array3d lo = demorton(grid.cell_keys[cell]).cast<double>() * side;
-    const Eigen::Array3d u = grid.lattice(grid.sorted[s]).array();
-    const double margin = std::max(((u - lo).min(lo + side - u)).minCoeff(), 0.0);
-    return (double(r) * side + margin) / grid.units_per_m * (1.0 - 1e-6);
-}
-
-float max_distance_sq(const NeighborGraphConfig& config) {
-    return config.max_radius_m > 0.0f ? config.max_radius_m * config.max_radius_m
-                                      : std::numeric_limits<float>::infinity();
-}
-
-// Offers the candidates within `bound_d2`: groups of four are compared at once against the
-// current k-th distance, so the many candidates that fail cost no branch each.
-void offer_block(Block& block, const Eigen::Vector3f& q, std::uint32_t self, float bound_d2,
-                 TopK& top) {
-    const std::size_t m = block.size();
-    for (std::size_t c = 0; c < m; ++c) {  // Vectorises.
-        const float dx = block.x[c] - q.x(), dy = block.y[c] - q.y(), dz = block.z[c] - q.z();
-        block.d2[c] = dx * dx + dy * dy + dz * dz;
-    }
-    top.clear(bound_d2);
-    for (std::size_t c0 = 0; c0 < m; c0 += kGroup) {
-        for (unsigned mask = within_mask(&block.d2[c0], top.worst()); mask != 0; mask &= mask - 1) {
-            const std::size_t c = c0 + std::size_t(std::countr_zero(mask));
-            if (block.indices[c] != self) top.offer(block.d2[c], block.indices[c]);
-        }
-    }
-}
-
-// Nearest neighbours of sorted point s among the block's points. `hint_d2` (the previous
-// query's k-th distance, grown) filters candidates first; when fewer than k pass, the
-// block is scanned again without it, so the answer is the same either way.
-void scan_block(const MortonGrid& grid, std::uint32_t s, float hint_d2, Block& block, TopK& top) {
-    const Eigen::Vector3f q = grid.sorted[s];
-    offer_block(block, q, grid.order[s], hint_d2, top);
-    if (top.size() < top.capacity() && hint_d2 < top.max_d2()) {
-        offer_block(block, q, grid.order[s], top.max_d2(), top);
-    }
-}
-
-// Whether `top`, found in the (2r+1)^3 block around `cell`, is provably the exact answer
-// for sorted point s: its k-th neighbour (or the radius limit) lies within the block.
-bool proven(const MortonGrid& grid, std::size_t cell, int r, std::uint32_t s, const TopK& top) {
-    const double reach = block_reach_m(grid, cell, r, s);
-    const bool full = top.size() == top.capacity();
-    const double needed = full ? double(top.worst()) : double(top.max_d2());
-    return needed <= reach * reach;
-}
-
-bool too_dense(const Block& block, std::size_t k) {  // Piles of duplicates: fall back.
-    return block.size() > 64 * k + 1024;
 }
 
 // One worker's scratch: the 3x3x3 block of the current cell and, loaded only for rows it
 // cannot prove (borders, sparse spots), the 5x5x5 block.
 struct Scratch {
-    Block near, wide;
+    Candidates near, wide;
     std::size_t wide_cell = std::numeric_limits<std::size_t>::max();
+    int wide_ring = 0;
+    float hint_d2 = std::numeric_limits<float>::infinity();
+    std::vector<float> d2;
+    std::vector<std::uint32_t> picked;  // Block positions within the bound.
+    std::vector<float> picked_d2;
+    std::vector<std::uint32_t> picked_index;
 };
 
+// Squared distances from q to all of the block's points, padded with NaN to whole groups;
+// the query's own entry is NaN too (never within any bound).
+void block_distances(const Candidates& block, const Eigen::Vector3f& q, std::size_t self_pos,
+                     std::vector<float>& d2) {
+    const std::size_t m = block.size();
+    d2.resize((m + kGroup - 1) / kGroup * kGroup);
+    const float *x = block.x.data(), *y = block.y.data(), *z = block.z.data();
+    for (std::size_t j = 0; j < m; ++j) {  // Vectorises.
+        const float dx = x[j] - q.x(), dy = y[j] - q.y(), dz = z[j] - q.z();
+        d2[j] = dx * dx + dy * dy + dz * dz;
+    }
+    std::fill(d2.begin() + std::ptrdiff_t(m), d2.end(), std::numeric_limits<float>::quiet_NaN());
+    d2[self_pos] = std::numeric_limits<float>::quiet_NaN();
+}
+
+// The lanes of the set bits of each 4-bit mask, in order (unused lanes: 0).
+constexpr std::array<std::array<std::uint8_t, kGroup>, 16> kMaskLanes = [] {
+    std::array<std::array<std::uint8_t, kGroup>, 16> lanes{};
+    for (unsigned mask = 0; mask < 16; ++mask) {
+        std::size_t n = 0;
+        for (unsigned lane = 0; lane < kGroup; ++lane) {
+            if (mask & (1u << lane)) lanes[mask][n++] = std::uint8_t(lane);
+        }
+    }
+    return lanes;
+}();
+
+// Positions j with d2[j] <= bound into `picked`, without a branch per group.
+void pick_within(const std::vector<float>& d2, float bound, std::vector<std::uint32_t>& picked) {
+    picked.resize(d2.size() + kGroup);
+    std::size_t n = 0;
+    for (std::size_t j0 = 0; j0 < d2.size(); j0 += kGroup) {
+        const unsigned mask = within_mask(&d2[j0], bound);
+        for (std::size_t lane = 0; lane < kGroup; ++lane) {
+            picked[n + lane] = std::uint32_t(j0 + kMaskLanes[mask][lane]);
+        }
+        n += (0x4332322132212110ULL >> (4 * mask)) & 0xf;  // popcount(mask), no libcall.
+    }
+    picked.resize(n);
+}
+
+// Rank of each picked candidate among the picked (distance, then index), found by
+// comparing all pairs four at a time: no branch depends on the data. Ranks below k give
+// the sorted top k directly.
+void select_ranked(const Candidates& block, const std::vector<float>& d2, Scratch& scratch,
+                   TopK& top) {
+    const std::size_t n = scratch.picked.size(), padded = (n + kGroup - 1) / kGroup * kGroup;
+    scratch.picked_d2.assign(padded, std::numeric_limits<float>::infinity());
+    scratch.picked_index.assign(padded, std::numeric_limits<std::uint32_t>::max());
+    for (std::size_t c = 0; c < n; ++c) {
+        scratch.picked_d2[c] = d2[scratch.picked[c]];
+        scratch.picked_index[c] = block.indices[scratch.picked[c]];
+    }
+    const float* pd2 = scratch.picked_d2.data();
+    const std::uint32_t* pid = scratch.picked_index.data();
+    top.clear(top.max_d2());
+    for (std::size_t c = 0; c < n; ++c) {
+        const std::size_t rank = rank_of(pd2, pid, padded, c);
+        if (rank < top.capacity()) top.place(rank, pd2[c], pid[c]);
+    }
+    top.set_size(std::min(n, top.capacity()));
+}
+
+// Nearest neighbours of sorted point s among the block's points. `hint_d2` (the previous
+// query's k-th distance, grown) filters candidates first; when fewer than k pass, the
+// block is scanned again without it, so the answer is the same either way.
+void scan_block(const CellGrid& grid, std::size_t cell, std::size_t s, float hint_d2,
+                const Candidates& block, Scratch& scratch, TopK& top) {
+    const Eigen::Vector3f q = grid.position(s);
+    const std::uint32_t self = grid.sorted.indices[s];
+    const std::size_t self_pos = block.origin + (s - grid.cell_begin[cell]);
+    block_distances(block, q, self_pos, scratch.d2);
+    const float bound = std::min(hint_d2, top.max_d2());
+    pick_within(scratch.d2, bound, scratch.picked);
+    const std::size_t picked = scratch.picked.size();
+    if (picked >= top.capacity() || bound >= top.max_d2()) {
+        if (picked <= kMaxRanked * top.capacity()) {
+            select_ranked(block, scratch.d2, scratch, top);
+            return;
+        }
+        top.clear(bound);
+    } else {
+        top.clear(top.max_d2());  // Too few within the hint: all candidates.
+    }
+    offer_range(block, 0, block.size(), q, self, scratch.d2, top);
+}
+
+// Retries sorted point s on ever wider blocks around its cell; false when none proves it.
+bool answer_wide(const CellGrid& grid, std::size_t cell, std::size_t s, Scratch& scratch,
+                 TopK& top) {
+    for (int ring = 2; ring <= kMaxRing; ++ring) {
+        if (scratch.wide_cell != cell || scratch.wide_ring != ring) {
+            gather_block(grid, cell, ring, scratch.wide);
+            scratch.wide_cell = cell;
+            scratch.wide_ring = ring;
+        }
+        if (too_dense(scratch.wide, top.capacity())) return false;
+        // The k found so far lie in the wider block too: their k-th distance bounds it.
+        const bool full = top.size() == top.capacity();
+        scan_block(grid, cell, s, full ? top.worst() : top.max_d2(), scratch.wide, scratch, top);
+        if (proven(grid, cell, ring, s, top)) return true;
+    }
+    return false;
+}
+
 // Answers the points of `cell` from its blocks; rows they cannot prove exact get flagged.
-void answer_cell(const MortonGrid& grid, std::size_t cell, const NeighborGraphConfig& config,
-                 Scratch& scratch, NeighborGraph& graph, std::vector<std::uint8_t>& fallback) {
+void answer_cell(const CellGrid& grid, std::size_t cell, float max_d2, Scratch& scratch,
+                 NeighborGraph& graph, std::vector<std::uint8_t>& fallback) {
     gather_block(grid, cell, 1, scratch.near);
     const bool dense = too_dense(scratch.near, graph.k);
-    TopK top(graph.k, max_distance_sq(config));
-    float hint_d2 = std::numeric_limits<float>::infinity();
-    for (std::uint32_t s = grid.cell_begin[cell]; s < grid.cell_begin[cell + 1]; ++s) {
-        const std::uint32_t row = grid.order[s];
+    TopK top(graph.k, max_d2);
+    float& hint_d2 = scratch.hint_d2;  // Carried over from the previous cell.
+    for (std::size_t s = grid.cell_begin[cell]; s < grid.cell_begin[cell + 1]; ++s) {
+        const std::uint32_t row = grid.sorted.indices[s];
         if (dense) {
             fallback[row] = 1;
             continue;
         }
-        scan_block(grid, s, hint_d2, scratch.near, top);
+        scan_block(grid, cell, s, hint_d2, scratch.near, scratch, top);
         if (top.size() == graph.k) hint_d2 = kHintGrowth * top.worst();
-        if (!proven(grid, cell, 1, s, top)) {
-            if (scratch.wide_cell != cell) gather_block(grid, cell, 2, scratch.wide);
-            scratch.wide_cell = cell;
-            const bool wide_dense = too_dense(scratch.wide, graph.k);
-            if (!wide_dense) scan_block(grid, s, top.max_d2(), scratch.wide, top);
-            if (wide_dense || !proven(grid, cell, 2, s, top)) {
-                fallback[row] = 1;
-                continue;
-            }
+        if (!proven(grid, cell, 1, s, top) && !answer_wide(grid, cell, s, scratch, top)) {
+            fallback[row] = 1;
+            continue;
         }
         write_row(top, row, graph);
     }
 }
 
-// Exact answer for one row by a linear scan of all finite points.
-void brute_force_row(const MortonGrid& grid, std::uint32_t row, const Eigen::Vector3f& q, TopK& top,
-                     NeighborGraph& graph) {
-    constexpr std::size_t kChunk = 1024;  // A multiple of kGroup.
-    std::array<float, kChunk> d2;
-    top.clear(top.max_d2());
-    const std::size_t n = grid.sorted.size();
-    for (std::size_t begin = 0; begin < n; begin += kChunk) {
-        const std::size_t m = std::min(kChunk, n - begin);
-        for (std::size_t c = 0; c < m; ++c) {  // Vectorises; same rounding as offer_block.
-            const float dx = grid.sx[begin + c] - q.x(), dy = grid.sy[begin + c] - q.y(),
-                        dz = grid.sz[begin + c] - q.z();
-            d2[c] = dx * dx + dy * dy + dz * dz;
-        }
-        std::fill(d2.begin() + std::ptrdiff_t(m), d2.end(),
-                  std::numeric_limits<float>::quiet_NaN());
-        for (std::size_t c0 = 0; c0 < m; c0 += kGroup) {
-            for (unsigned mask = within_mask(&d2[c0], top.worst()); mask != 0; mask &= mask - 1) {
-                const std::size_t c = c0 + std::size_t(std::countr_zero(mask));
-                if (grid.order[begin + c] != row) top.offer(d2[c], grid.order[begin + c]);
-            }
-        }
-    }
-    write_row(top, row, graph);
-}
-
-// Exact answers for the flagged rows: a linear scan when they are few (building a k-d
-// tree costs about as much as kBruteForceRows scans), else k-d tree queries.
-void answer_fallbacks(std::span<const Eigen::Vector3f> points, const MortonGrid& grid,
-                      const NeighborGraphConfig& config, const std::vector<std::uint8_t>& flags,
-                      NeighborGraph& graph) {
+// Exact answers for the flagged rows: linear scans when they are few (building a k-d tree
+// costs about as much as kBruteForceRows scans), else k-d tree queries.
+void answer_fallbacks(std::span<const Eigen::Vector3f> points, const Candidates& finite,
+                      float max_d2, const std::vector<std::uint8_t>& flags, NeighborGraph& graph) {
     constexpr std::size_t kBruteForceRows = 256;
     std::vector<std::uint32_t> rows;
     for (std::size_t i = 0; i < flags.size(); ++i) {
@@ -405,17 +569,22 @@ void answer_fallbacks(std::span<const Eigen::Vector3f> points, const MortonGrid&
     }
     graph.num_exact_fallbacks = rows.size();
     if (rows.empty()) return;
-    const float max_d2 = max_distance_sq(config);
     if (rows.size() <= kBruteForceRows) {
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rows.size(), 8), [&](auto r) {
             TopK top(graph.k, max_d2);
+            std::vector<float> d2;
             for (std::size_t j = r.begin(); j < r.end(); ++j) {
-                brute_force_row(grid, rows[j], points[rows[j]], top, graph);
+                scan_all(finite, points[rows[j]], rows[j], d2, top);
+                write_row(top, rows[j], graph);
             }
         });
         return;
     }
-    const KdTree tree(grid.sorted);  // Finite points only; map back through grid.order.
+    std::vector<Eigen::Vector3f> positions(finite.size());
+    for (std::size_t s = 0; s < finite.size(); ++s) {
+        positions[s] = {finite.x[s], finite.y[s], finite.z[s]};
+    }
+    const KdTree tree(positions);  // Finite points only; map back through finite.indices.
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rows.size(), 64), [&](const auto& r) {
         std::vector<Neighbor> found;
         TopK top(graph.k, max_d2);
@@ -424,7 +593,7 @@ void answer_fallbacks(std::span<const Eigen::Vector3f> points, const MortonGrid&
             tree.knn(points[row], graph.k + 1, found);
             top.clear(max_d2);
             for (const Neighbor& n : found) {
-                const std::uint32_t index = grid.order[n.index];
+                const std::uint32_t index = finite.indices[n.index];
                 if (index != row) top.offer(n.distance_sq_m2, index);
             }
             write_row(top, row, graph);
@@ -442,19 +611,21 @@ NeighborGraph build_neighbor_graph(std::span<const Eigen::Vector3f> points,
     graph.indices.assign(points.size() * graph.k, 0);
     graph.distances_sq_m2.assign(points.size() * graph.k, 0.0f);
     graph.counts.assign(points.size(), 0);
-    MortonGrid grid;
-    sort_points(points, grid);
-    if (grid.keys.empty()) return graph;
-    choose_cells(0.5 * double(graph.k + 1), grid);
+    const Candidates finite = finite_points(points);
+    if (finite.size() == 0) return graph;
+    CellGrid grid;
+    size_cells(finite, config, graph.k, grid);
+    sort_into_cells(finite, grid);
+    const float max_d2 = max_distance_sq(config);
     std::vector<std::uint8_t> fallback(points.size(), 0);
     const std::size_t num_cells = grid.cell_keys.size();
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, num_cells, 16), [&](const auto& r) {
         Scratch scratch;
         for (std::size_t cell = r.begin(); cell < r.end(); ++cell) {
-            answer_cell(grid, cell, config, scratch, graph, fallback);
+            answer_cell(grid, cell, max_d2, scratch, graph, fallback);
         }
     });
-    answer_fallbacks(points, grid, config, fallback, graph);
+    answer_fallbacks(points, finite, max_d2, fallback, graph);
     return graph;
 }
 
