@@ -111,12 +111,20 @@ struct Candidates {
     std::vector<float> x, y, z;
     std::vector<std::uint32_t> indices;
     std::size_t origin = 0;  // Of a block: where the first point of its centre cell is.
+    // Of a 3x3x3 block: per row of cells, its (dy, dz) and where its cells x - 1, x, x + 1
+    // begin and the last ends, so that a query can skip the cells it cannot reach.
+    struct Row {
+        std::int64_t dy = 0, dz = 0;
+        std::array<std::uint32_t, 4> at{};
+    };
+    std::vector<Row> rows;
     std::size_t size() const { return indices.size(); }
     void clear() {
         x.clear();
         y.clear();
         z.clear();
         indices.clear();
+        rows.clear();
     }
     void push_back(float px, float py, float pz, std::uint32_t index) {
         x.push_back(px);
@@ -345,10 +353,21 @@ void gather_block(const CellGrid& grid, std::size_t cell, int r, Candidates& blo
         const std::uint64_t last_key = grid.key({x1, y, z});
         auto last = std::size_t(first);
         while (last + 1 < grid.cell_keys.size() && grid.cell_keys[last + 1] <= last_key) ++last;
-        if (offset.isZero())
-            block.origin =
-                block.size() + grid.cell_begin[cell] - grid.cell_begin[std::size_t(first)];
-        block.append(grid.sorted, grid.cell_begin[std::size_t(first)], grid.cell_begin[last + 1]);
+        const std::uint32_t base = grid.cell_begin[std::size_t(first)];
+        if (offset.isZero()) block.origin = block.size() + grid.cell_begin[cell] - base;
+        if (r == 1) {
+            Candidates::Row row{offset.x(), offset.y(), {}};
+            auto at = std::size_t(first);
+            for (std::size_t t = 1; t < 3; ++t) {  // First cell at x - 1 + t or beyond.
+                const std::uint64_t from = grid.key({c.x() - 1 + std::int64_t(t), y, z});
+                while (at <= last && grid.cell_keys[at] < from) ++at;
+                row.at[t] = std::uint32_t(block.size() + grid.cell_begin[at] - base);
+            }
+            row.at[0] = std::uint32_t(block.size());
+            row.at[3] = std::uint32_t(block.size() + grid.cell_begin[last + 1] - base);
+            block.rows.push_back(row);
+        }
+        block.append(grid.sorted, base, grid.cell_begin[last + 1]);
     }
 }
 
@@ -388,32 +407,40 @@ void write_row(const TopK& top, std::size_t row, NeighborGraph& graph) {
     graph.counts[row] = std::uint32_t(top.size());
 }
 
-// Number of entries ordered before entry c: smaller distance, or equal and smaller index.
-std::size_t rank_of(const float* d2, const std::uint32_t* index, std::size_t padded,
-                    std::size_t c) {
+// Rank of each of the n entries among them (smaller distance, or equal and smaller
+// index, comes first), each pair compared once, four at a time: no branch depends on the
+// data. The arrays hold n + kGroup entries; the padding (+inf, ~0) ranks last.
+void rank_all(const float* d2, const std::uint32_t* index, std::size_t n, std::int32_t* rank) {
+    std::fill(rank, rank + n + kGroup, 0);
 #if defined(__SSE2__)
-    const __m128 dc = _mm_set1_ps(d2[c]);
     const __m128i flip = _mm_set1_epi32(std::int32_t(0x80000000u));  // Unsigned compare.
-    const __m128i ic = _mm_xor_si128(_mm_set1_epi32(std::int32_t(index[c])), flip);
-    __m128i count = _mm_setzero_si128();
-    for (std::size_t j = 0; j < padded; j += kGroup) {
-        const __m128 dj = _mm_loadu_ps(d2 + j);
-        const __m128i ij =
-            _mm_xor_si128(_mm_loadu_si128(reinterpret_cast<const __m128i*>(index + j)), flip);
-        const __m128 before =
-            _mm_or_ps(_mm_cmplt_ps(dj, dc),
-                      _mm_and_ps(_mm_cmpeq_ps(dj, dc), _mm_castsi128_ps(_mm_cmplt_epi32(ij, ic))));
-        count = _mm_sub_epi32(count, _mm_castps_si128(before));  // A true lane is -1.
+    const __m128i one = _mm_set1_epi32(1);
+    for (std::size_t c = 0; c < n; ++c) {
+        const __m128 dc = _mm_set1_ps(d2[c]);
+        const __m128i ic = _mm_xor_si128(_mm_set1_epi32(std::int32_t(index[c])), flip);
+        __m128i before_c = _mm_setzero_si128();
+        for (std::size_t j = c + 1; j < n; j += kGroup) {
+            const __m128 dj = _mm_loadu_ps(d2 + j);
+            const __m128i ij =
+                _mm_xor_si128(_mm_loadu_si128(reinterpret_cast<const __m128i*>(index + j)), flip);
+            const __m128i j_first = _mm_castps_si128(_mm_or_ps(
+                _mm_cmplt_ps(dj, dc),
+                _mm_and_ps(_mm_cmpeq_ps(dj, dc), _mm_castsi128_ps(_mm_cmplt_epi32(ij, ic)))));
+            before_c = _mm_sub_epi32(before_c, j_first);  // A true lane is -1.
+            auto* rj = reinterpret_cast<__m128i*>(rank + j);
+            _mm_storeu_si128(rj, _mm_add_epi32(_mm_loadu_si128(rj), _mm_add_epi32(one, j_first)));
+        }
+        alignas(16) std::array<std::int32_t, kGroup> lanes;
+        _mm_store_si128(reinterpret_cast<__m128i*>(lanes.data()), before_c);
+        rank[c] += lanes[0] + lanes[1] + lanes[2] + lanes[3];
     }
-    alignas(16) std::array<std::int32_t, kGroup> lanes;
-    _mm_store_si128(reinterpret_cast<__m128i*>(lanes.data()), count);
-    return std::size_t(lanes[0] + lanes[1] + lanes[2] + lanes[3]);
 #else
-    std::size_t rank = 0;
-    for (std::size_t j = 0; j < padded; ++j) {
-        rank += d2[j] < d2[c] || (d2[j] == d2[c] && index[j] < index[c]);
+    for (std::size_t c = 0; c < n; ++c) {
+        for (std::size_t j = c + 1; j < n; ++j) {
+            const bool j_first = d2[j] < d2[c] || (d2[j] == d2[c] && index[j] < index[c]);
+            rank[j_first ? c : j] += 1;
+        }
     }
-    return rank;
 #endif
 }
 
@@ -425,50 +452,81 @@ struct Scratch {
     int wide_ring = 0;
     float hint_d2 = std::numeric_limits<float>::infinity();
     std::vector<float> d2;
-    std::vector<std::uint32_t> picked;  // Block positions within the bound.
+    std::vector<std::pair<std::size_t, std::size_t>> ranges;  // Parts of the block scanned.
+    std::vector<std::uint32_t> picked;                        // Block positions within the bound.
     std::vector<float> picked_d2;
     std::vector<std::uint32_t> picked_index;
+    std::vector<std::int32_t> picked_rank;
 };
 
-// Squared distances from q to all of the block's points, padded with NaN to whole groups;
-// the query's own entry is NaN too (never within any bound).
-void block_distances(const Candidates& block, const Eigen::Vector3f& q, std::size_t self_pos,
-                     std::vector<float>& d2) {
-    const std::size_t m = block.size();
-    d2.resize((m + kGroup - 1) / kGroup * kGroup);
+// Squared distances from q to the block's points [begin, end), into d2 at the same places.
+void range_distances(const Candidates& block, std::size_t begin, std::size_t end,
+                     const Eigen::Vector3f& q, std::vector<float>& d2) {
     const float *x = block.x.data(), *y = block.y.data(), *z = block.z.data();
-    for (std::size_t j = 0; j < m; ++j) {  // Vectorises.
+    float* out = d2.data();
+    for (std::size_t j = begin; j < end; ++j) {  // Vectorises.
         const float dx = x[j] - q.x(), dy = y[j] - q.y(), dz = z[j] - q.z();
-        d2[j] = dx * dx + dy * dy + dz * dz;
+        out[j] = dx * dx + dy * dy + dz * dz;
     }
-    std::fill(d2.begin() + std::ptrdiff_t(m), d2.end(), std::numeric_limits<float>::quiet_NaN());
-    d2[self_pos] = std::numeric_limits<float>::quiet_NaN();
+}
+
+// The parts of the block that may hold a point within sqrt(bound_d2) of q: with the rows
+// recorded (3x3x3 blocks), the neighbouring cells on a side are skipped when the ball
+// around q does not cross the centre cell's face on that side.
+void reachable_ranges(const CellGrid& grid, std::size_t cell, const Candidates& block,
+                      const Eigen::Vector3f& q, float bound_d2,
+                      std::vector<std::pair<std::size_t, std::size_t>>& ranges) {
+    ranges.clear();
+    if (block.rows.empty() || !(bound_d2 < std::numeric_limits<float>::infinity())) {
+        ranges.emplace_back(0, block.size());
+        return;
+    }
+    // Slightly wide, so that no point the float distances would accept is skipped.
+    const double reach = std::sqrt(double(bound_d2)) * (1.0 + 1e-5) + 1e-9;
+    const Eigen::Array3d lo =
+        grid.min_m.array() + grid.coords(grid.cell_keys[cell]).cast<double>() * grid.cell_m;
+    const Eigen::Array3d u = q.cast<double>().array();
+    const Eigen::Array3<bool> below = u - reach<lo, above = u + reach> lo + grid.cell_m;
+    const std::size_t t0 = below.x() ? 0 : 1, t1 = above.x() ? 3 : 2;
+    for (const Candidates::Row& row : block.rows) {
+        if ((row.dy < 0 && !below.y()) || (row.dy > 0 && !above.y())) continue;
+        if ((row.dz < 0 && !below.z()) || (row.dz > 0 && !above.z())) continue;
+        if (row.at[t0] < row.at[t1]) ranges.emplace_back(row.at[t0], row.at[t1]);
+    }
 }
 
 // The lanes of the set bits of each 4-bit mask, in order (unused lanes: 0).
-constexpr std::array<std::array<std::uint8_t, kGroup>, 16> kMaskLanes = [] {
-    std::array<std::array<std::uint8_t, kGroup>, 16> lanes{};
+alignas(16) constexpr std::array<std::array<std::int32_t, kGroup>, 16> kMaskLanes = [] {
+    std::array<std::array<std::int32_t, kGroup>, 16> lanes{};
     for (unsigned mask = 0; mask < 16; ++mask) {
         std::size_t n = 0;
         for (unsigned lane = 0; lane < kGroup; ++lane) {
-            if (mask & (1u << lane)) lanes[mask][n++] = std::uint8_t(lane);
+            if (mask & (1u << lane)) lanes[mask][n++] = std::int32_t(lane);
         }
     }
     return lanes;
 }();
 
-// Positions j with d2[j] <= bound into `picked`, without a branch per group.
-void pick_within(const std::vector<float>& d2, float bound, std::vector<std::uint32_t>& picked) {
-    picked.resize(d2.size() + kGroup);
-    std::size_t n = 0;
-    for (std::size_t j0 = 0; j0 < d2.size(); j0 += kGroup) {
-        const unsigned mask = within_mask(&d2[j0], bound);
+// Appends the positions j in [begin, end) with d2[j] <= bound to `picked` from slot n,
+// without a branch per group; returns the new count. `picked` has room for end + kGroup.
+std::size_t pick_within(const std::vector<float>& d2, std::size_t begin, std::size_t end,
+                        float bound, std::vector<std::uint32_t>& picked, std::size_t n) {
+    for (std::size_t j0 = begin; j0 < end; j0 += kGroup) {
+        unsigned mask = within_mask(&d2[j0], bound);
+        if (end - j0 < kGroup) mask &= (1u << (end - j0)) - 1;  // Past the range.
+#if defined(__SSE2__)
+        const __m128i lanes = _mm_add_epi32(
+            _mm_set1_epi32(std::int32_t(j0)),
+            _mm_loadu_si128(reinterpret_cast<const __m128i*>(kMaskLanes[mask].data())));
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(&picked[n]), lanes);
+#else
         for (std::size_t lane = 0; lane < kGroup; ++lane) {
-            picked[n + lane] = std::uint32_t(j0 + kMaskLanes[mask][lane]);
+            picked[n + lane] = std::uint32_t(j0 + std::size_t(kMaskLanes[mask][lane]));
         }
+#endif
         n += (0x4332322132212110ULL >> (4 * mask)) & 0xf;  // popcount(mask), no libcall.
     }
-    picked.resize(n);
+    return n;
 }
 
 // Rank of each picked candidate among the picked (distance, then index), found by
@@ -476,19 +534,19 @@ void pick_within(const std::vector<float>& d2, float bound, std::vector<std::uin
 // the sorted top k directly.
 void select_ranked(const Candidates& block, const std::vector<float>& d2, Scratch& scratch,
                    TopK& top) {
-    const std::size_t n = scratch.picked.size(), padded = (n + kGroup - 1) / kGroup * kGroup;
-    scratch.picked_d2.assign(padded, std::numeric_limits<float>::infinity());
-    scratch.picked_index.assign(padded, std::numeric_limits<std::uint32_t>::max());
+    const std::size_t n = scratch.picked.size();
+    scratch.picked_d2.assign(n + kGroup, std::numeric_limits<float>::infinity());
+    scratch.picked_index.assign(n + kGroup, std::numeric_limits<std::uint32_t>::max());
+    scratch.picked_rank.resize(n + kGroup);
     for (std::size_t c = 0; c < n; ++c) {
         scratch.picked_d2[c] = d2[scratch.picked[c]];
         scratch.picked_index[c] = block.indices[scratch.picked[c]];
     }
-    const float* pd2 = scratch.picked_d2.data();
-    const std::uint32_t* pid = scratch.picked_index.data();
+    rank_all(scratch.picked_d2.data(), scratch.picked_index.data(), n, scratch.picked_rank.data());
     top.clear(top.max_d2());
     for (std::size_t c = 0; c < n; ++c) {
-        const std::size_t rank = rank_of(pd2, pid, padded, c);
-        if (rank < top.capacity()) top.place(rank, pd2[c], pid[c]);
+        const auto rank = std::size_t(scratch.picked_rank[c]);
+        if (rank < top.capacity()) top.place(rank, scratch.picked_d2[c], scratch.picked_index[c]);
     }
     top.set_size(std::min(n, top.capacity()));
 }
@@ -501,10 +559,19 @@ void scan_block(const CellGrid& grid, std::size_t cell, std::size_t s, float hin
     const Eigen::Vector3f q = grid.position(s);
     const std::uint32_t self = grid.sorted.indices[s];
     const std::size_t self_pos = block.origin + (s - grid.cell_begin[cell]);
-    block_distances(block, q, self_pos, scratch.d2);
     const float bound = std::min(hint_d2, top.max_d2());
-    pick_within(scratch.d2, bound, scratch.picked);
-    const std::size_t picked = scratch.picked.size();
+    reachable_ranges(grid, cell, block, q, bound, scratch.ranges);
+    scratch.d2.resize(block.size() + kGroup);
+    scratch.picked.resize(block.size() + kGroup);
+    std::size_t picked = 0;
+    for (const auto& [begin, end] : scratch.ranges) {
+        range_distances(block, begin, end, q, scratch.d2);
+        if (self_pos >= begin && self_pos < end) {
+            scratch.d2[self_pos] = std::numeric_limits<float>::quiet_NaN();
+        }
+        picked = pick_within(scratch.d2, begin, end, bound, scratch.picked, picked);
+    }
+    scratch.picked.resize(picked);
     if (picked >= top.capacity() || bound >= top.max_d2()) {
         if (picked <= kMaxRanked * top.capacity()) {
             select_ranked(block, scratch.d2, scratch, top);
