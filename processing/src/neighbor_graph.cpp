@@ -24,7 +24,7 @@ namespace {
 // Cell side over the (median, sampled) distance to the k-th neighbour: about k/2 points
 // per cell on a surface, and the 3x3x3 block around a query proves most rows.
 constexpr double kCellPerRadius = 2.0;
-constexpr std::size_t kRadiusSamples = 16;  // Queries answered by brute force to size cells.
+constexpr std::size_t kRadiusSamples = 8;  // Queries answered by brute force to size cells.
 // The previous query's squared k-th distance times this bounds the next one's search
 // first (a neighbour in the same cell has a similar neighbourhood); any value is exact.
 constexpr float kHintGrowth = 1.25f;
