@@ -459,17 +459,6 @@ struct Scratch {
     std::vector<std::int32_t> picked_rank;
 };
 
-// Squared distances from q to the block's points [begin, end), into d2 at the same places.
-void range_distances(const Candidates& block, std::size_t begin, std::size_t end,
-                     const Eigen::Vector3f& q, std::vector<float>& d2) {
-    const float *x = block.x.data(), *y = block.y.data(), *z = block.z.data();
-    float* out = d2.data();
-    for (std::size_t j = begin; j < end; ++j) {  // Vectorises.
-        const float dx = x[j] - q.x(), dy = y[j] - q.y(), dz = z[j] - q.z();
-        out[j] = dx * dx + dy * dy + dz * dz;
-    }
-}
-
 // The parts of the block that may hold a point within sqrt(bound_d2) of q: with the rows
 // recorded (3x3x3 blocks), the neighbouring cells on a side are skipped when the ball
 // around q does not cross the centre cell's face on that side.
@@ -507,24 +496,55 @@ alignas(16) constexpr std::array<std::array<std::int32_t, kGroup>, 16> kMaskLane
     return lanes;
 }();
 
-// Appends the positions j in [begin, end) with d2[j] <= bound to `picked` from slot n,
-// without a branch per group; returns the new count. `picked` has room for end + kGroup.
-std::size_t pick_within(const std::vector<float>& d2, std::size_t begin, std::size_t end,
-                        float bound, std::vector<std::uint32_t>& picked, std::size_t n) {
-    for (std::size_t j0 = begin; j0 < end; j0 += kGroup) {
-        unsigned mask = within_mask(&d2[j0], bound);
-        if (end - j0 < kGroup) mask &= (1u << (end - j0)) - 1;  // Past the range.
+// Appends start + the lanes of `mask` to `picked` from slot n; returns the new count.
+std::size_t append_lanes(std::size_t start, unsigned mask, std::vector<std::uint32_t>& picked,
+                         std::size_t n) {
 #if defined(__SSE2__)
-        const __m128i lanes = _mm_add_epi32(
-            _mm_set1_epi32(std::int32_t(j0)),
-            _mm_loadu_si128(reinterpret_cast<const __m128i*>(kMaskLanes[mask].data())));
-        _mm_storeu_si128(reinterpret_cast<__m128i*>(&picked[n]), lanes);
+    const __m128i lanes =
+        _mm_add_epi32(_mm_set1_epi32(std::int32_t(start)),
+                      _mm_loadu_si128(reinterpret_cast<const __m128i*>(kMaskLanes[mask].data())));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(&picked[n]), lanes);
 #else
-        for (std::size_t lane = 0; lane < kGroup; ++lane) {
-            picked[n + lane] = std::uint32_t(j0 + std::size_t(kMaskLanes[mask][lane]));
-        }
+    for (std::size_t lane = 0; lane < kGroup; ++lane) {
+        picked[n + lane] = std::uint32_t(start + std::size_t(kMaskLanes[mask][lane]));
+    }
 #endif
-        n += (0x4332322132212110ULL >> (4 * mask)) & 0xf;  // popcount(mask), no libcall.
+    return n + ((0x4332322132212110ULL >> (4 * mask)) & 0xf);  // popcount(mask), no libcall.
+}
+
+// Squared distances from q to the block's points [begin, end) into d2 (same places),
+// appending those within `bound` to `picked` from slot n, four at a time and without a
+// branch per group; the query's own entry (self_pos) is never picked. Returns the new
+// count. d2 and picked have room for end + kGroup.
+std::size_t pick_range(const Candidates& block, std::size_t begin, std::size_t end,
+                       const Eigen::Vector3f& q, std::size_t self_pos, float bound,
+                       std::vector<float>& d2, std::vector<std::uint32_t>& picked, std::size_t n) {
+    const float *x = block.x.data(), *y = block.y.data(), *z = block.z.data();
+    std::size_t j0 = begin;
+#if defined(__SSE2__)
+    const __m128 qx = _mm_set1_ps(q.x()), qy = _mm_set1_ps(q.y()), qz = _mm_set1_ps(q.z());
+    const __m128 limit = _mm_set1_ps(bound);
+    for (; j0 + kGroup <= end; j0 += kGroup) {  // Rounds as the scalar dx*dx + dy*dy + dz*dz.
+        const __m128 dx = _mm_sub_ps(_mm_loadu_ps(x + j0), qx);
+        const __m128 dy = _mm_sub_ps(_mm_loadu_ps(y + j0), qy);
+        const __m128 dz = _mm_sub_ps(_mm_loadu_ps(z + j0), qz);
+        const __m128 dist =
+            _mm_add_ps(_mm_add_ps(_mm_mul_ps(dx, dx), _mm_mul_ps(dy, dy)), _mm_mul_ps(dz, dz));
+        _mm_storeu_ps(&d2[j0], dist);
+        unsigned mask = unsigned(_mm_movemask_ps(_mm_cmple_ps(dist, limit)));
+        if (self_pos - j0 < kGroup) mask &= ~(1u << (self_pos - j0));
+        n = append_lanes(j0, mask, picked, n);
+    }
+#endif
+    for (; j0 < end; j0 += kGroup) {  // The last partial group (every group without SSE2).
+        for (std::size_t j = j0; j < j0 + kGroup; ++j) {
+            const float dx = x[std::min(j, end - 1)] - q.x(), dy = y[std::min(j, end - 1)] - q.y(),
+                        dz = z[std::min(j, end - 1)] - q.z();
+            d2[j] = j < end ? dx * dx + dy * dy + dz * dz : std::numeric_limits<float>::quiet_NaN();
+        }
+        unsigned mask = within_mask(&d2[j0], bound);
+        if (self_pos - j0 < kGroup) mask &= ~(1u << (self_pos - j0));
+        n = append_lanes(j0, mask, picked, n);
     }
     return n;
 }
@@ -565,11 +585,8 @@ void scan_block(const CellGrid& grid, std::size_t cell, std::size_t s, float hin
     scratch.picked.resize(block.size() + kGroup);
     std::size_t picked = 0;
     for (const auto& [begin, end] : scratch.ranges) {
-        range_distances(block, begin, end, q, scratch.d2);
-        if (self_pos >= begin && self_pos < end) {
-            scratch.d2[self_pos] = std::numeric_limits<float>::quiet_NaN();
-        }
-        picked = pick_within(scratch.d2, begin, end, bound, scratch.picked, picked);
+        picked =
+            pick_range(block, begin, end, q, self_pos, bound, scratch.d2, scratch.picked, picked);
     }
     scratch.picked.resize(picked);
     if (picked >= top.capacity() || bound >= top.max_d2()) {
