@@ -5,6 +5,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 
@@ -50,6 +51,40 @@ Eigen::Matrix3d neighbourhood_covariance(std::span<const Eigen::Vector3f> positi
     return cov;
 }
 
+// The smallest eigenvalue of a symmetric positive semi-definite 3x3 matrix by Newton's
+// method on its characteristic cubic from 0 (left of the smallest root the cubic rises
+// and is concave, so the iterates climb to it without overshooting), and its unit
+// eigenvector as the longest cross product of two rows of a - lambda I. False where that
+// is ill-conditioned (the two smallest eigenvalues nearly equal), for the general solver.
+bool smallest_eigenpair(const Eigen::Matrix3d& a, double& lambda, Eigen::Vector3d& vector) {
+    constexpr double kMinGapProduct = 1e-8;  // (λ1 - λ0)(λ2 - λ0) at unit trace.
+    constexpr int kMaxIterations = 16;
+    const double c2 = a.trace();
+    const double c1 = a(0, 0) * a(1, 1) - a(0, 1) * a(0, 1) + a(0, 0) * a(2, 2) -
+                      a(0, 2) * a(0, 2) + a(1, 1) * a(2, 2) - a(1, 2) * a(1, 2);
+    const double c0 = a.determinant();
+    double x = 0.0;
+    for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
+        const double slope = (3.0 * x - 2.0 * c2) * x + c1;
+        if (!(slope > 0.0)) return false;
+        const double step = (((x - c2) * x + c1) * x - c0) / slope;
+        x -= step;
+        if (std::abs(step) <= 1e-15 * c2) break;
+    }
+    lambda = x;
+    const Eigen::Matrix3d m = a - lambda * Eigen::Matrix3d::Identity();
+    const std::array<Eigen::Vector3d, 3> candidates = {
+        m.row(0).cross(m.row(1)), m.row(0).cross(m.row(2)), m.row(1).cross(m.row(2))};
+    std::size_t best = 0;
+    for (std::size_t c = 1; c < 3; ++c) {
+        if (candidates[c].squaredNorm() > candidates[best].squaredNorm()) best = c;
+    }
+    const double norm_sq = candidates[best].squaredNorm();
+    if (!(norm_sq > kMinGapProduct * kMinGapProduct)) return false;
+    vector = candidates[best] / std::sqrt(norm_sq);
+    return true;
+}
+
 // Local PCA: the normal is the eigenvector of the smallest eigenvalue.
 LocalFit fit_point(std::span<const Eigen::Vector3f> positions, const NeighborGraph& graph,
                    std::size_t i, std::size_t min_neighbors) {
@@ -62,15 +97,21 @@ LocalFit fit_point(std::span<const Eigen::Vector3f> positions, const NeighborGra
         out.fit = Fit::kDegenerate;
         return out;
     }
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver;
-    solver.computeDirect(cov / trace);  // Unit trace: the closed form is scale-free.
-    const Eigen::Vector3d normal = solver.eigenvectors().col(0);
+    const Eigen::Matrix3d unit = cov / trace;  // Unit trace: the thresholds are scale-free.
+    double lambda = 0.0;
+    Eigen::Vector3d normal;
+    if (!smallest_eigenpair(unit, lambda, normal)) {
+        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver;
+        solver.computeDirect(unit);
+        normal = solver.eigenvectors().col(0);
+        lambda = solver.eigenvalues()(0);
+    }
     if (!normal.allFinite() || normal.squaredNorm() < 0.5) {
         out.fit = Fit::kDegenerate;
         return out;
     }
     out.normal = normal.normalized().cast<float>();
-    out.curvature = float(std::clamp(solver.eigenvalues()(0), 0.0, 1.0));  // λ0 / Σλ.
+    out.curvature = float(std::clamp(lambda, 0.0, 1.0));  // λ0 / Σλ.
     out.fit = Fit::kOk;
     return out;
 }

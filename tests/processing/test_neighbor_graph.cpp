@@ -85,5 +85,23 @@ TEST(NeighborGraph, RadiusLimitAndOtherKAreExact) {
     expect_exact(test_points(5, 4), 30, 0.0f);
 }
 
+// A 1 mm lattice next to a 6 mm one, both flat: equal distances everywhere (ties go by
+// index) and a sparse part whose k-th neighbours lie beyond the 3x3x3 block of cells sized
+// for the dense part, answered by the wider blocks.
+TEST(NeighborGraph, LatticeTiesAndADensityStepAreExact) {
+    std::vector<Eigen::Vector3f> p;
+    for (int i = 0; i < 40; ++i) {
+        for (int j = 0; j < 40; ++j) p.emplace_back(0.001f * float(i), 0.001f * float(j), 0.0f);
+    }
+    const std::size_t sparse = 12 * 12;
+    for (std::size_t i = 0; i < sparse; ++i) {
+        p.emplace_back(0.045f + 0.006f * float(i / 12), 0.006f * float(i % 12), 0.0f);
+    }
+    const NeighborGraph graph = build_neighbor_graph(p, {.k_neighbors = 15});
+    EXPECT_LT(graph.num_exact_fallbacks, sparse / 2);
+    expect_exact(p, 15, 0.0f);
+    expect_exact(p, 15, 0.0035f);
+}
+
 }  // namespace
 }  // namespace anascan

@@ -4,12 +4,14 @@
 /// estimation, normal orientation and outlier removal.
 ///
 /// All-points k-NN on scan data is dominated by the search, so it does not go through one
-/// k-d tree query per point: points are sorted along a Morton curve, bucketed into cubic
-/// cells of about k/2 points, and each cell's points are answered together from the 3x3x3
-/// block of cells around it. A query whose k-th neighbour is not provably inside that block
-/// (scan borders, sparse spots) is retried on the 5x5x5 block; the few still unproven
-/// (outliers) are answered by a linear scan, or by a KdTree when there are more than 256,
-/// so the result is always the exact k nearest neighbours.
+/// k-d tree query per point: points are bucketed into cubic cells whose side is twice the
+/// median k-th neighbour distance of a few sampled points (exact linear scans), cells are
+/// numbered row by row and found through a hash table, and each cell's points are answered
+/// together from the 3x3x3 block of cells around it. A query whose k-th neighbour is not
+/// provably inside that block (scan borders, sparse spots) is retried on the 5x5x5 block
+/// and wider, up to 9x9x9; the few still unproven (outliers) are answered by a linear
+/// scan, or by a KdTree when there are more than 256, so the result is always the exact
+/// k nearest neighbours.
 
 #include <Eigen/Core>
 #include <cstddef>

@@ -1,0 +1,81 @@
+#include "neighbor_graph_select.hpp"
+
+#include <algorithm>
+#include <array>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+namespace anascan::knn_detail {
+
+// Offers candidates [begin, end) to `top` (which the caller cleared): groups of four are
+// compared at once against the current k-th distance, so the many candidates that fail
+// cost no branch each. `self` is never offered; `d2` is scratch.
+void offer_range(const Candidates& c, std::size_t begin, std::size_t end, const Eigen::Vector3f& q,
+                 std::uint32_t self, std::vector<float>& d2, TopK& top) {
+    const std::size_t m = end - begin;
+    d2.resize((m + kGroup - 1) / kGroup * kGroup);
+    const float *x = c.x.data() + begin, *y = c.y.data() + begin, *z = c.z.data() + begin;
+    for (std::size_t j = 0; j < m; ++j) {  // Vectorises.
+        const float dx = x[j] - q.x(), dy = y[j] - q.y(), dz = z[j] - q.z();
+        d2[j] = dx * dx + dy * dy + dz * dz;
+    }
+    std::fill(d2.begin() + std::ptrdiff_t(m), d2.end(), std::numeric_limits<float>::quiet_NaN());
+    const std::uint32_t* indices = c.indices.data() + begin;
+    for (std::size_t j0 = 0; j0 < m; j0 += kGroup) {
+        for (unsigned mask = within_mask(&d2[j0], top.worst()); mask != 0; mask &= mask - 1) {
+            const std::size_t j = j0 + std::size_t(std::countr_zero(mask));
+            if (indices[j] != self) top.offer(d2[j], indices[j]);
+        }
+    }
+}
+
+// Exact k nearest among all of `all` by a linear scan, in chunks (the scratch stays small).
+void scan_all(const Candidates& all, const Eigen::Vector3f& q, std::uint32_t self,
+              std::vector<float>& d2, TopK& top) {
+    constexpr std::size_t kChunk = 1024;
+    top.clear(top.max_d2());
+    for (std::size_t begin = 0; begin < all.size(); begin += kChunk) {
+        offer_range(all, begin, std::min(begin + kChunk, all.size()), q, self, d2, top);
+    }
+}
+
+// Rank of each of the n entries among them (smaller distance, or equal and smaller
+// index, comes first), each pair compared once, four at a time: no branch depends on the
+// data. The arrays hold n + kGroup entries; the padding (+inf, ~0) ranks last.
+void rank_all(const float* d2, const std::uint32_t* index, std::size_t n, std::int32_t* rank) {
+    std::fill(rank, rank + n + kGroup, 0);
+#if defined(__SSE2__)
+    const __m128i flip = _mm_set1_epi32(std::int32_t(0x80000000u));  // Unsigned compare.
+    const __m128i one = _mm_set1_epi32(1);
+    for (std::size_t c = 0; c < n; ++c) {
+        const __m128 dc = _mm_set1_ps(d2[c]);
+        const __m128i ic = _mm_xor_si128(_mm_set1_epi32(std::int32_t(index[c])), flip);
+        __m128i before_c = _mm_setzero_si128();
+        for (std::size_t j = c + 1; j < n; j += kGroup) {
+            const __m128 dj = _mm_loadu_ps(d2 + j);
+            const __m128i ij =
+                _mm_xor_si128(_mm_loadu_si128(reinterpret_cast<const __m128i*>(index + j)), flip);
+            const __m128i j_first = _mm_castps_si128(_mm_or_ps(
+                _mm_cmplt_ps(dj, dc),
+                _mm_and_ps(_mm_cmpeq_ps(dj, dc), _mm_castsi128_ps(_mm_cmplt_epi32(ij, ic)))));
+            before_c = _mm_sub_epi32(before_c, j_first);  // A true lane is -1.
+            auto* rj = reinterpret_cast<__m128i*>(rank + j);
+            _mm_storeu_si128(rj, _mm_add_epi32(_mm_loadu_si128(rj), _mm_add_epi32(one, j_first)));
+        }
+        alignas(16) std::array<std::int32_t, kGroup> lanes;
+        _mm_store_si128(reinterpret_cast<__m128i*>(lanes.data()), before_c);
+        rank[c] += lanes[0] + lanes[1] + lanes[2] + lanes[3];
+    }
+#else
+    for (std::size_t c = 0; c < n; ++c) {
+        for (std::size_t j = c + 1; j < n; ++j) {
+            const bool j_first = d2[j] < d2[c] || (d2[j] == d2[c] && index[j] < index[c]);
+            rank[j_first ? c : j] += 1;
+        }
+    }
+#endif
+}
+
+}  // namespace anascan::knn_detail

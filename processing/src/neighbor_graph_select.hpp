@@ -1,0 +1,210 @@
+#pragma once
+/// \file
+/// Private selection primitives of the k-NN graph (neighbor_graph.cpp): candidate arrays,
+/// a top k of packed (distance, index) keys, and branch-free compaction and ranking of
+/// the candidates within a bound, four at a time with SSE2 where available.
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+namespace anascan::knn_detail {
+
+constexpr std::size_t kGroup = 4;  // Candidates compared at once (one SSE register).
+
+// Bit j set when d2[j] <= bound, for the kGroup values at d2.
+inline unsigned within_mask(const float* d2, float bound) {
+#if defined(__SSE2__)
+    return unsigned(_mm_movemask_ps(_mm_cmple_ps(_mm_loadu_ps(d2), _mm_set1_ps(bound))));
+#else
+    unsigned mask = 0;
+    for (std::size_t j = 0; j < kGroup; ++j) mask |= unsigned(d2[j] <= bound) << j;
+    return mask;
+#endif
+}
+
+// The k best (squared distance, index) pairs seen so far, closest first, ties by index.
+// A pair is one 64-bit key, distance bits above the index: squared distances are >= 0, so
+// their IEEE bits order like the values and one integer comparison orders the pairs.
+class TopK {
+public:
+    TopK(std::size_t k, float max_d2) : k_(k), max_d2_(max_d2), keys_(k + 1) {}
+    // Starts over, keeping only candidates within `bound_d2` (and the radius limit).
+    void clear(float bound_d2) {
+        size_ = 0;
+        worst_ = std::min(bound_d2, max_d2_);
+        worst_key_ = pack(worst_, std::numeric_limits<std::uint32_t>::max());
+    }
+    float max_d2() const { return max_d2_; }
+    std::size_t size() const { return size_; }
+    std::size_t capacity() const { return k_; }
+    float worst() const { return worst_; }
+    // Cheap rejection first: most candidates fail `key > worst`.
+    void offer(float d2, std::uint32_t index) {
+        const std::uint64_t key = pack(d2, index);
+        if (key > worst_key_) return;
+        std::size_t j = size_;
+        while (j > 0 && keys_[j - 1] > key) {
+            keys_[j] = keys_[j - 1];
+            --j;
+        }
+        keys_[j] = key;
+        size_ = std::min(size_ + 1, k_);
+        if (size_ == k_) {
+            worst_key_ = keys_[k_ - 1];
+            worst_ = d2_of(worst_key_);
+        }
+    }
+    // Puts a pair at its known rank; set_size then ends the row.
+    void place(std::size_t rank, float d2, std::uint32_t index) { keys_[rank] = pack(d2, index); }
+    void set_size(std::size_t size) {
+        size_ = size;
+        if (size_ == k_) {
+            worst_key_ = keys_[k_ - 1];
+            worst_ = d2_of(worst_key_);
+        }
+    }
+    float d2(std::size_t j) const { return d2_of(keys_[j]); }
+    std::uint32_t index(std::size_t j) const { return std::uint32_t(keys_[j]); }
+
+private:
+    static std::uint64_t pack(float d2, std::uint32_t index) {
+        return std::uint64_t(std::bit_cast<std::uint32_t>(d2)) << 32 | index;
+    }
+    static float d2_of(std::uint64_t key) { return std::bit_cast<float>(std::uint32_t(key >> 32)); }
+
+    std::size_t k_;
+    float max_d2_;
+    std::vector<std::uint64_t> keys_;  // k + 1 slots: an insertion may shift the k-th out.
+    std::size_t size_ = 0;
+    float worst_ = 0.0f;
+    std::uint64_t worst_key_ = 0;
+};
+
+// Candidate positions as arrays (the distance loop vectorises) with their point indices.
+struct Candidates {
+    std::vector<float> x, y, z;
+    std::vector<std::uint32_t> indices;
+    std::size_t origin = 0;  // Of a block: where the first point of its centre cell is.
+    // Of a 3x3x3 block: per row of cells, its (dy, dz) and where its cells x - 1, x, x + 1
+    // begin and the last ends, so that a query can skip the cells it cannot reach.
+    struct Row {
+        std::int64_t dy = 0, dz = 0;
+        std::array<std::uint32_t, 4> at{};
+    };
+    std::vector<Row> rows;
+    std::size_t size() const { return indices.size(); }
+    void clear() {
+        x.clear();
+        y.clear();
+        z.clear();
+        indices.clear();
+        rows.clear();
+    }
+    void push_back(float px, float py, float pz, std::uint32_t index) {
+        x.push_back(px);
+        y.push_back(py);
+        z.push_back(pz);
+        indices.push_back(index);
+    }
+    void append(const Candidates& from, std::size_t begin, std::size_t end) {
+        const auto b = std::ptrdiff_t(begin), e = std::ptrdiff_t(end);
+        x.insert(x.end(), from.x.begin() + b, from.x.begin() + e);
+        y.insert(y.end(), from.y.begin() + b, from.y.begin() + e);
+        z.insert(z.end(), from.z.begin() + b, from.z.begin() + e);
+        indices.insert(indices.end(), from.indices.begin() + b, from.indices.begin() + e);
+    }
+};
+
+// Offers candidates [begin, end) to `top` (which the caller cleared): groups of four are
+// compared at once against the current k-th distance, so the many candidates that fail
+// cost no branch each. `self` is never offered; `d2` is scratch.
+void offer_range(const Candidates& c, std::size_t begin, std::size_t end, const Eigen::Vector3f& q,
+                 std::uint32_t self, std::vector<float>& d2, TopK& top);
+
+// Exact k nearest among all of `all` by a linear scan, in chunks (the scratch stays small).
+void scan_all(const Candidates& all, const Eigen::Vector3f& q, std::uint32_t self,
+              std::vector<float>& d2, TopK& top);
+
+// Rank of each of the n entries among them (smaller distance, or equal and smaller
+// index, comes first), each pair compared once, four at a time: no branch depends on the
+// data. The arrays hold n + kGroup entries; the padding (+inf, ~0) ranks last.
+void rank_all(const float* d2, const std::uint32_t* index, std::size_t n, std::int32_t* rank);
+
+// Hot, inlined into the query loop.
+// The lanes of the set bits of each 4-bit mask, in order (unused lanes: 0).
+alignas(16) inline constexpr std::array<std::array<std::int32_t, kGroup>, 16> kMaskLanes = [] {
+    std::array<std::array<std::int32_t, kGroup>, 16> lanes{};
+    for (unsigned mask = 0; mask < 16; ++mask) {
+        std::size_t n = 0;
+        for (unsigned lane = 0; lane < kGroup; ++lane) {
+            if (mask & (1u << lane)) lanes[mask][n++] = std::int32_t(lane);
+        }
+    }
+    return lanes;
+}();
+
+// Appends start + the lanes of `mask` to `picked` from slot n; returns the new count.
+inline std::size_t append_lanes(std::size_t start, unsigned mask,
+                                std::vector<std::uint32_t>& picked, std::size_t n) {
+#if defined(__SSE2__)
+    const __m128i lanes =
+        _mm_add_epi32(_mm_set1_epi32(std::int32_t(start)),
+                      _mm_loadu_si128(reinterpret_cast<const __m128i*>(kMaskLanes[mask].data())));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(&picked[n]), lanes);
+#else
+    for (std::size_t lane = 0; lane < kGroup; ++lane) {
+        picked[n + lane] = std::uint32_t(start + std::size_t(kMaskLanes[mask][lane]));
+    }
+#endif
+    return n + ((0x4332322132212110ULL >> (4 * mask)) & 0xf);  // popcount(mask), no libcall.
+}
+
+// Squared distances from q to the block's points [begin, end) into d2 (same places),
+// appending those within `bound` to `picked` from slot n, four at a time and without a
+// branch per group; the query's own entry (self_pos) is never picked. Returns the new
+// count. d2 and picked have room for end + kGroup.
+inline std::size_t pick_range(const Candidates& block, std::size_t begin, std::size_t end,
+                              const Eigen::Vector3f& q, std::size_t self_pos, float bound,
+                              std::vector<float>& d2, std::vector<std::uint32_t>& picked,
+                              std::size_t n) {
+    const float *x = block.x.data(), *y = block.y.data(), *z = block.z.data();
+    std::size_t j0 = begin;
+#if defined(__SSE2__)
+    const __m128 qx = _mm_set1_ps(q.x()), qy = _mm_set1_ps(q.y()), qz = _mm_set1_ps(q.z());
+    const __m128 limit = _mm_set1_ps(bound);
+    for (; j0 + kGroup <= end; j0 += kGroup) {  // Rounds as the scalar dx*dx + dy*dy + dz*dz.
+        const __m128 dx = _mm_sub_ps(_mm_loadu_ps(x + j0), qx);
+        const __m128 dy = _mm_sub_ps(_mm_loadu_ps(y + j0), qy);
+        const __m128 dz = _mm_sub_ps(_mm_loadu_ps(z + j0), qz);
+        const __m128 dist =
+            _mm_add_ps(_mm_add_ps(_mm_mul_ps(dx, dx), _mm_mul_ps(dy, dy)), _mm_mul_ps(dz, dz));
+        _mm_storeu_ps(&d2[j0], dist);
+        unsigned mask = unsigned(_mm_movemask_ps(_mm_cmple_ps(dist, limit)));
+        if (self_pos - j0 < kGroup) mask &= ~(1u << (self_pos - j0));
+        n = append_lanes(j0, mask, picked, n);
+    }
+#endif
+    for (; j0 < end; j0 += kGroup) {  // The last partial group (every group without SSE2).
+        for (std::size_t j = j0; j < j0 + kGroup; ++j) {
+            const float dx = x[std::min(j, end - 1)] - q.x(), dy = y[std::min(j, end - 1)] - q.y(),
+                        dz = z[std::min(j, end - 1)] - q.z();
+            d2[j] = j < end ? dx * dx + dy * dy + dz * dz : std::numeric_limits<float>::quiet_NaN();
+        }
+        unsigned mask = within_mask(&d2[j0], bound);
+        if (self_pos - j0 < kGroup) mask &= ~(1u << (self_pos - j0));
+        n = append_lanes(j0, mask, picked, n);
+    }
+    return n;
+}
+
+}  // namespace anascan::knn_detail
