@@ -28,8 +28,11 @@ struct KilledRun {
     bool exited_before_kill = false;
 };
 
-/// Starts `anascan ARGS`, reads its stdout until `after`, then SIGKILLs it.
-KilledRun run_and_kill(const std::vector<std::string>& args, std::chrono::milliseconds after) {
+/// Starts `anascan ARGS`, reads its stdout until `after` (counted from the start, or with
+/// `after_first_output` from its first output: a loaded machine may take longer than the
+/// longest `after` to start), then SIGKILLs it.
+KilledRun run_and_kill(const std::vector<std::string>& args, std::chrono::milliseconds after,
+                       bool after_first_output) {
     int out[2];
     EXPECT_EQ(::pipe(out), 0);
     const pid_t pid = ::fork();
@@ -47,7 +50,8 @@ KilledRun run_and_kill(const std::vector<std::string>& args, std::chrono::millis
     ::close(out[1]);
     KilledRun run;
     std::string text;
-    const auto deadline = std::chrono::steady_clock::now() + after;
+    auto deadline = std::chrono::steady_clock::now() +
+                    (after_first_output ? std::chrono::milliseconds(600000) : after);
     for (;;) {
         const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
             deadline - std::chrono::steady_clock::now());
@@ -60,6 +64,7 @@ KilledRun run_and_kill(const std::vector<std::string>& args, std::chrono::millis
             run.exited_before_kill = true;
             break;
         }
+        if (after_first_output && text.empty()) deadline = std::chrono::steady_clock::now() + after;
         text.append(buffer, static_cast<std::size_t>(n));
     }
     ::kill(pid, SIGKILL);
@@ -89,7 +94,10 @@ TEST_F(CaptureCrash, EveryAcknowledgedScanSurvivesSigkillAndCaptureResumes) {
     const char* kills_env = std::getenv("ANASCAN_KILLS");
     const int kKills = kills_env != nullptr ? std::max(1, std::atoi(kills_env)) : 50;
     for (int k = 0; k < kKills; ++k) {
-        const KilledRun run = run_and_kill(capture, std::chrono::milliseconds(kill_ms(rng)));
+        // Every other kill counts from the first output, so that some land after scans
+        // were acknowledged even when the machine is slow to start the capture.
+        const KilledRun run =
+            run_and_kill(capture, std::chrono::milliseconds(kill_ms(rng)), k % 2 == 1);
         ASSERT_FALSE(run.exited_before_kill) << "capture ended on its own at kill " << k;
         acknowledged.insert(run.acknowledged.begin(), run.acknowledged.end());
         const auto repaired = run_cli("session check " + session + " --repair");
