@@ -115,6 +115,8 @@ void finish_spilled(PreparedScans& scans, std::size_t i, const SaliencyLevels& l
     std::error_code ignored;
     std::filesystem::remove(file, ignored);
     f.patches = extract_feature_patches(f.invariants, levels, config.global.patches);
+    scans.patch_record[i] = scans.patch_records.append(to_bytes(f.patches.patches));
+    f.patches.patches = {};
     PointCloud sites;
     sites.positions = std::move(f.invariants.site_positions);
     sites.normals = std::move(f.invariants.site_normals);
@@ -128,6 +130,8 @@ void describe_spilled(PreparedScans& scans, const ScanRegistrationConfig& config
                       const RegistrationProgress& progress) {
     const InvariantRadii radii_m = shared_radii(scans, config.global);
     scans.features.assign(scans.size(), {});
+    scans.patch_records = RecordFile(config.spill_directory / "patches.bin");
+    scans.patch_record.assign(scans.size(), 0);
     std::vector<IntegralInvariantResult> pooled;
     pooled.reserve(scans.size());
     for (std::size_t i = 0; i < scans.size(); ++i) {
@@ -149,6 +153,7 @@ void describe_spilled(PreparedScans& scans, const ScanRegistrationConfig& config
     for (const IntegralInvariantResult& r : pooled) valid.push_back(&r);
     const SaliencyLevels levels = saliency_levels(valid, config.global.patches);
     for (std::size_t i = 0; i < scans.size(); ++i) finish_spilled(scans, i, levels, config);
+    if (!scans.patch_records.error().empty()) note_failure(scans, scans.patch_records.error());
 }
 
 }  // namespace
@@ -161,8 +166,22 @@ std::shared_ptr<const PointCloud> PreparedScans::cloud(std::size_t i) {
     return std::make_shared<const PointCloud>();
 }
 
+FeaturePatchResult PreparedScans::patches(std::size_t i) {
+    FeaturePatchResult p = features[i].patches;
+    if (patch_record.empty() || p.status != FeaturePatchStatus::kOk) return p;
+    const Bytes bytes = patch_records.read(patch_record[i]);
+    if (bytes.empty()) {
+        note_failure(*this, patch_records.error());
+        p.status = FeaturePatchStatus::kInvalidInput;
+        return p;
+    }
+    p.patches = patches_from(bytes);
+    return p;
+}
+
 ScanFeatures PreparedScans::full_features(std::size_t i) {
     ScanFeatures f = features[i];
+    f.patches = patches(i);
     if (!store.spills() || !store.contains(2 * i + 1)) return f;
     Expected<std::shared_ptr<const PointCloud>> sites = store.get(2 * i + 1);
     if (!sites) {

@@ -86,9 +86,9 @@ struct ScanRegistrationConfig {
 
     // ---- Scale (thousands of scans; see docs/scan-registration.md "Scale") ----------------
     /// Pair pruning: 0 matches every pair (N(N-1)/2 matchings). Otherwise each scan is
-    /// matched only with the scans whose feature signature (a histogram of the distances
-    /// between its feature patches, per patch class) is among its `max_candidates_per_scan`
-    /// most similar; a pair is matched when either of its scans lists the other.
+    /// matched only with its `max_candidates_per_scan` most similar scans by shared
+    /// pose-invariant feature triangles (idf-weighted); a pair is matched when either of its
+    /// scans lists the other.
     std::size_t max_candidates_per_scan = 0;
     /// Out-of-core: when set, prepared clouds and feature sites are written to this
     /// directory (created when missing, files removed at the end) and reloaded on demand,
@@ -104,6 +104,14 @@ struct ScanRegistrationConfig {
     std::size_t max_failed_refinements_per_scan = 0;
     /// Correspondences a multi-view link keeps (evenly thinned; 0 = all of them).
     std::size_t max_link_correspondences = 0;
+    /// Bridging (with pruning only): while the verified pairs leave several groups, up to
+    /// `bridge_rounds` rounds match and verify, for the `bridge_scans_per_group` scans of
+    /// each group with the fewest group members close by (its border under the spanning-tree
+    /// poses), their `bridge_partners_per_scan` most similar scans (pruning votes) of other
+    /// groups not matched yet. 0 rounds: off.
+    std::size_t bridge_rounds = 0;
+    std::size_t bridge_scans_per_group = 4;
+    std::size_t bridge_partners_per_scan = 2;
 };
 
 /// One scan's outcome.
@@ -158,6 +166,7 @@ struct ScanRegistrationTimings {
     double features_s = 0.0;    ///< Descriptors and patches of every scan.
     double matching_s = 0.0;    ///< Feature matching of every pair.
     double pairwise_s = 0.0;    ///< Refinement and verification of the pairs not skipped.
+    double bridging_s = 0.0;    ///< Matching and verification of the bridging rounds.
     double pose_graph_s = 0.0;  ///< Spanning tree and initial poses.
     double fine_s = 0.0;        ///< Final fine registrations (links).
     double multiview_s = 0.0;
@@ -166,12 +175,14 @@ struct ScanRegistrationTimings {
 
 struct ScanRegistrationResult {
     std::vector<ScanOutcome> scans;  ///< Input order.
-    /// Every pair, (1,0), (2,0), (2,1), ... (only the candidate pairs when pruned).
+    /// Every pair, (1,0), (2,0), (2,1), ... (only the candidate pairs when pruned, then the
+    /// bridging rounds' pairs).
     std::vector<PairOutcome> pairs;
     std::size_t reference_scan = 0;  ///< The world frame's scan (when any is placed).
     std::size_t placed_count = 0;
     std::size_t group_count = 0;  ///< Connected components among the loaded scans.
     std::size_t verified_pair_count = 0;
+    std::size_t bridge_pair_count = 0;  ///< Pairs added by the bridging rounds (at the end).
     std::size_t link_count = 0;
     std::size_t dropped_link_count = 0;
     /// Multi-view status of the largest group (converged when it has one scan).
