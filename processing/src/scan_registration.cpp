@@ -209,7 +209,7 @@ ScanRegistrationResult register_scans(const std::vector<ScanInput>& scans,
     result.timings.features_s = seconds_since(stage);
 
     stage = std::chrono::steady_clock::now();
-    const detail::CandidatePairs candidates = detail::candidate_pairs(prepared, config);
+    detail::CandidatePairs candidates = detail::candidate_pairs(prepared, config);
     detail::RecordFile matchings(config.spill_directory.empty()
                                      ? std::filesystem::path()
                                      : config.spill_directory / "matchings.bin");
@@ -228,20 +228,21 @@ ScanRegistrationResult register_scans(const std::vector<ScanInput>& scans,
     }
     for (const PairOutcome& p : result.pairs) result.verified_pair_count += p.verified;
     result.timings.bridging_s = seconds_since(stage);
+    candidates = {};  // The pruning votes (N²/2 floats) are not needed any more.
 
     stage = std::chrono::steady_clock::now();
     detail::PoseGraph graph = detail::build_pose_graph(usable, result.pairs);
     result.timings.pose_graph_s = seconds_since(stage);
 
     stage = std::chrono::steady_clock::now();
-    const detail::PairLinks links =
-        detail::make_links(prepared, graph, result.pairs, config, progress);
+    detail::PairLinks links = detail::make_links(prepared, graph, result.pairs, config, progress);
     result.link_count = links.links.size();
     result.timings.fine_s = seconds_since(stage);
 
     stage = std::chrono::steady_clock::now();
     report(progress, "multi-view refinement over " + std::to_string(result.link_count) + " links");
-    result.multiview_status = detail::refine_groups(links, config.multiview, graph, result.pairs);
+    result.multiview_status =
+        detail::refine_groups(std::move(links), config.multiview, graph, result.pairs);
     for (const PairOutcome& p : result.pairs) result.dropped_link_count += p.link_dropped;
     result.timings.multiview_s = seconds_since(stage);
 

@@ -149,9 +149,10 @@ struct PairLinks {
 PairLinks make_links(PreparedScans& scans, const PoseGraph& graph, std::vector<PairOutcome>& pairs,
                      const ScanRegistrationConfig& config, const RegistrationProgress& progress);
 
-/// Multi-view refinement of each group with more than one scan, in place on
+/// Multi-view refinement of each group with more than one scan (the links' correspondences
+/// are moved, not copied, into each group's system), in place on
 /// `graph.T_root_scan`; marks dropped links. Returns the largest group's status.
-MultiviewStatus refine_groups(const PairLinks& links, const MultiviewRefinementConfig& config,
+MultiviewStatus refine_groups(PairLinks links, const MultiviewRefinementConfig& config,
                               PoseGraph& graph, std::vector<PairOutcome>& pairs);
 
 }  // namespace anascan::detail

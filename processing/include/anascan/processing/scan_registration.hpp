@@ -98,9 +98,9 @@ struct ScanRegistrationConfig {
     std::size_t max_loaded_clouds = 8;  ///< Clouds and site sets held in memory when spilling.
     /// Sites pooled per scan for the saliency levels when spilling (evenly thinned).
     std::size_t max_level_sites_per_scan = 500;
-    /// ... and at most this many over all scans (fewer per scan beyond 200 scans), so that
+    /// ... and at most this many over all scans (fewer per scan beyond 100 scans), so that
     /// the pooled sites do not grow with the number of scans.
-    std::size_t max_level_sites_total = 100000;
+    std::size_t max_level_sites_total = 50000;
     /// Pairwise stage: a pair is not refined once one of its scans has failed this many
     /// refinements (0 = no limit). With pruning, a scan whose true partners failed would
     /// otherwise have all its remaining candidates refined, each failing slowly.
