@@ -12,7 +12,6 @@
 // nearer than half the sum of the bounding radii): 2 at the end of a chain of windows, 4
 // inside it.
 #include <algorithm>
-#include <numeric>
 
 #include "scan_registration_steps.hpp"
 
@@ -32,31 +31,7 @@ std::vector<std::size_t> border_scans(const std::vector<std::size_t>& members,
         }
         degree.emplace_back(close, a);
     }
-    const std::size_t keep = std::min(count, degree.size());
-    std::partial_sort(degree.begin(), degree.begin() + static_cast<std::ptrdiff_t>(keep),
-                      degree.end());
-    std::vector<std::size_t> out;
-    for (std::size_t r = 0; r < keep; ++r) out.push_back(degree[r].second);
-    return out;
-}
-
-// Scan i's `count` most similar scans of other groups not matched with it yet.
-void add_partners(const PairVotes& votes, const std::vector<int>& group, std::size_t i,
-                  const std::set<std::pair<std::size_t, std::size_t>>& matched, std::size_t count,
-                  std::set<std::pair<std::size_t, std::size_t>>& chosen) {
-    std::vector<std::pair<double, std::size_t>> scored;
-    for (std::size_t j = 0; j < votes.n; ++j) {
-        if (group[j] < 0 || group[j] == group[i]) continue;
-        if (matched.contains({std::max(i, j), std::min(i, j)})) continue;
-        if (const double s = votes.similarity(i, j); s > 0.0) scored.emplace_back(-s, j);
-    }
-    const std::size_t keep = std::min(count, scored.size());
-    std::partial_sort(scored.begin(), scored.begin() + static_cast<std::ptrdiff_t>(keep),
-                      scored.end());
-    for (std::size_t r = 0; r < keep; ++r) {
-        const std::size_t j = scored[r].second;
-        chosen.emplace(std::max(i, j), std::min(i, j));
-    }
+    return smallest(std::move(degree), count);
 }
 
 }  // namespace
@@ -77,7 +52,14 @@ std::vector<std::pair<std::size_t, std::size_t>> bridge_pairs(
     for (const std::vector<std::size_t>& group : members) {
         for (std::size_t i :
              border_scans(group, centre_m, summary, config.bridge_scans_per_group)) {
-            add_partners(votes, graph.group, i, matched, config.bridge_partners_per_scan, chosen);
+            const auto other_unmatched = [&](std::size_t j) {
+                return graph.group[j] >= 0 && graph.group[j] != graph.group[i] &&
+                       !matched.contains({std::max(i, j), std::min(i, j)});
+            };
+            for (std::size_t j :
+                 votes.most_similar(i, config.bridge_partners_per_scan, other_unmatched)) {
+                chosen.emplace(std::max(i, j), std::min(i, j));
+            }
         }
     }
     return {chosen.begin(), chosen.end()};

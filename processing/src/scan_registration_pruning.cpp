@@ -232,21 +232,6 @@ void count_votes(std::vector<IndexEntry> entries, PairVotes& votes) {
     }
 }
 
-// Scan i's `count` most similar scans (ties by index).
-std::vector<std::size_t> best_partners(const PairVotes& votes, std::size_t i, std::size_t count) {
-    std::vector<std::pair<double, std::size_t>> scored;
-    for (std::size_t j = 0; j < votes.n; ++j) {
-        if (j == i) continue;
-        if (const double s = votes.similarity(i, j); s > 0.0) scored.emplace_back(-s, j);
-    }
-    const std::size_t keep = std::min(count, scored.size());
-    std::partial_sort(scored.begin(), scored.begin() + static_cast<std::ptrdiff_t>(keep),
-                      scored.end());
-    std::vector<std::size_t> out;
-    for (std::size_t r = 0; r < keep; ++r) out.push_back(scored[r].second);
-    return out;
-}
-
 }  // namespace
 
 double PairVotes::similarity(std::size_t i, std::size_t j) const {
@@ -254,6 +239,16 @@ double PairVotes::similarity(std::size_t i, std::size_t j) const {
     if (v <= 0.0f) return 0.0;
     return static_cast<double>(v) /
            std::sqrt(static_cast<double>(key_count[i]) * static_cast<double>(key_count[j]));
+}
+
+std::vector<std::size_t> PairVotes::most_similar(
+    std::size_t i, std::size_t count, const std::function<bool(std::size_t)>& eligible) const {
+    std::vector<std::pair<double, std::size_t>> scored;
+    for (std::size_t j = 0; j < n; ++j) {
+        if (j == i || !eligible(j)) continue;
+        if (const double s = similarity(i, j); s > 0.0) scored.emplace_back(-s, j);
+    }
+    return smallest(std::move(scored), count);
 }
 
 CandidatePairs candidate_pairs(PreparedScans& scans, const ScanRegistrationConfig& config) {
@@ -281,7 +276,8 @@ CandidatePairs candidate_pairs(PreparedScans& scans, const ScanRegistrationConfi
     std::vector<std::vector<std::size_t>> similar(n);
     tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) {
         if (votes.key_count[i] > 0)
-            similar[i] = best_partners(votes, i, config.max_candidates_per_scan);
+            similar[i] = votes.most_similar(i, config.max_candidates_per_scan,
+                                            [](std::size_t) { return true; });
     });
     std::set<std::pair<std::size_t, std::size_t>> unique;
     for (std::size_t i = 0; i < n; ++i) {

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <numeric>
 #include <set>
@@ -105,7 +106,24 @@ struct PairVotes {
     float& at(std::size_t i, std::size_t j) { return votes[index(i, j)]; }
     /// votes / sqrt(keys_i keys_j); 0 when they share no informative key.
     double similarity(std::size_t i, std::size_t j) const;
+    /// Scan i's `count` most similar scans j (similarity > 0) with `eligible(j)`, best
+    /// first, ties by index.
+    std::vector<std::size_t> most_similar(std::size_t i, std::size_t count,
+                                          const std::function<bool(std::size_t)>& eligible) const;
 };
+
+/// The indices of the `count` smallest keys of (key, index) pairs (ties by index), smallest
+/// first.
+template <typename Key>
+std::vector<std::size_t> smallest(std::vector<std::pair<Key, std::size_t>> keyed,
+                                  std::size_t count) {
+    const std::size_t keep = std::min(count, keyed.size());
+    std::partial_sort(keyed.begin(), keyed.begin() + static_cast<std::ptrdiff_t>(keep),
+                      keyed.end());
+    std::vector<std::size_t> out;
+    for (std::size_t r = 0; r < keep; ++r) out.push_back(keyed[r].second);
+    return out;
+}
 
 struct CandidatePairs {
     std::vector<std::pair<std::size_t, std::size_t>> pairs;  ///< Source > target, sorted.

@@ -110,19 +110,26 @@ TEST(ScanRegistration, PlacesViewsAndReportsTheOthers) {
     EXPECT_GT(result.timings.total_s, 0.0);
 }
 
+/// `count` windows 0.08 m long, 0.024 m apart, along a strip of `bumps` random bumps (seed
+/// 3), each in a random frame (`seed`), named window0, window1, ...
+std::vector<SyntheticScan> strip_views(int count, int bumps, unsigned seed) {
+    std::mt19937 rng(seed);
+    const std::vector<Bump> strip = random_bumps(3, bumps);
+    std::vector<SyntheticScan> views;
+    for (int k = 0; k < count; ++k) {
+        const double x = -0.1 + 0.024 * k;
+        views.push_back(make_view(bumpy_window(strip, x, x + 0.08, 0.0002 * k), rng,
+                                  "window" + std::to_string(k)));
+    }
+    return views;
+}
+
 // The scale code paths on a small strip: pair pruning (2 candidates per scan) and the
 // out-of-core store (clouds and sites spilled, at most 2 in memory) place every window as
 // accurately as before, match fewer than all pairs, reload from disk and clean up.
 TEST(ScanRegistration, PrunedAndSpilledStripIsPlaced) {
-    std::mt19937 rng(5);
-    const std::vector<Bump> bumps = random_bumps(3, 60);
-    std::vector<SyntheticScan> views;
+    const std::vector<SyntheticScan> views = strip_views(6, 60, 5);
     std::vector<ScanInput> inputs;
-    for (int k = 0; k < 6; ++k) {
-        const double x = -0.1 + 0.024 * k;
-        views.push_back(make_view(bumpy_window(bumps, x, x + 0.08, 0.0002 * k), rng,
-                                  "window" + std::to_string(k)));
-    }
     for (int k : {3, 0, 5, 1, 4, 2}) inputs.push_back(views[std::size_t(k)].input);  // Shuffled.
     const std::filesystem::path spill =
         std::filesystem::temp_directory_path() / ("anascan_test_spill_" + std::to_string(getpid()));
@@ -155,15 +162,8 @@ TEST(ScanRegistration, PrunedAndSpilledStripIsPlaced) {
 // two groups; the bridging rounds join them (no pair of non-overlapping windows is
 // verified), every window is placed, within 0.5° and 1 mm of its neighbour.
 TEST(ScanRegistration, BridgingJoinsTheGroupsLeftByPruning) {
-    std::mt19937 rng(11);
-    const std::vector<Bump> bumps = random_bumps(3, 80);
-    std::vector<SyntheticScan> views;
+    const std::vector<SyntheticScan> views = strip_views(8, 80, 11);
     std::vector<ScanInput> inputs;
-    for (int k = 0; k < 8; ++k) {
-        const double x = -0.1 + 0.024 * k;
-        views.push_back(make_view(bumpy_window(bumps, x, x + 0.08, 0.0002 * k), rng,
-                                  "window" + std::to_string(k)));
-    }
     for (int k : {3, 6, 0, 5, 1, 7, 4, 2}) inputs.push_back(views[std::size_t(k)].input);
     ScanRegistrationConfig config{.max_candidates_per_scan = 2, .max_link_correspondences = 200};
     const ScanRegistrationResult pruned = register_scans(inputs, config, {});
