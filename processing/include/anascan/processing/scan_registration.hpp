@@ -8,7 +8,9 @@
 ///  3. matching: `match_features` for every pair (cheap: patches only);
 ///  4. pairwise: pairs in decreasing order of their best consensus score are refined and
 ///     verified (`register_global` minus the features) until their two scans are connected
-///     through verified pairs; pairs whose scans are already connected are skipped;
+///     through verified pairs; pairs whose scans are already connected are skipped; with
+///     pruning, bridging rounds then match the border scans of the groups left with their
+///     most similar scans of other groups;
 ///  5. pose graph: the verified pairs form a spanning forest giving initial poses;
 ///  6. links: every pair of a group whose bounding spheres meet under those poses is fine
 ///     registered from them, keeping its correspondences; a converged pair with enough
@@ -24,9 +26,10 @@
 /// Memory: each scan's loader is called exactly once, in input order, and the full cloud is
 /// released right after preparation; only the prepared clouds (down-sampled to
 /// `ScanRegistrationConfig::voxel_size_m` when that is positive) and their features are kept,
-/// or, with `spill_directory`, only the patches while clouds and sites wait on disk (at
-/// most `max_loaded_clouds` loaded). The multi-view stage needs only the stored
-/// correspondences. For thousands of scans see `max_candidates_per_scan` (pair pruning).
+/// or, with `spill_directory`, only a few figures per scan while clouds, sites, patches,
+/// pruning keys and matching results wait on disk (at most `max_loaded_clouds` clouds
+/// loaded). The multi-view stage needs only the stored correspondences. For thousands of
+/// scans see `max_candidates_per_scan` (pair pruning) and `bridge_rounds`.
 ///
 /// Thread safety: `register_scans` is reentrant; it calls `progress` from the calling
 /// thread only. Results do not depend on the number of threads.
@@ -93,7 +96,8 @@ struct ScanRegistrationConfig {
     /// Out-of-core: when set, prepared clouds and feature sites are written to this
     /// directory (created when missing, files removed at the end) and reloaded on demand,
     /// at most `max_loaded_clouds` in memory; descriptors are kept on disk between the two
-    /// feature passes. Empty: everything stays in memory.
+    /// feature passes; patches, pruning keys and matching results wait there too. Empty:
+    /// everything stays in memory.
     std::filesystem::path spill_directory;
     std::size_t max_loaded_clouds = 8;  ///< Clouds and site sets held in memory when spilling.
     /// Sites pooled per scan for the saliency levels when spilling (evenly thinned).
