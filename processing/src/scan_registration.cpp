@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <set>
 #include <string>
 #include <utility>
 
@@ -39,33 +40,31 @@ bool features_usable(const ScanFeatures& f) {
            f.patches.status == FeaturePatchStatus::kOk;
 }
 
-/// Feature matching of the pairs to match (source = the later scan); one result per pair,
-/// in pair order.
-std::vector<FeatureMatchingResult> match_pairs(
-    const std::vector<ScanFeatures>& features,
-    const std::vector<std::pair<std::size_t, std::size_t>>& candidates,
-    const GlobalRegistrationConfig& config, std::vector<PairOutcome>& pairs,
-    const RegistrationProgress& progress) {
-    std::vector<FeatureMatchingResult> matchings;
-    std::size_t reported = features.size();
+/// Feature matching of the pairs to match (source = the later scan); one record per pair,
+/// in pair order, appended to `matchings` (a file when spilling).
+void match_pairs(detail::PreparedScans& scans,
+                 const std::vector<std::pair<std::size_t, std::size_t>>& candidates,
+                 const GlobalRegistrationConfig& config, std::vector<PairOutcome>& pairs,
+                 detail::RecordFile& matchings, const RegistrationProgress& progress) {
+    std::size_t reported = scans.size();
+    FeaturePatchResult source_patches;
     for (const auto& [source, target] : candidates) {
         if (source != reported) {
             report(progress, "matching scan " + std::to_string(source) + " with earlier scans");
             reported = source;
+            source_patches = scans.patches(source);
         }
         PairOutcome pair{.source = source, .target = target};
         FeatureMatchingResult matching;
-        if (features_usable(features[source]) && features_usable(features[target])) {
-            matching =
-                match_features(features[source].patches, features[target].patches, config.matching);
+        if (features_usable(scans.features[source]) && features_usable(scans.features[target])) {
+            matching = match_features(source_patches, scans.patches(target), config.matching);
             pair.hypotheses = matching.hypotheses.size();
             if (!matching.hypotheses.empty()) pair.match_score = matching.hypotheses.front().score;
             pair.global_status = GlobalRegistrationStatus::kNoConsensus;
         }
         pairs.push_back(pair);
-        matchings.push_back(std::move(matching));
+        matchings.append(detail::to_bytes(matching));
     }
-    return matchings;
 }
 
 void copy_global_figures(const GlobalRegistrationResult& g, PairOutcome& pair) {
@@ -78,19 +77,21 @@ void copy_global_figures(const GlobalRegistrationResult& g, PairOutcome& pair) {
     pair.global_time_s = g.timing.total_s;
 }
 
-/// Refines and verifies the matched pairs, best consensus score first, until their scans
-/// are connected through verified pairs; pairs of connected scans are skipped.
-void verify_pairs(detail::PreparedScans& scans, std::vector<FeatureMatchingResult> matchings,
+/// Refines and verifies the matched pairs from `first` on (record p of `matchings`), best
+/// consensus score first, until their scans are connected through verified pairs (those
+/// before `first` included); pairs of connected scans are skipped.
+void verify_pairs(detail::PreparedScans& scans, detail::RecordFile& matchings, std::size_t first,
                   const ScanRegistrationConfig& config, std::vector<PairOutcome>& pairs,
                   const RegistrationProgress& progress) {
+    detail::DisjointSets connected(scans.size());
     std::vector<std::size_t> order;
     for (std::size_t p = 0; p < pairs.size(); ++p) {
-        if (pairs[p].hypotheses > 0) order.push_back(p);
+        if (p < first && pairs[p].verified) connected.unite(pairs[p].source, pairs[p].target);
+        if (p >= first && pairs[p].hypotheses > 0) order.push_back(p);
     }
     std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
         return pairs[a].match_score > pairs[b].match_score;
     });
-    detail::DisjointSets connected(scans.size());
     std::vector<std::size_t> failures(scans.size(), 0);
     const std::size_t max_failures = config.max_failed_refinements_per_scan;
     const auto gave_up = [&](std::size_t i) {
@@ -108,8 +109,9 @@ void verify_pairs(detail::PreparedScans& scans, std::vector<FeatureMatchingResul
         const std::shared_ptr<const PointCloud> target = scans.cloud(pair.target);
         const ScanFeatures source_f = scans.full_features(pair.source);
         const ScanFeatures target_f = scans.full_features(pair.target);
-        const GlobalRegistrationResult g = detail::refine_and_verify(
-            {*source, source_f}, {*target, target_f}, std::move(matchings[p]), config.global);
+        const GlobalRegistrationResult g =
+            detail::refine_and_verify({*source, source_f}, {*target, target_f},
+                                      detail::matching_from(matchings.read(p)), config.global);
         copy_global_figures(g, pair);
         if (pair.verified) {
             connected.unite(pair.source, pair.target);
@@ -122,6 +124,35 @@ void verify_pairs(detail::PreparedScans& scans, std::vector<FeatureMatchingResul
                              " (score " + std::to_string(static_cast<int>(pair.match_score)) +
                              "): " + std::string(to_string(pair.global_status)));
     }
+}
+
+/// Bridging rounds (pruning only): while the verified pairs leave several groups, matches
+/// and verifies each smaller group's most similar pairs with other groups not matched yet.
+/// Returns the number of pairs added.
+std::size_t bridge_groups(detail::PreparedScans& prepared, const detail::CandidatePairs& candidates,
+                          const std::vector<bool>& usable, const ScanRegistrationConfig& config,
+                          std::vector<PairOutcome>& pairs, detail::RecordFile& matchings,
+                          const RegistrationProgress& progress) {
+    if (candidates.votes.n == 0 || config.bridge_partners_per_scan == 0) return 0;
+    std::set<std::pair<std::size_t, std::size_t>> matched(candidates.pairs.begin(),
+                                                          candidates.pairs.end());
+    std::size_t added = 0;
+    for (std::size_t round = 0; round < config.bridge_rounds; ++round) {
+        const detail::PoseGraph graph = detail::build_pose_graph(usable, pairs);
+        if (graph.group_count <= 1) break;
+        const std::vector<std::pair<std::size_t, std::size_t>> extra =
+            detail::bridge_pairs(candidates.votes, graph, prepared.summary, matched, config);
+        if (extra.empty()) break;
+        report(progress, "bridging round " + std::to_string(round + 1) + ": " +
+                             std::to_string(graph.group_count) + " groups, " +
+                             std::to_string(extra.size()) + " more pairs");
+        const std::size_t first = pairs.size();
+        match_pairs(prepared, extra, config.global, pairs, matchings, progress);
+        verify_pairs(prepared, matchings, first, config, pairs, progress);
+        matched.insert(extra.begin(), extra.end());
+        added += extra.size();
+    }
+    return added;
 }
 
 /// Why scan i is not in the largest group: what its pairs gave.
@@ -178,29 +209,40 @@ ScanRegistrationResult register_scans(const std::vector<ScanInput>& scans,
     result.timings.features_s = seconds_since(stage);
 
     stage = std::chrono::steady_clock::now();
-    std::vector<FeatureMatchingResult> matchings =
-        match_pairs(prepared.features, detail::candidate_pairs(prepared, config), config.global,
-                    result.pairs, progress);
+    detail::CandidatePairs candidates = detail::candidate_pairs(prepared, config);
+    detail::RecordFile matchings(config.spill_directory.empty()
+                                     ? std::filesystem::path()
+                                     : config.spill_directory / "matchings.bin");
+    match_pairs(prepared, candidates.pairs, config.global, result.pairs, matchings, progress);
     result.timings.matching_s = seconds_since(stage);
 
     stage = std::chrono::steady_clock::now();
-    verify_pairs(prepared, std::move(matchings), config, result.pairs, progress);
-    for (const PairOutcome& p : result.pairs) result.verified_pair_count += p.verified;
+    verify_pairs(prepared, matchings, 0, config, result.pairs, progress);
     result.timings.pairwise_s = seconds_since(stage);
+
+    stage = std::chrono::steady_clock::now();
+    result.bridge_pair_count =
+        bridge_groups(prepared, candidates, usable, config, result.pairs, matchings, progress);
+    if (!matchings.error().empty() && prepared.spill_error.empty()) {
+        prepared.spill_error = matchings.error();
+    }
+    for (const PairOutcome& p : result.pairs) result.verified_pair_count += p.verified;
+    result.timings.bridging_s = seconds_since(stage);
+    candidates = {};  // The pruning votes (N²/2 floats) are not needed any more.
 
     stage = std::chrono::steady_clock::now();
     detail::PoseGraph graph = detail::build_pose_graph(usable, result.pairs);
     result.timings.pose_graph_s = seconds_since(stage);
 
     stage = std::chrono::steady_clock::now();
-    const detail::PairLinks links =
-        detail::make_links(prepared, graph, result.pairs, config, progress);
+    detail::PairLinks links = detail::make_links(prepared, graph, result.pairs, config, progress);
     result.link_count = links.links.size();
     result.timings.fine_s = seconds_since(stage);
 
     stage = std::chrono::steady_clock::now();
     report(progress, "multi-view refinement over " + std::to_string(result.link_count) + " links");
-    result.multiview_status = detail::refine_groups(links, config.multiview, graph, result.pairs);
+    result.multiview_status =
+        detail::refine_groups(std::move(links), config.multiview, graph, result.pairs);
     for (const PairOutcome& p : result.pairs) result.dropped_link_count += p.link_dropped;
     result.timings.multiview_s = seconds_since(stage);
 

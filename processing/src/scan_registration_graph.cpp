@@ -123,7 +123,8 @@ struct GroupLinks {
     std::vector<std::size_t> pairs;  ///< Pair index of each link.
 };
 
-GroupLinks collect_group(const PairLinks& links, const PoseGraph& graph, int g) {
+/// Moves group g's links out of `links` (each link belongs to one group).
+GroupLinks collect_group(PairLinks& links, const PoseGraph& graph, int g) {
     GroupLinks group;
     std::vector<std::size_t> local(graph.group.size(), 0);
     for (std::size_t i = 0; i < graph.group.size(); ++i) {
@@ -132,11 +133,11 @@ GroupLinks collect_group(const PairLinks& links, const PoseGraph& graph, int g) 
         group.members.push_back(i);
     }
     for (std::size_t l = 0; l < links.links.size(); ++l) {
-        const MultiviewLink& link = links.links[l];
+        MultiviewLink& link = links.links[l];
         if (graph.group[link.target_index] != g) continue;
         group.links.push_back({.target_index = local[link.target_index],
                                .source_index = local[link.source_index],
-                               .correspondences = link.correspondences});
+                               .correspondences = std::move(link.correspondences)});
         group.pairs.push_back(links.pair_of_link[l]);
     }
     return group;
@@ -196,7 +197,7 @@ PairLinks make_links(PreparedScans& scans, const PoseGraph& graph, std::vector<P
     return links;
 }
 
-MultiviewStatus refine_groups(const PairLinks& links, const MultiviewRefinementConfig& config,
+MultiviewStatus refine_groups(PairLinks links, const MultiviewRefinementConfig& config,
                               PoseGraph& graph, std::vector<PairOutcome>& pairs) {
     MultiviewStatus largest_status = MultiviewStatus::kConverged;
     for (int g = 0; g < static_cast<int>(graph.group_count); ++g) {

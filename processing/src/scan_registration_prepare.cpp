@@ -98,7 +98,8 @@ PreparedScans load_and_prepare(const std::vector<ScanInput>& inputs,
     PreparedScans prepared{.store = CloudStore({.directory = config.spill_directory,
                                                 .max_loaded = config.max_loaded_clouds}),
                            .summary = std::vector<ScanSummary>(inputs.size()),
-                           .spacing_m = std::vector<double>(inputs.size(), 0.0)};
+                           .spacing_m = std::vector<double>(inputs.size(), 0.0),
+                           .spill_directory = config.spill_directory};
     for (std::size_t i = 0; i < inputs.size(); ++i) {
         ScanOutcome& scan = result.scans[i];
         if (progress) progress("preparing " + inputs[i].name);

@@ -15,7 +15,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
 #include <set>
+#include <string>
 
 #include "scan_registration_steps.hpp"
 
@@ -90,92 +94,197 @@ std::vector<std::uint64_t> scan_keys(const FeaturePatchResult& patches, double m
     }
     std::sort(keys.begin(), keys.end());
     keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+    keys.shrink_to_fit();
     return keys;
 }
 
-// The inverted index as one sorted array of (key, scan): 16 bytes per key of every scan,
-// no per-key allocation (a hash map of vectors cost several times more at 1000 scans).
-using IndexEntry = std::pair<std::uint64_t, std::uint32_t>;
+// The inverted index, one bucket of keys at a time: (key, scan) entries partitioned by a
+// hash of the key, in memory (one bucket) or in files in the spill directory (one per 32
+// scans), so that only one bucket's entries are in memory while votes are counted.
+struct IndexEntry {
+    std::uint64_t key = 0;
+    std::uint32_t scan = 0;
+    std::uint32_t unused = 0;  // Written to files: no uninitialised padding.
+    bool operator<(const IndexEntry& o) const { return key != o.key ? key < o.key : scan < o.scan; }
+};
 
-std::vector<IndexEntry> inverted_index(const std::vector<std::vector<std::uint64_t>>& keys) {
-    std::size_t total = 0;
-    for (const auto& k : keys) total += k.size();
-    std::vector<IndexEntry> index;
-    index.reserve(total);
-    for (std::size_t i = 0; i < keys.size(); ++i) {
-        for (std::uint64_t k : keys[i]) index.emplace_back(k, static_cast<std::uint32_t>(i));
-    }
-    tbb::parallel_sort(index.begin(), index.end());
-    return index;
-}
+constexpr std::size_t kScansPerBucket = 32;
 
-// Scan i's `count` best partners by idf-weighted shared keys / sqrt(keys_i keys_j) (ties by
-// index); `votes` is scratch of size N, left zero.
-std::vector<std::size_t> best_partners(const std::vector<std::vector<std::uint64_t>>& keys,
-                                       const std::vector<IndexEntry>& index, std::size_t i,
-                                       std::size_t count, std::vector<double>& votes) {
-    const double n = static_cast<double>(keys.size());
-    std::vector<std::uint32_t> touched;
-    for (std::uint64_t k : keys[i]) {
-        const auto lo = std::lower_bound(index.begin(), index.end(), IndexEntry{k, 0});
-        auto hi = lo;
-        while (hi != index.end() && hi->first == k) ++hi;
-        const auto holders = static_cast<std::size_t>(hi - lo);
-        if (holders < 2 || holders > kMaxScansPerKey) continue;
-        const double weight = std::log(n / static_cast<double>(holders));  // Rare: more.
-        for (auto it = lo; it != hi; ++it) {
-            if (it->second == i) continue;
-            if (votes[it->second] == 0.0) touched.push_back(it->second);
-            votes[it->second] += weight;
+struct FileCloser {
+    void operator()(std::FILE* f) const { std::fclose(f); }
+};
+
+class KeyBuckets {
+public:
+    KeyBuckets(std::size_t scan_count, const std::filesystem::path& directory) {
+        if (directory.empty()) {
+            memory_.resize(1);
+            return;
+        }
+        const std::size_t count = (scan_count + kScansPerBucket - 1) / kScansPerBucket;
+        std::error_code ignored;
+        std::filesystem::create_directories(directory, ignored);
+        for (std::size_t b = 0; b < std::max<std::size_t>(count, 1); ++b) {
+            paths_.push_back(directory / ("pruning_keys_" + std::to_string(b) + ".bin"));
+            files_.emplace_back(std::fopen(paths_.back().c_str(), "w+b"));
+            if (!files_.back()) error_ = paths_.back().string() + ": cannot write pruning keys";
         }
     }
-    std::vector<std::pair<double, std::size_t>> scored;
-    for (std::uint32_t j : touched) {
-        const double norm = std::sqrt(static_cast<double>(keys[i].size() * keys[j].size()));
-        scored.emplace_back(-votes[j] / norm, j);
-        votes[j] = 0.0;
+    ~KeyBuckets() {
+        files_.clear();
+        for (const std::filesystem::path& path : paths_) {
+            std::error_code ignored;
+            std::filesystem::remove(path, ignored);
+        }
     }
-    const std::size_t keep = std::min(count, scored.size());
-    std::partial_sort(scored.begin(), scored.begin() + static_cast<std::ptrdiff_t>(keep),
-                      scored.end());
-    std::vector<std::size_t> out;
-    for (std::size_t r = 0; r < keep; ++r) out.push_back(scored[r].second);
-    return out;
+    KeyBuckets(const KeyBuckets&) = delete;
+    KeyBuckets& operator=(const KeyBuckets&) = delete;
+
+    std::size_t count() const { return files_.empty() ? 1 : files_.size(); }
+    const std::string& error() const { return error_; }
+
+    void add(std::uint32_t scan, const std::vector<std::uint64_t>& keys) {
+        for (std::uint64_t k : keys) {
+            const IndexEntry e{.key = k, .scan = scan};
+            if (files_.empty()) {
+                memory_[0].push_back(e);
+                continue;
+            }
+            std::FILE* f = files_[bucket_of(k)].get();
+            if (error_.empty() && (!f || std::fwrite(&e, sizeof e, 1, f) != 1)) {
+                error_ = paths_[bucket_of(k)].string() + ": cannot write pruning keys";
+            }
+        }
+    }
+
+    // Bucket b's entries, sorted (the bucket is released).
+    std::vector<IndexEntry> take(std::size_t b) {
+        std::vector<IndexEntry> entries;
+        if (files_.empty()) {
+            entries.swap(memory_[0]);
+        } else if (std::FILE* f = files_[b].get(); f && std::fseek(f, 0, SEEK_END) == 0) {
+            const long bytes = std::ftell(f);
+            entries.resize(bytes > 0 ? static_cast<std::size_t>(bytes) / sizeof(IndexEntry) : 0);
+            std::rewind(f);
+            if (!entries.empty() && std::fread(entries.data(), sizeof(IndexEntry), entries.size(),
+                                               f) != entries.size()) {
+                if (error_.empty()) error_ = paths_[b].string() + ": cannot read pruning keys";
+                entries.clear();
+            }
+            files_[b].reset();
+        }
+        tbb::parallel_sort(entries.begin(), entries.end());
+        return entries;
+    }
+
+private:
+    std::size_t bucket_of(std::uint64_t key) const {
+        return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> 32) % files_.size();
+    }
+
+    std::vector<std::vector<IndexEntry>> memory_;
+    std::vector<std::unique_ptr<std::FILE, FileCloser>> files_;
+    std::vector<std::filesystem::path> paths_;
+    std::string error_;
+};
+
+// Every scan's keys into the buckets (computed in parallel, a block of scans at a time);
+// fills the key counts.
+void collect_keys(PreparedScans& scans, KeyBuckets& buckets, PairVotes& votes) {
+    double diagonal_m = 0.0;
+    for (const ScanSummary& s : scans.summary) diagonal_m = std::max(diagonal_m, s.diagonal_m);
+    const std::size_t n = scans.size();
+    constexpr std::size_t kBlock = 8;  // Scans whose keys are in memory at once.
+    for (std::size_t first = 0; first < n; first += kBlock) {
+        const std::size_t last = std::min(n, first + kBlock);
+        std::vector<FeaturePatchResult> patches;  // Read here: the record file is not shared.
+        for (std::size_t i = first; i < last; ++i) {
+            patches.push_back(scans.usable(i) ? scans.patches(i) : FeaturePatchResult{});
+        }
+        std::vector<std::vector<std::uint64_t>> keys(last - first);
+        tbb::parallel_for(first, last, [&](std::size_t i) {
+            if (scans.usable(i)) keys[i - first] = scan_keys(patches[i - first], 0.25 * diagonal_m);
+        });
+        for (std::size_t i = first; i < last; ++i) {
+            votes.key_count[i] = static_cast<std::uint32_t>(keys[i - first].size());
+            buckets.add(static_cast<std::uint32_t>(i), keys[i - first]);
+        }
+    }
+}
+
+// Adds the idf weight of every key held by 2..kMaxScansPerKey scans to each pair of its
+// holders.
+void count_votes(std::vector<IndexEntry> entries, PairVotes& votes) {
+    const double n = static_cast<double>(votes.n);
+    for (std::size_t lo = 0; lo < entries.size();) {
+        std::size_t hi = lo + 1;
+        while (hi < entries.size() && entries[hi].key == entries[lo].key) ++hi;
+        const std::size_t holders = hi - lo;
+        if (holders >= 2 && holders <= kMaxScansPerKey) {
+            const auto weight = static_cast<float>(std::log(n / static_cast<double>(holders)));
+            for (std::size_t a = lo; a < hi; ++a) {
+                for (std::size_t b = a + 1; b < hi; ++b) {
+                    votes.at(entries[a].scan, entries[b].scan) += weight;
+                }
+            }
+        }
+        lo = hi;
+    }
 }
 
 }  // namespace
 
-std::vector<std::pair<std::size_t, std::size_t>> candidate_pairs(
-    const PreparedScans& scans, const ScanRegistrationConfig& config) {
+double PairVotes::similarity(std::size_t i, std::size_t j) const {
+    const float v = votes[index(i, j)];
+    if (v <= 0.0f) return 0.0;
+    return static_cast<double>(v) /
+           std::sqrt(static_cast<double>(key_count[i]) * static_cast<double>(key_count[j]));
+}
+
+std::vector<std::size_t> PairVotes::most_similar(
+    std::size_t i, std::size_t count, const std::function<bool(std::size_t)>& eligible) const {
+    std::vector<std::pair<double, std::size_t>> scored;
+    for (std::size_t j = 0; j < n; ++j) {
+        if (j == i || !eligible(j)) continue;
+        if (const double s = similarity(i, j); s > 0.0) scored.emplace_back(-s, j);
+    }
+    return smallest(std::move(scored), count);
+}
+
+CandidatePairs candidate_pairs(PreparedScans& scans, const ScanRegistrationConfig& config) {
     const std::size_t n = scans.size();
-    std::vector<std::pair<std::size_t, std::size_t>> pairs;
+    CandidatePairs out;
     if (config.max_candidates_per_scan == 0) {
         for (std::size_t s = 1; s < n; ++s) {
-            for (std::size_t t = 0; t < s; ++t) pairs.emplace_back(s, t);
+            for (std::size_t t = 0; t < s; ++t) out.pairs.emplace_back(s, t);
         }
-        return pairs;
+        return out;
     }
-    double diagonal_m = 0.0;
-    for (const ScanSummary& s : scans.summary) diagonal_m = std::max(diagonal_m, s.diagonal_m);
-    std::vector<std::vector<std::uint64_t>> keys(n);
-    tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) {
-        if (scans.usable(i)) keys[i] = scan_keys(scans.features[i].patches, 0.25 * diagonal_m);
-    });
-    const std::vector<IndexEntry> index = inverted_index(keys);
-    std::vector<std::vector<std::size_t>> similar(n);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 16), [&](const auto& r) {
-        std::vector<double> votes(n, 0.0);
-        for (std::size_t i = r.begin(); i < r.end(); ++i) {
-            if (!keys[i].empty()) {
-                similar[i] = best_partners(keys, index, i, config.max_candidates_per_scan, votes);
-            }
+    PairVotes& votes = out.votes;
+    votes.n = n;
+    votes.votes.assign(n * (n - 1) / 2, 0.0f);
+    votes.key_count.assign(n, 0);
+    {
+        KeyBuckets buckets(n, scans.spill_directory);
+        collect_keys(scans, buckets, votes);
+        for (std::size_t b = 0; b < buckets.count(); ++b) count_votes(buckets.take(b), votes);
+        if (!buckets.error().empty()) {
+            if (scans.spill_error.empty()) scans.spill_error = buckets.error();
+            return out;  // No candidates: every scan is reported not placed.
         }
+    }
+    std::vector<std::vector<std::size_t>> similar(n);
+    tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) {
+        if (votes.key_count[i] > 0)
+            similar[i] = votes.most_similar(i, config.max_candidates_per_scan,
+                                            [](std::size_t) { return true; });
     });
     std::set<std::pair<std::size_t, std::size_t>> unique;
     for (std::size_t i = 0; i < n; ++i) {
         for (std::size_t j : similar[i]) unique.emplace(std::max(i, j), std::min(i, j));
     }
-    return {unique.begin(), unique.end()};
+    out.pairs.assign(unique.begin(), unique.end());
+    return out;
 }
 
 }  // namespace anascan::detail

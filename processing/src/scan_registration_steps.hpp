@@ -4,8 +4,10 @@
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <numeric>
+#include <set>
 #include <span>
 #include <string>
 #include <utility>
@@ -13,6 +15,7 @@
 
 #include "anascan/processing/cloud_store.hpp"
 #include "anascan/processing/scan_registration.hpp"
+#include "scan_registration_records.hpp"
 
 namespace anascan::detail {
 
@@ -56,14 +59,21 @@ struct PreparedScans {
     std::vector<ScanSummary> summary;
     std::vector<double> spacing_m;
     std::vector<ScanFeatures> features;
-    std::string spill_error;  ///< The first store failure.
+    std::string spill_error;                ///< The first store failure.
+    std::filesystem::path spill_directory;  ///< Empty: everything in memory.
+    /// When spilling, each scan's patches wait here (record `patch_record[i]`) and
+    /// `features[i].patches` keeps only the status and counts.
+    RecordFile patch_records;
+    std::vector<std::size_t> patch_record;
 
     std::size_t size() const { return summary.size(); }
     bool usable(std::size_t i) const { return summary[i].points > 0; }
     /// Scan i's prepared cloud (empty when it cannot be had; the failure is recorded).
     std::shared_ptr<const PointCloud> cloud(std::size_t i);
-    /// Scan i's features with their sites (reloaded when spilled).
+    /// Scan i's features with their sites and patches (reloaded when spilled).
     ScanFeatures full_features(std::size_t i);
+    /// Scan i's patches (reloaded when spilled).
+    FeaturePatchResult patches(std::size_t i);
 };
 
 /// Loads and prepares every scan (one full cloud in memory at a time); fills the outcomes'
@@ -82,10 +92,49 @@ void warn_identical_scans(PreparedScans& scans, ScanRegistrationResult& result);
 void describe_all(PreparedScans& scans, const ScanRegistrationConfig& config,
                   const RegistrationProgress& progress);
 
-/// The pairs to match (source > target, in pair order): all of them, or the candidates of
-/// the feature signatures when `max_candidates_per_scan` > 0.
-std::vector<std::pair<std::size_t, std::size_t>> candidate_pairs(
-    const PreparedScans& scans, const ScanRegistrationConfig& config);
+/// Pair pruning's similarity of every two scans: idf-weighted shared feature-triangle
+/// keys (lower triangle, float) and each scan's key count.
+struct PairVotes {
+    std::size_t n = 0;  ///< Scans; 0 when nothing was pruned.
+    std::vector<float> votes;
+    std::vector<std::uint32_t> key_count;
+
+    static std::size_t index(std::size_t i, std::size_t j) {
+        if (i < j) std::swap(i, j);
+        return i * (i - 1) / 2 + j;
+    }
+    float& at(std::size_t i, std::size_t j) { return votes[index(i, j)]; }
+    /// votes / sqrt(keys_i keys_j); 0 when they share no informative key.
+    double similarity(std::size_t i, std::size_t j) const;
+    /// Scan i's `count` most similar scans j (similarity > 0) with `eligible(j)`, best
+    /// first, ties by index.
+    std::vector<std::size_t> most_similar(std::size_t i, std::size_t count,
+                                          const std::function<bool(std::size_t)>& eligible) const;
+};
+
+/// The indices of the `count` smallest keys of (key, index) pairs (ties by index), smallest
+/// first.
+template <typename Key>
+std::vector<std::size_t> smallest(std::vector<std::pair<Key, std::size_t>> keyed,
+                                  std::size_t count) {
+    const std::size_t keep = std::min(count, keyed.size());
+    std::partial_sort(keyed.begin(), keyed.begin() + static_cast<std::ptrdiff_t>(keep),
+                      keyed.end());
+    std::vector<std::size_t> out;
+    for (std::size_t r = 0; r < keep; ++r) out.push_back(keyed[r].second);
+    return out;
+}
+
+struct CandidatePairs {
+    std::vector<std::pair<std::size_t, std::size_t>> pairs;  ///< Source > target, sorted.
+    PairVotes votes;
+};
+
+/// The pairs to match (source > target, in pair order): all of them, or, when
+/// `max_candidates_per_scan` > 0, the pairs where either scan is among the other's most
+/// similar. The keys wait in files of the spill directory (when set) so that only a
+/// bucket of them is in memory; a file failure is recorded and gives no pairs.
+CandidatePairs candidate_pairs(PreparedScans& scans, const ScanRegistrationConfig& config);
 
 /// Connected components of the verified pairs and the spanning-tree poses within each.
 struct PoseGraph {
@@ -98,6 +147,15 @@ struct PoseGraph {
 /// edges, then poses by walking each tree from its lowest-index scan.
 PoseGraph build_pose_graph(const std::vector<bool>& usable, std::vector<PairOutcome>& pairs);
 
+/// Pairs that may join the groups of `graph` (bridging, see scan_registration_bridging.cpp):
+/// each group's `bridge_scans_per_group` border scans (fewest members close by) with their
+/// `bridge_partners_per_scan` most similar scans of other groups not in `matched`
+/// (source > target, sorted).
+std::vector<std::pair<std::size_t, std::size_t>> bridge_pairs(
+    const PairVotes& votes, const PoseGraph& graph, const std::vector<ScanSummary>& summary,
+    const std::set<std::pair<std::size_t, std::size_t>>& matched,
+    const ScanRegistrationConfig& config);
+
 /// Multi-view links (scan indices) and, per link, the index of its pair.
 struct PairLinks {
     std::vector<MultiviewLink> links;
@@ -109,9 +167,10 @@ struct PairLinks {
 PairLinks make_links(PreparedScans& scans, const PoseGraph& graph, std::vector<PairOutcome>& pairs,
                      const ScanRegistrationConfig& config, const RegistrationProgress& progress);
 
-/// Multi-view refinement of each group with more than one scan, in place on
+/// Multi-view refinement of each group with more than one scan (the links' correspondences
+/// are moved, not copied, into each group's system), in place on
 /// `graph.T_root_scan`; marks dropped links. Returns the largest group's status.
-MultiviewStatus refine_groups(const PairLinks& links, const MultiviewRefinementConfig& config,
+MultiviewStatus refine_groups(PairLinks links, const MultiviewRefinementConfig& config,
                               PoseGraph& graph, std::vector<PairOutcome>& pairs);
 
 }  // namespace anascan::detail

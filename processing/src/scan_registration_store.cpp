@@ -68,6 +68,8 @@ IntegralInvariantResult thinned(const IntegralInvariantResult& r, std::size_t ma
     const std::size_t n = r.volume.size();
     const std::size_t step =
         std::max<std::size_t>(1, (n + max_sites - 1) / std::max<std::size_t>(max_sites, 1));
+    out.volume.reserve((n + step - 1) / step);
+    out.valid_bits.reserve((n + step - 1) / step);
     for (std::size_t s = 0; s < n; s += step) {
         out.volume.push_back(r.volume[s]);
         out.valid_bits.push_back(r.valid_bits[s]);
@@ -75,11 +77,17 @@ IntegralInvariantResult thinned(const IntegralInvariantResult& r, std::size_t ma
     return out;  // Only what saliency_levels reads: volume and valid_bits.
 }
 
+// Frees a vector's storage (`v = {}` would keep its capacity: it assigns an empty list).
+template <typename T>
+void release(std::vector<T>& v) {
+    std::vector<T>().swap(v);
+}
+
 void strip_arrays(IntegralInvariantResult& r) {
-    r.site_positions = {};
-    r.site_normals = {};
-    r.volume = {};
-    r.valid_bits = {};
+    release(r.site_positions);
+    release(r.site_normals);
+    release(r.volume);
+    release(r.valid_bits);
 }
 
 InvariantRadii shared_radii(const PreparedScans& scans, const GlobalRegistrationConfig& config) {
@@ -115,6 +123,8 @@ void finish_spilled(PreparedScans& scans, std::size_t i, const SaliencyLevels& l
     std::error_code ignored;
     std::filesystem::remove(file, ignored);
     f.patches = extract_feature_patches(f.invariants, levels, config.global.patches);
+    scans.patch_record[i] = scans.patch_records.append(to_bytes(f.patches.patches));
+    release(f.patches.patches);
     PointCloud sites;
     sites.positions = std::move(f.invariants.site_positions);
     sites.normals = std::move(f.invariants.site_normals);
@@ -128,14 +138,19 @@ void describe_spilled(PreparedScans& scans, const ScanRegistrationConfig& config
                       const RegistrationProgress& progress) {
     const InvariantRadii radii_m = shared_radii(scans, config.global);
     scans.features.assign(scans.size(), {});
+    scans.patch_records = RecordFile(config.spill_directory / "patches.bin");
+    scans.patch_record.assign(scans.size(), 0);
     std::vector<IntegralInvariantResult> pooled;
     pooled.reserve(scans.size());
+    const std::size_t sites_per_scan = std::max<std::size_t>(
+        1, std::min(config.max_level_sites_per_scan,
+                    config.max_level_sites_total / std::max<std::size_t>(scans.size(), 1)));
     for (std::size_t i = 0; i < scans.size(); ++i) {
         if (!scans.usable(i)) continue;
         report(progress, "features of scan " + std::to_string(i));
         IntegralInvariantResult r = describe_scan(*scans.cloud(i), radii_m, config.global);
         if (r.status == IntegralInvariantStatus::kOk) {
-            pooled.push_back(thinned(r, config.max_level_sites_per_scan));
+            pooled.push_back(thinned(r, sites_per_scan));
             if (!save_invariants(invariants_file(config, i), r)) {
                 note_failure(scans, invariants_file(config, i).string() +
                                         ": cannot write the spilled descriptors");
@@ -149,6 +164,7 @@ void describe_spilled(PreparedScans& scans, const ScanRegistrationConfig& config
     for (const IntegralInvariantResult& r : pooled) valid.push_back(&r);
     const SaliencyLevels levels = saliency_levels(valid, config.global.patches);
     for (std::size_t i = 0; i < scans.size(); ++i) finish_spilled(scans, i, levels, config);
+    if (!scans.patch_records.error().empty()) note_failure(scans, scans.patch_records.error());
 }
 
 }  // namespace
@@ -161,8 +177,22 @@ std::shared_ptr<const PointCloud> PreparedScans::cloud(std::size_t i) {
     return std::make_shared<const PointCloud>();
 }
 
+FeaturePatchResult PreparedScans::patches(std::size_t i) {
+    FeaturePatchResult p = features[i].patches;
+    if (patch_record.empty() || p.status != FeaturePatchStatus::kOk) return p;
+    const Bytes bytes = patch_records.read(patch_record[i]);
+    if (bytes.empty()) {
+        note_failure(*this, patch_records.error());
+        p.status = FeaturePatchStatus::kInvalidInput;
+        return p;
+    }
+    p.patches = patches_from(bytes);
+    return p;
+}
+
 ScanFeatures PreparedScans::full_features(std::size_t i) {
     ScanFeatures f = features[i];
+    f.patches = patches(i);
     if (!store.spills() || !store.contains(2 * i + 1)) return f;
     Expected<std::shared_ptr<const PointCloud>> sites = store.get(2 * i + 1);
     if (!sites) {

@@ -5,7 +5,7 @@
 //
 //   anascan_bench_register_scale --scans 100 [--points 50000] [--candidates 3]
 //       [--voxel-mm 2] [--max-loaded 8] [--link-correspondences 100] [--spill DIR]
-//       [--all-in-memory] [--list] [--max-failures 2] [--seed 1]
+//       [--all-in-memory] [--list] [--max-failures 2] [--bridge-rounds 4] [--seed 1]
 //
 // The wall: z = Σ h exp(−|xy − c|²/2w²) over x in [0, L], |y| <= 0.1 m, bumps 3-12 mm high
 // and 6-16 mm wide, 1500 per m² (test_bumpy_surface.hpp has 350: too flat between bumps. Window k
@@ -47,6 +47,7 @@ struct Options {
     std::size_t max_loaded = 8;
     std::size_t link_correspondences = 100;
     std::size_t max_failures = 2;
+    std::size_t bridge_rounds = 4;
     std::string spill;
     bool in_memory = false;
     bool list = false;
@@ -142,14 +143,17 @@ bool parse(int argc, char** argv, Options& o) {
             o.list = true;
         else if (a == "--max-failures")
             o.max_failures = std::strtoul(next(), nullptr, 10);
+        else if (a == "--bridge-rounds")
+            o.bridge_rounds = std::strtoul(next(), nullptr, 10);
         else if (a == "--seed")
             o.seed = static_cast<unsigned>(std::strtoul(next(), nullptr, 10));
         else {
-            std::fprintf(stderr,
-                         "usage: %s --scans N [--points P] [--candidates K] [--voxel-mm V]\n"
-                         "  [--max-loaded M] [--link-correspondences C] [--spill DIR]\n"
-                         "  [--all-in-memory] [--list] [--max-failures F] [--seed S]\n",
-                         argv[0]);
+            std::fprintf(
+                stderr,
+                "usage: %s --scans N [--points P] [--candidates K] [--voxel-mm V]\n"
+                "  [--max-loaded M] [--link-correspondences C] [--spill DIR]\n"
+                "  [--all-in-memory] [--list] [--max-failures F] [--bridge-rounds R] [--seed S]\n",
+                argv[0]);
             return false;
         }
     }
@@ -199,6 +203,41 @@ Errors measure(const ScanRegistrationResult& r, const std::vector<View>& views,
     return e;
 }
 
+// What happened to the pair of windows a and b (input indices ia, ib): not a candidate,
+// no hypotheses, skipped, or the global status.
+std::string pair_state(const ScanRegistrationResult& r, std::size_t ia, std::size_t ib) {
+    const std::size_t s = std::max(ia, ib), t = std::min(ia, ib);
+    for (const PairOutcome& p : r.pairs) {
+        if (p.source != s || p.target != t) continue;
+        if (p.hypotheses == 0) return "no-hypotheses";
+        if (p.global_skipped) return "skipped";
+        return std::string(to_string(p.global_status)) + "(score " +
+               std::to_string(static_cast<int>(p.match_score)) + ")";
+    }
+    return "not-candidate";
+}
+
+// Prints, for every break of the chain (windows k and k+1 in different groups), what the
+// pairs across it gave, and counts the neighbour pairs by outcome.
+void report_chain(const ScanRegistrationResult& r, const std::vector<std::size_t>& position) {
+    std::size_t breaks = 0;
+    for (std::size_t k = 0; k + 1 < position.size(); ++k) {
+        const std::size_t a = position[k], b = position[k + 1];
+        if (r.scans[a].group == r.scans[b].group) continue;
+        ++breaks;
+        std::printf("break %zu|%zu (groups %d|%d): ", k, k + 1, r.scans[a].group, r.scans[b].group);
+        for (std::size_t lo = k > 0 ? k - 1 : 0; lo <= k; ++lo) {
+            for (std::size_t hi = k + 1; hi <= std::min(k + 2, position.size() - 1); ++hi) {
+                if (hi - lo > 2) continue;
+                std::printf("%zu-%zu %s  ", lo, hi,
+                            pair_state(r, position[lo], position[hi]).c_str());
+            }
+        }
+        std::printf("\n");
+    }
+    std::printf("chain breaks %zu\n", breaks);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -238,7 +277,8 @@ int main(int argc, char** argv) {
                                   .max_candidates_per_scan = o.candidates,
                                   .max_loaded_clouds = o.max_loaded,
                                   .max_failed_refinements_per_scan = o.max_failures,
-                                  .max_link_correspondences = o.link_correspondences};
+                                  .max_link_correspondences = o.link_correspondences,
+                                  .bridge_rounds = o.bridge_rounds};
     if (!o.in_memory) {
         config.spill_directory = o.spill.empty() ? std::filesystem::temp_directory_path() /
                                                        ("anascan-scale-" + std::to_string(getpid()))
@@ -254,21 +294,23 @@ int main(int argc, char** argv) {
         std::filesystem::remove(config.spill_directory, ignored);
     }
     const Errors e = measure(r, shuffled_views, position, o.list);
+    if (o.list) report_chain(r, position);
     const double total_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::printf("scans %zu, points %zu, candidates/scan %zu, voxel %.1f mm, %s\n", o.scans,
                 o.points, o.candidates, o.voxel_mm,
                 o.in_memory ? "all in memory" : "spilled to disk");
     std::printf(
-        "placed %zu of %zu, groups %zu, pairs matched %zu, verified %zu, links %zu "
-        "(%zu dropped), multiview %s\n",
-        r.placed_count, r.scans.size(), r.group_count, r.pairs.size(), r.verified_pair_count,
-        r.link_count, r.dropped_link_count, std::string(to_string(r.multiview_status)).c_str());
+        "placed %zu of %zu, groups %zu, pairs matched %zu (%zu by bridging), verified %zu, "
+        "links %zu (%zu dropped), multiview %s\n",
+        r.placed_count, r.scans.size(), r.group_count, r.pairs.size(), r.bridge_pair_count,
+        r.verified_pair_count, r.link_count, r.dropped_link_count,
+        std::string(to_string(r.multiview_status)).c_str());
     std::printf(
-        "stages s: prepare %.1f, features %.1f, matching %.1f, pairwise %.1f, "
+        "stages s: prepare %.1f, features %.1f, matching %.1f, pairwise %.1f, bridging %.1f, "
         "fine %.1f, multiview %.1f, register %.1f, total with generation %.1f\n",
         r.timings.prepare_s, r.timings.features_s, r.timings.matching_s, r.timings.pairwise_s,
-        r.timings.fine_s, r.timings.multiview_s, r.timings.total_s, total_s);
+        r.timings.bridging_s, r.timings.fine_s, r.timings.multiview_s, r.timings.total_s, total_s);
     std::printf(
         "error vs truth (reference %s): max %.4f deg, %.4f mm at the scan centroids; "
         "neighbours: max %.4f deg, %.4f mm\n",

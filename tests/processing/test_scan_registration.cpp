@@ -8,6 +8,8 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <limits>
 #include <random>
@@ -108,19 +110,26 @@ TEST(ScanRegistration, PlacesViewsAndReportsTheOthers) {
     EXPECT_GT(result.timings.total_s, 0.0);
 }
 
+/// `count` windows 0.08 m long, 0.024 m apart, along a strip of `bumps` random bumps (seed
+/// 3), each in a random frame (`seed`), named window0, window1, ...
+std::vector<SyntheticScan> strip_views(int count, int bumps, unsigned seed) {
+    std::mt19937 rng(seed);
+    const std::vector<Bump> strip = random_bumps(3, bumps);
+    std::vector<SyntheticScan> views;
+    for (int k = 0; k < count; ++k) {
+        const double x = -0.1 + 0.024 * k;
+        views.push_back(make_view(bumpy_window(strip, x, x + 0.08, 0.0002 * k), rng,
+                                  "window" + std::to_string(k)));
+    }
+    return views;
+}
+
 // The scale code paths on a small strip: pair pruning (2 candidates per scan) and the
 // out-of-core store (clouds and sites spilled, at most 2 in memory) place every window as
 // accurately as before, match fewer than all pairs, reload from disk and clean up.
 TEST(ScanRegistration, PrunedAndSpilledStripIsPlaced) {
-    std::mt19937 rng(5);
-    const std::vector<Bump> bumps = random_bumps(3, 60);
-    std::vector<SyntheticScan> views;
+    const std::vector<SyntheticScan> views = strip_views(6, 60, 5);
     std::vector<ScanInput> inputs;
-    for (int k = 0; k < 6; ++k) {
-        const double x = -0.1 + 0.024 * k;
-        views.push_back(make_view(bumpy_window(bumps, x, x + 0.08, 0.0002 * k), rng,
-                                  "window" + std::to_string(k)));
-    }
     for (int k : {3, 0, 5, 1, 4, 2}) inputs.push_back(views[std::size_t(k)].input);  // Shuffled.
     const std::filesystem::path spill =
         std::filesystem::temp_directory_path() / ("anascan_test_spill_" + std::to_string(getpid()));
@@ -147,6 +156,45 @@ TEST(ScanRegistration, PrunedAndSpilledStripIsPlaced) {
     }
     EXPECT_TRUE(!std::filesystem::exists(spill) || std::filesystem::is_empty(spill));
     std::filesystem::remove_all(spill);
+}
+
+// Bridging: with two candidates per scan the pruned pairs of a strip of eight windows leave
+// two groups; the bridging rounds join them (no pair of non-overlapping windows is
+// verified), every window is placed, within 0.5° and 1 mm of its neighbour.
+TEST(ScanRegistration, BridgingJoinsTheGroupsLeftByPruning) {
+    const std::vector<SyntheticScan> views = strip_views(8, 80, 11);
+    std::vector<ScanInput> inputs;
+    for (int k : {3, 6, 0, 5, 1, 7, 4, 2}) inputs.push_back(views[std::size_t(k)].input);
+    ScanRegistrationConfig config{.max_candidates_per_scan = 2, .max_link_correspondences = 200};
+    const ScanRegistrationResult pruned = register_scans(inputs, config, {});
+    config.bridge_rounds = 4;
+    const ScanRegistrationResult bridged = register_scans(inputs, config, {});
+    std::printf("pruned: placed %zu groups %zu; bridged: placed %zu groups %zu, %zu bridge pairs\n",
+                pruned.placed_count, pruned.group_count, bridged.placed_count, bridged.group_count,
+                bridged.bridge_pair_count);
+    EXPECT_GT(pruned.group_count, 1u);
+    EXPECT_EQ(bridged.placed_count, inputs.size());
+    EXPECT_GT(bridged.bridge_pair_count, 0u);
+    for (const PairOutcome& p : bridged.pairs) {
+        const int a = std::stoi(bridged.scans[p.source].name.substr(6));
+        const int b = std::stoi(bridged.scans[p.target].name.substr(6));
+        EXPECT_TRUE(std::abs(a - b) <= 3 || !p.verified) << a << " " << b;
+    }
+    // Between neighbouring windows (along the strip the error adds up: 0.6° at the far end
+    // of these small windows even with every pair matched).
+    std::vector<std::size_t> input_of(views.size());
+    for (std::size_t i = 0; i < bridged.scans.size(); ++i) {
+        input_of[std::size_t(std::stoi(bridged.scans[i].name.substr(6)))] = i;
+    }
+    for (std::size_t k = 0; k + 1 < views.size(); ++k) {
+        const ScanOutcome& a = bridged.scans[input_of[k]];
+        const ScanOutcome& b = bridged.scans[input_of[k + 1]];
+        const Pose truth = views[k + 1].T_object_scan.inverse() * views[k].T_object_scan;
+        const Pose estimate = b.T_world_scan.inverse() * a.T_world_scan;
+        const Eigen::Vector3d c = views[k].centroid_scan_m;
+        EXPECT_LT(pose_difference(estimate, truth).rotation_deg, 0.5) << a.name;
+        EXPECT_LT((estimate * c - truth * c).norm(), 0.001) << a.name;
+    }
 }
 
 /// A loader returning a fixed cloud.

@@ -8,7 +8,9 @@
 ///  3. matching: `match_features` for every pair (cheap: patches only);
 ///  4. pairwise: pairs in decreasing order of their best consensus score are refined and
 ///     verified (`register_global` minus the features) until their two scans are connected
-///     through verified pairs; pairs whose scans are already connected are skipped;
+///     through verified pairs; pairs whose scans are already connected are skipped; with
+///     pruning, bridging rounds then match the border scans of the groups left with their
+///     most similar scans of other groups;
 ///  5. pose graph: the verified pairs form a spanning forest giving initial poses;
 ///  6. links: every pair of a group whose bounding spheres meet under those poses is fine
 ///     registered from them, keeping its correspondences; a converged pair with enough
@@ -24,9 +26,10 @@
 /// Memory: each scan's loader is called exactly once, in input order, and the full cloud is
 /// released right after preparation; only the prepared clouds (down-sampled to
 /// `ScanRegistrationConfig::voxel_size_m` when that is positive) and their features are kept,
-/// or, with `spill_directory`, only the patches while clouds and sites wait on disk (at
-/// most `max_loaded_clouds` loaded). The multi-view stage needs only the stored
-/// correspondences. For thousands of scans see `max_candidates_per_scan` (pair pruning).
+/// or, with `spill_directory`, only a few figures per scan while clouds, sites, patches,
+/// pruning keys and matching results wait on disk (at most `max_loaded_clouds` clouds
+/// loaded). The multi-view stage needs only the stored correspondences. For thousands of
+/// scans see `max_candidates_per_scan` (pair pruning) and `bridge_rounds`.
 ///
 /// Thread safety: `register_scans` is reentrant; it calls `progress` from the calling
 /// thread only. Results do not depend on the number of threads.
@@ -86,24 +89,36 @@ struct ScanRegistrationConfig {
 
     // ---- Scale (thousands of scans; see docs/scan-registration.md "Scale") ----------------
     /// Pair pruning: 0 matches every pair (N(N-1)/2 matchings). Otherwise each scan is
-    /// matched only with the scans whose feature signature (a histogram of the distances
-    /// between its feature patches, per patch class) is among its `max_candidates_per_scan`
-    /// most similar; a pair is matched when either of its scans lists the other.
+    /// matched only with its `max_candidates_per_scan` most similar scans by shared
+    /// pose-invariant feature triangles (idf-weighted); a pair is matched when either of its
+    /// scans lists the other.
     std::size_t max_candidates_per_scan = 0;
     /// Out-of-core: when set, prepared clouds and feature sites are written to this
     /// directory (created when missing, files removed at the end) and reloaded on demand,
     /// at most `max_loaded_clouds` in memory; descriptors are kept on disk between the two
-    /// feature passes. Empty: everything stays in memory.
+    /// feature passes; patches, pruning keys and matching results wait there too. Empty:
+    /// everything stays in memory.
     std::filesystem::path spill_directory;
     std::size_t max_loaded_clouds = 8;  ///< Clouds and site sets held in memory when spilling.
     /// Sites pooled per scan for the saliency levels when spilling (evenly thinned).
     std::size_t max_level_sites_per_scan = 500;
+    /// ... and at most this many over all scans (fewer per scan beyond 100 scans), so that
+    /// the pooled sites do not grow with the number of scans.
+    std::size_t max_level_sites_total = 50000;
     /// Pairwise stage: a pair is not refined once one of its scans has failed this many
     /// refinements (0 = no limit). With pruning, a scan whose true partners failed would
     /// otherwise have all its remaining candidates refined, each failing slowly.
     std::size_t max_failed_refinements_per_scan = 0;
     /// Correspondences a multi-view link keeps (evenly thinned; 0 = all of them).
     std::size_t max_link_correspondences = 0;
+    /// Bridging (with pruning only): while the verified pairs leave several groups, up to
+    /// `bridge_rounds` rounds match and verify, for the `bridge_scans_per_group` scans of
+    /// each group with the fewest group members close by (its border under the spanning-tree
+    /// poses), their `bridge_partners_per_scan` most similar scans (pruning votes) of other
+    /// groups not matched yet. 0 rounds: off.
+    std::size_t bridge_rounds = 0;
+    std::size_t bridge_scans_per_group = 4;
+    std::size_t bridge_partners_per_scan = 2;
 };
 
 /// One scan's outcome.
@@ -158,6 +173,7 @@ struct ScanRegistrationTimings {
     double features_s = 0.0;    ///< Descriptors and patches of every scan.
     double matching_s = 0.0;    ///< Feature matching of every pair.
     double pairwise_s = 0.0;    ///< Refinement and verification of the pairs not skipped.
+    double bridging_s = 0.0;    ///< Matching and verification of the bridging rounds.
     double pose_graph_s = 0.0;  ///< Spanning tree and initial poses.
     double fine_s = 0.0;        ///< Final fine registrations (links).
     double multiview_s = 0.0;
@@ -166,12 +182,14 @@ struct ScanRegistrationTimings {
 
 struct ScanRegistrationResult {
     std::vector<ScanOutcome> scans;  ///< Input order.
-    /// Every pair, (1,0), (2,0), (2,1), ... (only the candidate pairs when pruned).
+    /// Every pair, (1,0), (2,0), (2,1), ... (only the candidate pairs when pruned, then the
+    /// bridging rounds' pairs).
     std::vector<PairOutcome> pairs;
     std::size_t reference_scan = 0;  ///< The world frame's scan (when any is placed).
     std::size_t placed_count = 0;
     std::size_t group_count = 0;  ///< Connected components among the loaded scans.
     std::size_t verified_pair_count = 0;
+    std::size_t bridge_pair_count = 0;  ///< Pairs added by the bridging rounds (at the end).
     std::size_t link_count = 0;
     std::size_t dropped_link_count = 0;
     /// Multi-view status of the largest group (converged when it has one scan).
