@@ -43,8 +43,6 @@ bool usable_link(const FineRegistrationResult& fine, const LiveRegistrationConfi
            fine.rms_m <= config.max_link_rms_voxel_factor * config.voxel_size_m;
 }
 
-bool active(const ScanEntry& e) { return e.registered && !e.excluded; }
-
 }  // namespace
 
 Eigen::Vector3d live::cloud_centroid(const PointCloud& cloud) {
@@ -62,7 +60,8 @@ std::size_t LiveRegistrar::State::make_links() {
     std::size_t added = 0;
     for (std::size_t s = 0; s < scans.size(); ++s) {
         for (std::size_t t = 0; t < s; ++t) {
-            if (!active(scans[s]) || !active(scans[t]) || scans[s].group != scans[t].group)
+            if (!live::active(scans[s]) || !live::active(scans[t]) ||
+                scans[s].group != scans[t].group)
                 continue;
             const Pose initial = scans[t].T_group_scan.inverse() * scans[s].T_group_scan;
             const auto tried = link_tried.find({t, s});
@@ -169,7 +168,7 @@ std::vector<PoseUpdate> LiveRegistrar::State::merge(int into, int from,
         if (e.group != from) continue;
         e.group = into;
         e.T_group_scan = orthonormalized(T_into_from * e.T_group_scan);
-        if (active(e))
+        if (live::active(e))
             updates.push_back({.seq = e.seq, .group = into, .T_group_scan = e.T_group_scan});
     }
     ++report.merges;
@@ -222,7 +221,7 @@ std::vector<PoseUpdate> LiveRegistrar::refine() {
     std::size_t described = 0;
     for (std::size_t i = 0; i < s.scans.size() && described < s.config.max_features_per_refine;
          ++i) {
-        if (!active(s.scans[i]) || s.scans[i].features) continue;
+        if (!live::active(s.scans[i]) || s.scans[i].features) continue;
         s.features(i);
         ++described;
     }

@@ -9,8 +9,6 @@
 namespace anascan::acquisition {
 namespace {
 
-bool active(const live::ScanEntry& e) { return e.registered && !e.excluded; }
-
 /// Entries a group must gain before a sequence merge with it is tried again.
 constexpr std::size_t kRetryAfterScans = 3;
 
@@ -24,7 +22,7 @@ std::vector<std::pair<std::string, Pose>> LiveRegistrar::State::sequence_priors(
          j += direction) {
         const live::ScanEntry& n = scans[static_cast<std::size_t>(j)];
         if (n.excluded) continue;
-        if (!active(n) || n.group != group || n.side != scans[i].side) break;
+        if (!live::active(n) || n.group != group || n.side != scans[i].side) break;
         neighbours.push_back(n.T_group_scan);
     }
     return live::motion_priors(neighbours);
@@ -32,12 +30,12 @@ std::vector<std::pair<std::string, Pose>> LiveRegistrar::State::sequence_priors(
 
 std::vector<PoseUpdate> LiveRegistrar::State::merge_by_sequence() {
     for (std::size_t i = 0; i < scans.size(); ++i) {
-        if (!active(scans[i])) continue;
+        if (!live::active(scans[i])) continue;
         for (const int direction : {+1, -1}) {
             const std::ptrdiff_t j = static_cast<std::ptrdiff_t>(i) + direction;
             if (j < 0 || j >= static_cast<std::ptrdiff_t>(scans.size())) continue;
             const live::ScanEntry& next = scans[static_cast<std::size_t>(j)];
-            if (!active(next) || next.group == scans[i].group || next.side != scans[i].side)
+            if (!live::active(next) || next.group == scans[i].group || next.side != scans[i].side)
                 continue;
             const int into = next.group;
             const std::size_t size = members(into).size();

@@ -34,6 +34,9 @@ struct ScanEntry {
     Pose T_group_scan = Pose::Identity();
 };
 
+/// Registered and not excluded: part of its group's model.
+inline bool active(const ScanEntry& e) { return e.registered && !e.excluded; }
+
 /// A multi-view link between two entries (indices into State::scans).
 struct Link {
     std::size_t target = 0, source = 0;

@@ -3,16 +3,16 @@
 #include <Eigen/Cholesky>
 #include <cmath>
 
+#include "multiview_refinement_steps.hpp"
+
 namespace anascan {
 namespace {
 
 using Vector6d = Eigen::Matrix<double, 6, 1>;
 using Matrix6d = Eigen::Matrix<double, 6, 6>;
 
-bool usable(const FineCorrespondence& c) {
-    return c.weight > 0.0 && std::isfinite(c.weight) && c.source_point_m.allFinite() &&
-           c.target_point_m.allFinite() && c.target_normal.allFinite();
-}
+// The multi-view solve's own rule: a correspondence it would ignore is not kept either.
+using multiview_detail::usable;
 
 /// Every k-th usable correspondence, k chosen so that at most `max_count` remain.
 std::vector<FineCorrespondence> evenly_spread(const std::vector<FineCorrespondence>& all,
