@@ -286,6 +286,7 @@ struct Scratch {
     std::vector<float> picked_d2;
     std::vector<std::uint32_t> picked_index;
     std::vector<std::int32_t> picked_rank;
+    std::vector<std::uint64_t> picked_key;
 };
 
 // The parts of the block that may hold a point within sqrt(bound_d2) of q: with the rows
@@ -319,6 +320,23 @@ void reachable_ranges(const CellGrid& grid, std::size_t cell, const Candidates& 
 void select_ranked(const Candidates& block, const std::vector<float>& d2, Scratch& scratch,
                    TopK& top) {
     const std::size_t n = scratch.picked.size();
+    if (knn_detail::have_avx2()) {
+        scratch.picked_key.assign(n + kGroup,
+                                  std::uint64_t(std::numeric_limits<std::int64_t>::max()));
+        scratch.picked_rank.resize(n + kGroup);
+        for (std::size_t c = 0; c < n; ++c) {
+            scratch.picked_key[c] =
+                TopK::pack(d2[scratch.picked[c]], block.indices[scratch.picked[c]]);
+        }
+        knn_detail::rank_keys_avx2(scratch.picked_key.data(), n, scratch.picked_rank.data());
+        top.clear(top.max_d2());
+        for (std::size_t c = 0; c < n; ++c) {
+            const auto rank = std::size_t(scratch.picked_rank[c]);
+            if (rank < top.capacity()) top.place_key(rank, scratch.picked_key[c]);
+        }
+        top.set_size(std::min(n, top.capacity()));
+        return;
+    }
     scratch.picked_d2.assign(n + kGroup, std::numeric_limits<float>::infinity());
     scratch.picked_index.assign(n + kGroup, std::numeric_limits<std::uint32_t>::max());
     scratch.picked_rank.resize(n + kGroup);

@@ -6,6 +6,10 @@
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#define ANASCAN_KNN_AVX2 1
+#endif
 
 namespace anascan::knn_detail {
 
@@ -77,5 +81,35 @@ void rank_all(const float* d2, const std::uint32_t* index, std::size_t n, std::i
     }
 #endif
 }
+
+bool have_avx2() {
+#if defined(ANASCAN_KNN_AVX2)
+    static const bool avx2 = __builtin_cpu_supports("avx2");
+    return avx2;
+#else
+    return false;
+#endif
+}
+
+#if defined(ANASCAN_KNN_AVX2)
+__attribute__((target("avx2"))) void rank_keys_avx2(const std::uint64_t* keys, std::size_t n,
+                                                    std::int32_t* rank) {
+    const auto* k = reinterpret_cast<const __m256i*>(keys);
+    for (std::size_t c = 0; c < n; ++c) {
+        // Keys are below 2^63 (distance bits of a non-negative float): signed compares.
+        const __m256i kc = _mm256_set1_epi64x(std::int64_t(keys[c]));
+        __m256i smaller = _mm256_setzero_si256();
+        for (std::size_t j = 0; j < n; j += kGroup) {  // A true lane is -1.
+            smaller = _mm256_sub_epi64(smaller,
+                                       _mm256_cmpgt_epi64(kc, _mm256_loadu_si256(k + j / kGroup)));
+        }
+        const __m128i half =
+            _mm_add_epi64(_mm256_castsi256_si128(smaller), _mm256_extracti128_si256(smaller, 1));
+        rank[c] = std::int32_t(_mm_cvtsi128_si64(half) + _mm_extract_epi64(half, 1));
+    }
+}
+#else
+void rank_keys_avx2(const std::uint64_t*, std::size_t, std::int32_t*) {}
+#endif
 
 }  // namespace anascan::knn_detail

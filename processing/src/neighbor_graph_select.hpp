@@ -66,6 +66,7 @@ public:
     }
     // Puts a pair at its known rank; set_size then ends the row.
     void place(std::size_t rank, float d2, std::uint32_t index) { keys_[rank] = pack(d2, index); }
+    void place_key(std::size_t rank, std::uint64_t key) { keys_[rank] = key; }
     void set_size(std::size_t size) {
         size_ = size;
         if (size_ == k_) {
@@ -76,10 +77,11 @@ public:
     float d2(std::size_t j) const { return d2_of(keys_[j]); }
     std::uint32_t index(std::size_t j) const { return std::uint32_t(keys_[j]); }
 
-private:
     static std::uint64_t pack(float d2, std::uint32_t index) {
         return std::uint64_t(std::bit_cast<std::uint32_t>(d2)) << 32 | index;
     }
+
+private:
     static float d2_of(std::uint64_t key) { return std::bit_cast<float>(std::uint32_t(key >> 32)); }
 
     std::size_t k_;
@@ -139,6 +141,15 @@ void scan_all(const Candidates& all, const Eigen::Vector3f& q, std::uint32_t sel
 // index, comes first), each pair compared once, four at a time: no branch depends on the
 // data. The arrays hold n + kGroup entries; the padding (+inf, ~0) ranks last.
 void rank_all(const float* d2, const std::uint32_t* index, std::size_t n, std::int32_t* rank);
+
+// Whether this CPU runs the AVX2 ranking below (checked once).
+bool have_avx2();
+
+// Same ranks for packed (distance bits << 32 | index) keys, each entry against all n (four
+// 64-bit compares at once, nothing scattered): the keys are unique, so the rank of an
+// entry is the number of smaller keys. Needs have_avx2(); keys hold n + kGroup entries,
+// the padding 2^63 - 1.
+void rank_keys_avx2(const std::uint64_t* keys, std::size_t n, std::int32_t* rank);
 
 // Hot, inlined into the query loop.
 // The lanes of the set bits of each 4-bit mask, in order (unused lanes: 0).
