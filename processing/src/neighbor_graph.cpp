@@ -235,6 +235,7 @@ void gather_block(const CellGrid& grid, std::size_t cell, int r, Candidates& blo
         }
         block.append(grid.sorted, base, grid.cell_begin[last + 1]);
     }
+    block.pad();
 }
 
 // Distance (metres) from sorted point s to the outside of the (2r+1)^3 block of cells
@@ -357,7 +358,7 @@ void select_ranked(const Candidates& block, const std::vector<float>& d2, Scratc
 // query's k-th distance, grown) filters candidates first; when fewer than k pass, the
 // block is scanned again without it, so the answer is the same either way.
 void scan_block(const CellGrid& grid, std::size_t cell, std::size_t s, float hint_d2,
-                const Candidates& block, Scratch& scratch, TopK& top) {
+                Candidates& block, Scratch& scratch, TopK& top) {
     const Eigen::Vector3f q = grid.position(s);
     const std::uint32_t self = grid.sorted.indices[s];
     const std::size_t self_pos = block.origin + (s - grid.cell_begin[cell]);
@@ -366,10 +367,12 @@ void scan_block(const CellGrid& grid, std::size_t cell, std::size_t s, float hin
     scratch.d2.resize(block.size() + kGroup);
     scratch.picked.resize(block.size() + kGroup);
     std::size_t picked = 0;
+    const float self_x = block.x[self_pos];
+    block.x[self_pos] = std::numeric_limits<float>::quiet_NaN();  // Never within any bound.
     for (const auto& [begin, end] : scratch.ranges) {
-        picked =
-            pick_range(block, begin, end, q, self_pos, bound, scratch.d2, scratch.picked, picked);
+        picked = pick_range(block, begin, end, q, bound, scratch.d2, scratch.picked, picked);
     }
+    block.x[self_pos] = self_x;
     scratch.picked.resize(picked);
     if (picked >= top.capacity() || bound >= top.max_d2()) {
         if (picked <= kMaxRanked * top.capacity()) {

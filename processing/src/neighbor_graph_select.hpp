@@ -118,6 +118,15 @@ struct Candidates {
         z.push_back(pz);
         indices.push_back(index);
     }
+    // Readable (NaN) entries past the last point, so that a group of four starting at
+    // any point can be loaded whole.
+    void pad() {
+        for (std::size_t j = 1; j < kGroup; ++j) {
+            x.push_back(std::numeric_limits<float>::quiet_NaN());
+            y.push_back(std::numeric_limits<float>::quiet_NaN());
+            z.push_back(std::numeric_limits<float>::quiet_NaN());
+        }
+    }
     void append(const Candidates& from, std::size_t begin, std::size_t end) {
         const auto b = std::ptrdiff_t(begin), e = std::ptrdiff_t(end);
         x.insert(x.end(), from.x.begin() + b, from.x.begin() + e);
@@ -180,41 +189,50 @@ inline std::size_t append_lanes(std::size_t start, unsigned mask,
     return n + ((0x4332322132212110ULL >> (4 * mask)) & 0xf);  // popcount(mask), no libcall.
 }
 
+#if defined(__SSE2__)
+// Squared distances from q to the four entries from j, stored at d2[j]; bit l of the
+// result set when entry j + l is within `bound`. Rounds as the scalar dx*dx + dy*dy + dz*dz.
+inline unsigned pick_group(const float* x, const float* y, const float* z, std::size_t j, __m128 qx,
+                           __m128 qy, __m128 qz, __m128 limit, float* d2) {
+    const __m128 dx = _mm_sub_ps(_mm_loadu_ps(x + j), qx);
+    const __m128 dy = _mm_sub_ps(_mm_loadu_ps(y + j), qy);
+    const __m128 dz = _mm_sub_ps(_mm_loadu_ps(z + j), qz);
+    const __m128 dist =
+        _mm_add_ps(_mm_add_ps(_mm_mul_ps(dx, dx), _mm_mul_ps(dy, dy)), _mm_mul_ps(dz, dz));
+    _mm_storeu_ps(d2 + j, dist);
+    return unsigned(_mm_movemask_ps(_mm_cmple_ps(dist, limit)));
+}
+#endif
+
 // Squared distances from q to the block's points [begin, end) into d2 (same places),
 // appending those within `bound` to `picked` from slot n, four at a time and without a
-// branch per group; the query's own entry (self_pos) is never picked. Returns the new
-// count. d2 and picked have room for end + kGroup.
+// branch per group. Returns the new count. d2 and picked have room for end + kGroup; the
+// block's x, y, z have kGroup - 1 readable entries past end (Candidates::pad). The caller
+// hides the query's own entry (a NaN coordinate: never within the bound).
 inline std::size_t pick_range(const Candidates& block, std::size_t begin, std::size_t end,
-                              const Eigen::Vector3f& q, std::size_t self_pos, float bound,
-                              std::vector<float>& d2, std::vector<std::uint32_t>& picked,
-                              std::size_t n) {
+                              const Eigen::Vector3f& q, float bound, std::vector<float>& d2,
+                              std::vector<std::uint32_t>& picked, std::size_t n) {
     const float *x = block.x.data(), *y = block.y.data(), *z = block.z.data();
     std::size_t j0 = begin;
 #if defined(__SSE2__)
     const __m128 qx = _mm_set1_ps(q.x()), qy = _mm_set1_ps(q.y()), qz = _mm_set1_ps(q.z());
     const __m128 limit = _mm_set1_ps(bound);
-    for (; j0 + kGroup <= end; j0 += kGroup) {  // Rounds as the scalar dx*dx + dy*dy + dz*dz.
-        const __m128 dx = _mm_sub_ps(_mm_loadu_ps(x + j0), qx);
-        const __m128 dy = _mm_sub_ps(_mm_loadu_ps(y + j0), qy);
-        const __m128 dz = _mm_sub_ps(_mm_loadu_ps(z + j0), qz);
-        const __m128 dist =
-            _mm_add_ps(_mm_add_ps(_mm_mul_ps(dx, dx), _mm_mul_ps(dy, dy)), _mm_mul_ps(dz, dz));
-        _mm_storeu_ps(&d2[j0], dist);
-        unsigned mask = unsigned(_mm_movemask_ps(_mm_cmple_ps(dist, limit)));
-        if (self_pos - j0 < kGroup) mask &= ~(1u << (self_pos - j0));
-        n = append_lanes(j0, mask, picked, n);
+    for (; j0 + kGroup <= end; j0 += kGroup) {
+        n = append_lanes(j0, pick_group(x, y, z, j0, qx, qy, qz, limit, d2.data()), picked, n);
     }
-#endif
-    for (; j0 < end; j0 += kGroup) {  // The last partial group (every group without SSE2).
+    if (j0 < end) {  // The last partial group reads into the padding or the next range.
+        const unsigned mask = pick_group(x, y, z, j0, qx, qy, qz, limit, d2.data());
+        n = append_lanes(j0, mask & (0xfu >> (kGroup - (end - j0))), picked, n);
+    }
+#else
+    for (; j0 < end; j0 += kGroup) {
         for (std::size_t j = j0; j < j0 + kGroup; ++j) {
-            const float dx = x[std::min(j, end - 1)] - q.x(), dy = y[std::min(j, end - 1)] - q.y(),
-                        dz = z[std::min(j, end - 1)] - q.z();
+            const float dx = x[j] - q.x(), dy = y[j] - q.y(), dz = z[j] - q.z();
             d2[j] = j < end ? dx * dx + dy * dy + dz * dz : std::numeric_limits<float>::quiet_NaN();
         }
-        unsigned mask = within_mask(&d2[j0], bound);
-        if (self_pos - j0 < kGroup) mask &= ~(1u << (self_pos - j0));
-        n = append_lanes(j0, mask, picked, n);
+        n = append_lanes(j0, within_mask(&d2[j0], bound), picked, n);
     }
+#endif
     return n;
 }
 
