@@ -321,35 +321,29 @@ void reachable_ranges(const CellGrid& grid, std::size_t cell, const Candidates& 
 void select_ranked(const Candidates& block, const std::vector<float>& d2, Scratch& scratch,
                    TopK& top) {
     const std::size_t n = scratch.picked.size();
-    if (knn_detail::have_avx2()) {
-        scratch.picked_key.assign(n + kGroup,
-                                  std::uint64_t(std::numeric_limits<std::int64_t>::max()));
-        scratch.picked_rank.resize(n + kGroup);
-        for (std::size_t c = 0; c < n; ++c) {
-            scratch.picked_key[c] =
-                TopK::pack(d2[scratch.picked[c]], block.indices[scratch.picked[c]]);
-        }
-        knn_detail::rank_keys_avx2(scratch.picked_key.data(), n, scratch.picked_rank.data());
-        top.clear(top.max_d2());
-        for (std::size_t c = 0; c < n; ++c) {
-            const auto rank = std::size_t(scratch.picked_rank[c]);
-            if (rank < top.capacity()) top.place_key(rank, scratch.picked_key[c]);
-        }
-        top.set_size(std::min(n, top.capacity()));
-        return;
-    }
-    scratch.picked_d2.assign(n + kGroup, std::numeric_limits<float>::infinity());
-    scratch.picked_index.assign(n + kGroup, std::numeric_limits<std::uint32_t>::max());
-    scratch.picked_rank.resize(n + kGroup);
+    scratch.picked_d2.assign(n + 2 * kGroup, std::numeric_limits<float>::infinity());
+    scratch.picked_index.assign(n + 2 * kGroup, std::numeric_limits<std::uint32_t>::max());
+    scratch.picked_rank.resize(n + 2 * kGroup);
     for (std::size_t c = 0; c < n; ++c) {
         scratch.picked_d2[c] = d2[scratch.picked[c]];
         scratch.picked_index[c] = block.indices[scratch.picked[c]];
     }
-    rank_all(scratch.picked_d2.data(), scratch.picked_index.data(), n, scratch.picked_rank.data());
+    std::int32_t* rank = scratch.picked_rank.data();
+    if (!knn_detail::have_avx2()) {
+        rank_all(scratch.picked_d2.data(), scratch.picked_index.data(), n, rank);
+    } else if (knn_detail::rank_distances_avx2(scratch.picked_d2.data(), n, rank) !=
+               n * (n - 1) / 2) {  // Equal distances: rank by (distance, index) keys.
+        scratch.picked_key.assign(n + kGroup,
+                                  std::uint64_t(std::numeric_limits<std::int64_t>::max()));
+        for (std::size_t c = 0; c < n; ++c) {
+            scratch.picked_key[c] = TopK::pack(scratch.picked_d2[c], scratch.picked_index[c]);
+        }
+        knn_detail::rank_keys_avx2(scratch.picked_key.data(), n, rank);
+    }
     top.clear(top.max_d2());
     for (std::size_t c = 0; c < n; ++c) {
-        const auto rank = std::size_t(scratch.picked_rank[c]);
-        if (rank < top.capacity()) top.place(rank, scratch.picked_d2[c], scratch.picked_index[c]);
+        const auto r = std::size_t(rank[c]);
+        if (r < top.capacity()) top.place(r, scratch.picked_d2[c], scratch.picked_index[c]);
     }
     top.set_size(std::min(n, top.capacity()));
 }

@@ -108,7 +108,30 @@ __attribute__((target("avx2"))) void rank_keys_avx2(const std::uint64_t* keys, s
         rank[c] = std::int32_t(_mm_cvtsi128_si64(half) + _mm_extract_epi64(half, 1));
     }
 }
+
+__attribute__((target("avx2"))) std::size_t rank_distances_avx2(const float* d2, std::size_t n,
+                                                                std::int32_t* rank) {
+    constexpr std::size_t kWide = 2 * kGroup;
+    std::size_t sum = 0;
+    for (std::size_t c = 0; c < n; ++c) {
+        const __m256 dc = _mm256_set1_ps(d2[c]);
+        __m256i smaller = _mm256_setzero_si256();
+        for (std::size_t j = 0; j < n; j += kWide) {  // A true lane is -1.
+            const __m256 dj = _mm256_loadu_ps(d2 + j);
+            smaller =
+                _mm256_sub_epi32(smaller, _mm256_castps_si256(_mm256_cmp_ps(dj, dc, _CMP_LT_OQ)));
+        }
+        __m128i half =
+            _mm_add_epi32(_mm256_castsi256_si128(smaller), _mm256_extracti128_si256(smaller, 1));
+        half = _mm_add_epi32(half, _mm_shuffle_epi32(half, 0x4e));
+        half = _mm_add_epi32(half, _mm_shuffle_epi32(half, 0xb1));
+        rank[c] = _mm_cvtsi128_si32(half);
+        sum += std::size_t(rank[c]);
+    }
+    return sum;
+}
 #else
+std::size_t rank_distances_avx2(const float*, std::size_t, std::int32_t*) { return 0; }
 void rank_keys_avx2(const std::uint64_t*, std::size_t, std::int32_t*) {}
 #endif
 

@@ -66,7 +66,6 @@ public:
     }
     // Puts a pair at its known rank; set_size then ends the row.
     void place(std::size_t rank, float d2, std::uint32_t index) { keys_[rank] = pack(d2, index); }
-    void place_key(std::size_t rank, std::uint64_t key) { keys_[rank] = key; }
     void set_size(std::size_t size) {
         size_ = size;
         if (size_ == k_) {
@@ -153,6 +152,12 @@ void rank_all(const float* d2, const std::uint32_t* index, std::size_t n, std::i
 
 // Whether this CPU runs the AVX2 ranking below (checked once).
 bool have_avx2();
+
+// Rank of each of the n distances by distance alone (the number of smaller ones), each
+// against all, eight at a time; returns the sum of the ranks, which is n (n - 1) / 2
+// exactly when no two distances are equal (then these are the ranks of rank_all). Needs
+// have_avx2(); d2 holds n + 2 kGroup entries, the padding +inf.
+std::size_t rank_distances_avx2(const float* d2, std::size_t n, std::int32_t* rank);
 
 // Same ranks for packed (distance bits << 32 | index) keys, each entry against all n (four
 // 64-bit compares at once, nothing scattered): the keys are unique, so the rank of an
