@@ -315,12 +315,12 @@ void reachable_ranges(const CellGrid& grid, std::size_t cell, const Candidates& 
     }
 }
 
-// Rank of each picked candidate among the picked (distance, then index), found by
-// comparing all pairs four at a time: no branch depends on the data. Ranks below k give
-// the sorted top k directly.
-void select_ranked(const Candidates& block, const std::vector<float>& d2, Scratch& scratch,
-                   TopK& top) {
-    const std::size_t n = scratch.picked.size();
+// Rank of each of the n picked candidates among them (distance, then index), found by
+// comparing all pairs (no branch depends on the data): with AVX2 each against all by
+// distance alone, eight at a time, and by packed keys only when two distances are equal;
+// else rank_all. Ranks below k give the sorted top k directly.
+void select_ranked(const Candidates& block, const std::vector<float>& d2, std::size_t n,
+                   Scratch& scratch, TopK& top) {
     scratch.picked_d2.assign(n + 2 * kGroup, std::numeric_limits<float>::infinity());
     scratch.picked_index.assign(n + 2 * kGroup, std::numeric_limits<std::uint32_t>::max());
     scratch.picked_rank.resize(n + 2 * kGroup);
@@ -358,8 +358,10 @@ void scan_block(const CellGrid& grid, std::size_t cell, std::size_t s, float hin
     const std::size_t self_pos = block.origin + (s - grid.cell_begin[cell]);
     const float bound = std::min(hint_d2, top.max_d2());
     reachable_ranges(grid, cell, block, q, bound, scratch.ranges);
-    scratch.d2.resize(block.size() + kGroup);
-    scratch.picked.resize(block.size() + kGroup);
+    if (scratch.d2.size() < block.size() + kGroup) {  // Grown only: no refill per query.
+        scratch.d2.resize(block.size() + kGroup);
+        scratch.picked.resize(block.size() + kGroup);
+    }
     std::size_t picked = 0;
     const float self_x = block.x[self_pos];
     block.x[self_pos] = std::numeric_limits<float>::quiet_NaN();  // Never within any bound.
@@ -367,10 +369,9 @@ void scan_block(const CellGrid& grid, std::size_t cell, std::size_t s, float hin
         picked = pick_range(block, begin, end, q, bound, scratch.d2, scratch.picked, picked);
     }
     block.x[self_pos] = self_x;
-    scratch.picked.resize(picked);
     if (picked >= top.capacity() || bound >= top.max_d2()) {
         if (picked <= kMaxRanked * top.capacity()) {
-            select_ranked(block, scratch.d2, scratch, top);
+            select_ranked(block, scratch.d2, picked, scratch, top);
             return;
         }
         top.clear(bound);
