@@ -321,12 +321,18 @@ void reachable_ranges(const CellGrid& grid, std::size_t cell, const Candidates& 
 // else rank_all. Ranks below k give the sorted top k directly.
 void select_ranked(const Candidates& block, const std::vector<float>& d2, std::size_t n,
                    Scratch& scratch, TopK& top) {
-    scratch.picked_d2.assign(n + 2 * kGroup, std::numeric_limits<float>::infinity());
-    scratch.picked_index.assign(n + 2 * kGroup, std::numeric_limits<std::uint32_t>::max());
-    scratch.picked_rank.resize(n + 2 * kGroup);
+    if (scratch.picked_d2.size() < n + 2 * kGroup) {  // Grown only.
+        scratch.picked_d2.resize(n + 2 * kGroup);
+        scratch.picked_index.resize(n + 2 * kGroup);
+        scratch.picked_rank.resize(n + 2 * kGroup);
+    }
     for (std::size_t c = 0; c < n; ++c) {
         scratch.picked_d2[c] = d2[scratch.picked[c]];
         scratch.picked_index[c] = block.indices[scratch.picked[c]];
+    }
+    for (std::size_t c = n; c < n + 2 * kGroup; ++c) {  // Padding: ranks last.
+        scratch.picked_d2[c] = std::numeric_limits<float>::infinity();
+        scratch.picked_index[c] = std::numeric_limits<std::uint32_t>::max();
     }
     std::int32_t* rank = scratch.picked_rank.data();
     if (!knn_detail::have_avx2()) {
