@@ -2,7 +2,8 @@
 /// \file
 /// Private selection primitives of the k-NN graph (neighbor_graph.cpp): candidate arrays,
 /// a top k of packed (distance, index) keys, and branch-free compaction and ranking of
-/// the candidates within a bound, four at a time with SSE2 where available.
+/// the candidates within a bound, four at a time with SSE2 where available; the ranking
+/// also has AVX2 versions, chosen at run time (have_avx2), that give the same ranks.
 
 #include <Eigen/Core>
 #include <algorithm>
