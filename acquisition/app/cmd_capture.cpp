@@ -5,6 +5,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <iostream>
 #include <mutex>
@@ -34,6 +35,7 @@ struct CaptureOptions {
     int sim_unplug_after = -1;
     runtime::ScannerSettings settings;  ///< Only the fields given on the command line.
     double reconnect_timeout_s = 10.0;
+    double operator_pause_s = 0.0;  ///< Simulated operator's walk between views.
 };
 
 /// `sim:structured-light` + `--scene small-block` → `sim:structured-light/small-block`.
@@ -108,6 +110,8 @@ void run_capture(const CaptureOptions& o) {
         if (runtime::tour_turns_over_before(tour, i))
             std::printf("the stone is turned over before view %d\n", i + 1);
         stopped = capture_view(**session, runtime::tour_request(tour, i), o.reconnect_timeout_s);
+        if (simulated && !stopped && i + 1 < o.views && o.operator_pause_s > 0.0)
+            std::this_thread::sleep_for(std::chrono::duration<double>(o.operator_pause_s));
     }
     spdlog::info("capture done; waiting for registration to catch up");
     (*session)->wait_until_idle();
@@ -147,6 +151,10 @@ void add_capture_command(CLI::App& app) {
     cmd->add_option("--reconnect-timeout-s", opts->reconnect_timeout_s,
                     "How long to wait for a device that went away, s (default 10)")
         ->check(CLI::Range(0.0, 3600.0));
+    cmd->add_option("--operator-pause-s", opts->operator_pause_s,
+                    "Simulated operator: seconds spent walking to the next view after each "
+                    "scan (default 0: back to back, the registration queue's worst case)")
+        ->check(CLI::Range(0.0, 600.0));
     cmd->add_option("--sim-unplug-after", opts->sim_unplug_after,
                     "Fault injection: the simulated device is unplugged during the capture "
                     "after this many")

@@ -153,11 +153,13 @@ void CaptureSession::Impl::record_decision(const SavedScan& saved, const LiveDec
 
 bool CaptureSession::Impl::refine_in_background() {
     if (!refine_due) return false;
-    const std::vector<PoseUpdate> updates = registrar.refine();
+    // A scan waiting to be registered interrupts the round (it goes on after that scan).
+    const std::vector<PoseUpdate> updates =
+        registrar.refine([this] { return to_register.size() > 0; });
     const LiveRefineReport& report = registrar.last_refine_report();
     // refine() works to a budget per call: call again while it still finds work.
-    const bool more =
-        !updates.empty() || report.new_links > 0 || report.merges > 0 || report.merge_attempts > 0;
+    const bool more = !updates.empty() || report.new_links > 0 || report.merges > 0 ||
+                      report.merge_attempts > 0 || report.interrupted;
     refine_due = more;
     if (updates.empty()) return more;
     std::vector<std::pair<std::int64_t, PoseInGroup>> poses;

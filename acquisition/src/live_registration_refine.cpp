@@ -70,6 +70,7 @@ std::size_t LiveRegistrar::State::make_links() {
                                   config.link_retry_deg, config.link_retry_m)) {
                 continue;
             }
+            if (interrupted()) return added;  // Not marked tried: the next call does it.
             link_tried[{t, s}] = initial;
             // A link computed from other poses is replaced by the new attempt (or dropped).
             std::erase_if(links,
@@ -208,25 +209,30 @@ std::vector<PoseUpdate> LiveRegistrar::State::merge_groups() {
     return {};
 }
 
-std::vector<PoseUpdate> LiveRegistrar::refine() {
+std::vector<PoseUpdate> LiveRegistrar::refine(const std::function<bool()>& interrupt) {
     const Clock::time_point start = Clock::now();
     State& s = *state_;
     s.report = {};
+    s.interrupt = interrupt;
     std::map<std::int64_t, PoseUpdate> changed;
     for (const PoseUpdate& u : s.merge_by_sequence()) changed[u.seq] = u;
-    if (s.report.merges == 0)
+    if (s.report.merges == 0 && !s.interrupted())
         for (const PoseUpdate& u : s.merge_whole_groups()) changed[u.seq] = u;
-    if (s.report.merges == 0)
+    if (s.report.merges == 0 && !s.interrupted())
         for (const PoseUpdate& u : s.merge_groups()) changed[u.seq] = u;
     std::size_t described = 0;
-    for (std::size_t i = 0; i < s.scans.size() && described < s.config.max_features_per_refine;
+    for (std::size_t i = 0;
+         i < s.scans.size() && described < s.config.max_features_per_refine && !s.interrupted();
          ++i) {
         if (!live::active(s.scans[i]) || s.scans[i].features) continue;
         s.features(i);
         ++described;
     }
-    s.report.new_links = s.make_links();
-    for (const PoseUpdate& u : s.refine_groups()) changed[u.seq] = u;
+    if (!s.interrupted()) s.report.new_links = s.make_links();
+    // An interrupted round leaves the solve to the next call: the new scan comes first.
+    if (!s.interrupted())
+        for (const PoseUpdate& u : s.refine_groups()) changed[u.seq] = u;
+    s.interrupt = {};
     s.report.time_s = live::seconds_since(start);
     std::vector<PoseUpdate> out;
     for (const auto& [seq, u] : changed) out.push_back(u);

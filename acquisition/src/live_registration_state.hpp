@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -111,6 +112,12 @@ struct LiveRegistrar::State {
     /// when the poses moved (see LiveRegistrationConfig::link_retry_m).
     std::map<std::pair<std::size_t, std::size_t>, Pose> link_tried;
     LiveRefineReport report;
+    std::function<bool()> interrupt;  ///< Set during refine(); see LiveRegistrar::refine.
+    /// True (and noted in the report) when refine() should stop: a new scan is waiting.
+    bool interrupted() {
+        if (!report.interrupted && interrupt && interrupt()) report.interrupted = true;
+        return report.interrupted;
+    }
     std::vector<double> link_rms_m;      ///< RMS of every multi-view link (the session's noise).
     std::vector<double> accepted_rms_m;  ///< Of every accepted add() decision.
     std::vector<double> accepted_normal_deviation;  ///< Degrees, same.

@@ -185,12 +185,14 @@ Accumulation match_chunk(const Samples& samples, const TargetView& target,
                          std::size_t end, std::span<Match> matches) {
     Accumulation acc;
     const double gate_sq = settings.gate_m * settings.gate_m;
+    // A hair above the bound, so float rounding never drops a match the double gate keeps.
+    const auto bound_m = static_cast<float>(settings.search_bound_m * 1.001);
     for (std::size_t i = begin; i < end; ++i) {
         Match& match = matches[i];
         match = Match{};
         const Eigen::Vector3d x = frame.R * samples.points[i].cast<double>() + frame.t;
         Neighbor nb;
-        if (!target.tree->nearest(x.cast<float>(), nb)) continue;
+        if (!target.tree->nearest_within(x.cast<float>(), bound_m, nb)) continue;
         const Eigen::Vector3d n_target = target.normals[nb.index].cast<double>();
         if (!n_target.allFinite()) continue;
         const Eigen::Vector3d n = plane_normal(samples, i, frame, n_target, settings);
@@ -221,8 +223,13 @@ Samples sample_spread(const PointCloud& source, std::size_t count) {
 
 MatchSettings match_settings(const FineRegistrationConfig& config, double gate_m, bool symmetric) {
     const double cos_limit = std::cos(config.max_normal_angle_deg * std::numbers::pi / 180.0);
-    return {gate_m,    config.robust_kernel, config.robust_width_fraction * gate_m,
-            cos_limit, config.chunk_size,    symmetric};
+    return {.gate_m = gate_m,
+            .search_bound_m = std::max(gate_m, config.overlap_distance_m),
+            .kernel = config.robust_kernel,
+            .kernel_width_m = config.robust_width_fraction * gate_m,
+            .min_normal_cos = cos_limit,
+            .chunk_size = config.chunk_size,
+            .symmetric = symmetric};
 }
 
 Accumulation& Accumulation::operator+=(const Accumulation& other) {

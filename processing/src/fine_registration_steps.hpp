@@ -57,6 +57,9 @@ struct Match {
 /// What the correspondence pass needs besides the pose.
 struct MatchSettings {
     double gate_m = 0.0;  ///< Correspondence gate on the point distance.
+    /// Matches farther than this are not searched for (at least the gate, and the
+    /// overlap distance the rating counts within).
+    double search_bound_m = 0.0;
     RobustKernel kernel = RobustKernel::kTukey;
     double kernel_width_m = 0.0;
     double min_normal_cos = -1.0;  ///< Used only when the samples have normals.

@@ -28,6 +28,31 @@ using NanoflannTree =
     nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, PointsAdaptor>,
                                         PointsAdaptor, 3, std::uint32_t>;
 
+// nanoflann's result set for one neighbour that starts with a bound instead of infinity, so
+// the search prunes every branch beyond it. Visits the same nodes in the same order as
+// KNNResultSet(1) until then, so ties resolve alike.
+class BoundedNearest {
+public:
+    explicit BoundedNearest(float bound_sq) : worst_(bound_sq) {}
+    std::size_t size() const { return found_ ? 1 : 0; }
+    bool full() const { return true; }
+    bool addPoint(float distance_sq, std::uint32_t index) {
+        if (distance_sq < worst_) {
+            worst_ = distance_sq;
+            index_ = index;
+            found_ = true;
+        }
+        return true;
+    }
+    float worstDist() const { return worst_; }
+    std::uint32_t index() const { return index_; }
+
+private:
+    float worst_;
+    std::uint32_t index_ = 0;
+    bool found_ = false;
+};
+
 // Closest first; equal distances by index, so results are deterministic.
 void sort_closest_first(std::vector<Neighbor>& out) {
     std::sort(out.begin(), out.end(), [](const Neighbor& a, const Neighbor& b) {
@@ -72,6 +97,18 @@ bool KdTree::nearest(const Eigen::Vector3f& query, Neighbor& out) const {
     impl_->tree.findNeighbors(result, query.data(), nanoflann::SearchParams());
     if (result.size() == 0) return false;
     out = Neighbor{index, distance_sq};
+    return true;
+}
+
+bool KdTree::nearest_within(const Eigen::Vector3f& query, float max_distance_m,
+                            Neighbor& out) const {
+    if (size() == 0 || !(max_distance_m >= 0.0f)) return false;
+    // Points strictly below the bound are taken; the next float makes it inclusive.
+    BoundedNearest result(
+        std::nextafter(max_distance_m * max_distance_m, std::numeric_limits<float>::infinity()));
+    impl_->tree.findNeighbors(result, query.data(), nanoflann::SearchParams());
+    if (result.size() == 0) return false;
+    out = Neighbor{result.index(), result.worstDist()};
     return true;
 }
 

@@ -193,6 +193,42 @@ TEST_F(LiveRegistrationWalk, ScansAfterAGapPlaceTheScanBeforeItByTheCaptureOrder
     }
 }
 
+TEST_F(LiveRegistrationWalk, ARefineRoundStopsForANewScanAndGoesOnAfterIt) {
+    const auto three_scans = [&] {
+        auto r = std::make_unique<LiveRegistrar>(quick_config());
+        for (std::int64_t seq = 1; seq <= 3; ++seq)
+            EXPECT_TRUE(r->add({.seq = seq, .cloud = (*scans_)[seq - 1].cloud}).registered);
+        return r;
+    };
+    const std::unique_ptr<LiveRegistrar> undisturbed = three_scans();
+    undisturbed->refine();
+    const std::size_t all_links = undisturbed->last_refine_report().new_links;
+    ASSERT_GE(all_links, 2u);
+
+    const std::unique_ptr<LiveRegistrar> r = three_scans();
+    // A new scan waiting from the start: no link, no solve.
+    EXPECT_TRUE(r->refine([] { return true; }).empty());
+    EXPECT_TRUE(r->last_refine_report().interrupted);
+    EXPECT_EQ(r->last_refine_report().new_links, 0u);
+    // Rounds interrupted after ever more of their questions keep what they did; together
+    // they make the links of one undisturbed round, and the first round left alone solves.
+    std::size_t links = 0;
+    bool partial = false;
+    for (int n = 1; n < 50; ++n) {
+        r->refine([n, asked = 0]() mutable { return ++asked > n; });
+        const LiveRefineReport& report = r->last_refine_report();
+        links += report.new_links;
+        partial = partial || (report.interrupted && report.new_links > 0);
+        if (!report.interrupted) {
+            EXPECT_EQ(report.groups_refined, 1u);
+            break;
+        }
+        EXPECT_EQ(report.groups_refined, 0u);
+    }
+    EXPECT_TRUE(partial);
+    EXPECT_EQ(links, all_links);
+}
+
 TEST(LiveRegistration, UnusableScansAreReportedAndNotPlaced) {
     LiveRegistrar registrar;
     const LiveDecision empty = registrar.add({.seq = 1});

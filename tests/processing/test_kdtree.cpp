@@ -57,6 +57,29 @@ TEST_F(KdTreeRandom, NearestMatchesBruteForce) {
     }
 }
 
+TEST_F(KdTreeRandom, NearestWithinABoundIsTheNearestOrNothing) {
+    // Bounds below, around and above the typical nearest distance (~0.05 for 2000 points).
+    for (const float bound : {0.0f, 0.02f, 0.05f, 0.1f, 3.5f}) {
+        std::size_t found = 0;
+        for (const Eigen::Vector3f& q : queries_) {
+            const Neighbor expected = brute_force(points_, q).front();
+            Neighbor nn;
+            const bool within = tree_.nearest_within(q, bound, nn);
+            EXPECT_EQ(within, expected.distance_sq_m2 <= bound * bound) << "bound " << bound;
+            if (!within) continue;
+            ++found;
+            EXPECT_EQ(nn.index, expected.index);
+            EXPECT_FLOAT_EQ(nn.distance_sq_m2, expected.distance_sq_m2);
+        }
+        if (bound == 3.5f) {
+            EXPECT_EQ(found, queries_.size());
+        }
+    }
+    Neighbor nn;
+    EXPECT_FALSE(tree_.nearest_within(queries_[0], -1.0f, nn));
+    EXPECT_FALSE(KdTree(std::vector<Eigen::Vector3f>{}).nearest_within({0, 0, 0}, 1.0f, nn));
+}
+
 TEST_F(KdTreeRandom, KnnMatchesBruteForceForSeveralK) {
     std::vector<Neighbor> got;
     for (std::size_t k : {1u, 2u, 5u, 16u, 33u, 100u}) {

@@ -36,6 +36,7 @@
 #include <Eigen/Core>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -224,6 +225,8 @@ struct LiveRefineReport {
     std::size_t groups_refined = 0;
     std::size_t merges = 0;
     std::size_t merge_attempts = 0;  ///< Whole-group global registrations tried.
+    /// The call stopped early because a new scan was waiting; the next call goes on.
+    bool interrupted = false;
     double time_s = 0.0;
 };
 
@@ -252,8 +255,10 @@ public:
     /// for a scan not added before.
     LiveDecision reregister(LiveScanInput scan);
     /// Background work: links, multi-view refinement, group merges. Returns the changed
-    /// poses (`last_refine_report` has the figures).
-    std::vector<PoseUpdate> refine();
+    /// poses (`last_refine_report` has the figures). `interrupt` is asked between links and
+    /// between merge steps: once it says true the call returns what it has done, so a new
+    /// scan waits for one link or merge attempt, not the whole round.
+    std::vector<PoseUpdate> refine(const std::function<bool()>& interrupt = {});
     /// Takes a scan out of the model (excluded = true) or back in; unknown seqs are ignored.
     void exclude(std::int64_t seq, bool excluded);
 

@@ -41,6 +41,11 @@ public:
     /// The nearest point; `false` when the tree is empty.
     bool nearest(const Eigen::Vector3f& query, Neighbor& out) const;
 
+    /// The nearest point at most `max_distance_m` away (inclusive); `false` when there is
+    /// none. The same point as `nearest` when it lies within the bound, found without
+    /// visiting the branches beyond it: ICP correspondences past their gate cost little.
+    bool nearest_within(const Eigen::Vector3f& query, float max_distance_m, Neighbor& out) const;
+
     /// Up to k nearest points, closest first (fewer when the tree holds fewer than k).
     void knn(const Eigen::Vector3f& query, std::size_t k, std::vector<Neighbor>& out) const;
 
