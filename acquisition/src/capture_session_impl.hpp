@@ -70,7 +70,12 @@ struct CaptureSession::Impl {
     /// Stores a decision of the registrar and reports it.
     void record_decision(const SavedScan& saved, const LiveDecision& decision);
     /// One refine() call; true when it still found work (call again).
-    bool refine_in_background();
+    /// One refine() round; `interruptible`: it stops early for a waiting scan.
+    bool refine_in_background(bool interruptible = true);
+    /// After a scan of a reopened session: the background work a live session would have
+    /// done before the next scan, so a replay decides like the capture did (the session's
+    /// RMS gate comes from the links; without them look-alikes pass).
+    void settle_after_replayed_scan();
     void update_coverage();
     void queue_for_registration(SavedScan saved);
     void requeue_session_scans();

@@ -76,6 +76,7 @@ void CaptureSession::Impl::registration_loop() {
             } else {
                 register_one(*item);
                 if (item->scan) --registration_items_with_points;
+                if (item->resumed && !item->reregister) settle_after_replayed_scan();
             }
             refine_due = coverage_due = true;
             if (!background) begin_work();
@@ -151,11 +152,16 @@ void CaptureSession::Impl::record_decision(const SavedScan& saved, const LiveDec
     refine_due = coverage_due = true;
 }
 
-bool CaptureSession::Impl::refine_in_background() {
+void CaptureSession::Impl::settle_after_replayed_scan() {
+    for (int step = 0; step < config.max_background_steps && refine_in_background(false); ++step) {
+    }
+}
+
+bool CaptureSession::Impl::refine_in_background(bool interruptible) {
     if (!refine_due) return false;
     // A scan waiting to be registered interrupts the round (it goes on after that scan).
     const std::vector<PoseUpdate> updates =
-        registrar.refine([this] { return to_register.size() > 0; });
+        registrar.refine([this, interruptible] { return interruptible && to_register.size() > 0; });
     const LiveRefineReport& report = registrar.last_refine_report();
     // refine() works to a budget per call: call again while it still finds work.
     const bool more = !updates.empty() || report.new_links > 0 || report.merges > 0 ||

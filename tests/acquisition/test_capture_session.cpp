@@ -4,11 +4,13 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <mutex>
 
 #include "anascan/acquisition/capture_session.hpp"
 #include "anascan/sim/scanning_tour.hpp"
+#include "live_session_sim.hpp"
 #include "sim_devices_fixture.hpp"
 
 namespace anascan::acquisition {
@@ -79,6 +81,49 @@ TEST_F(CaptureSessionTest, ScansAreAcknowledgedInOrderAndEachIsDecided) {
     EXPECT_EQ(count(SessionEventKind::kRegistered) + count(SessionEventKind::kRegistrationFailed),
               3u);
     EXPECT_EQ(opened, 1);
+}
+
+TEST_F(CaptureSessionTest, AReopenedSessionRefinesBetweenItsScansAsTheCaptureDid) {
+    {
+        // Three ray-cast views 12° apart, saved as a capture would have saved them.
+        sim::SceneConfig config = sim::named_scene("small-block").value();
+        config.block.grid_step_m = 0.003;
+        config.with_tent = false;
+        const sim::Scene scene = sim::make_scene(config);
+        const sim::RayCaster caster = sim::RayCaster::create(scene.mesh).value();
+        auto store = SessionStore::open(dir_, SessionOpenMode::kCreateOrOpen);
+        ASSERT_TRUE(store) << store.error().message;
+        for (int k = 0; k < 3; ++k) {
+            Scan scan;
+            scan.meta.device_id = "sim:test#0";
+            scan.meta.device_kind = DeviceKind::kStructuredLight;
+            scan.meta.sensor_origin_scan_m = Eigen::Vector3d::Zero();
+            scan.meta.time = std::chrono::system_clock::now();
+            const sim::Viewpoint view{
+                .azimuth_deg = 30.0 + 12.0 * k, .elevation_deg = 35.0, .distance_m = 1.1};
+            scan.cloud = anascan::testing::pinhole_scan(
+                caster, sim::sensor_looking_at(anascan::testing::aim_point(scene), view),
+                {.width_px = 300, .height_px = 225, .focal_px = 510.0},
+                static_cast<std::uint32_t>(k + 1));
+            ASSERT_TRUE((*store)->save_scan(scan, std::nullopt));
+        }
+    }
+    // Reopened, the three scans are registered again from the store, all queued at once. The
+    // background work runs after each of them, as it did between live captures: the links
+    // (and the session's RMS gate) exist before the next scan is decided.
+    auto session = start({.coverage_live = false});
+    session->wait_until_idle();
+    std::lock_guard lock(mutex_);
+    std::vector<SessionEventKind> kinds;
+    for (const SessionEvent& e : events_)
+        if (e.kind == SessionEventKind::kRegistered || e.kind == SessionEventKind::kPosesRefined)
+            kinds.push_back(e.kind);
+    ASSERT_EQ(std::count(kinds.begin(), kinds.end(), SessionEventKind::kRegistered), 3);
+    const auto last_registered =
+        std::find(kinds.rbegin(), kinds.rend(), SessionEventKind::kRegistered);
+    EXPECT_NE(std::find(last_registered, kinds.rend(), SessionEventKind::kPosesRefined),
+              kinds.rend())
+        << "no refinement before the last scan was registered";
 }
 
 TEST_F(CaptureSessionTest, AScanCanBeRegisteredAgainButNotAnUnknownOrExcludedOne) {
