@@ -8,7 +8,9 @@
 ///  3. matching: `match_features` for every pair (cheap: patches only);
 ///  4. pairwise: pairs in decreasing order of their best consensus score are refined and
 ///     verified (`register_global` minus the features) until their two scans are connected
-///     through verified pairs; pairs whose scans are already connected are skipped; with
+///     through verified pairs; pairs whose scans are already connected are skipped; then
+///     verified pairs above the session RMS gate are dropped and the skipped pairs refined
+///     under it (`session_rms_gate_factor`); with
 ///     pruning, bridging rounds then match the border scans of the groups left with their
 ///     most similar scans of other groups;
 ///  5. pose graph: the verified pairs form a spanning forest giving initial poses;
