@@ -38,9 +38,8 @@ std::string conf_name(const std::string& scan, const std::string& conf) {
 }
 
 std::size_t refined_pair_count(const ScanRegistrationResult& r) {
-    return static_cast<std::size_t>(
-        std::count_if(r.pairs.begin(), r.pairs.end(),
-                      [](const auto& p) { return p.hypotheses > 0 && !p.global_skipped; }));
+    return static_cast<std::size_t>(std::count_if(r.pairs.begin(), r.pairs.end(),
+                                                  [](const auto& p) { return p.global_refined; }));
 }
 
 void print_result(const ScanRegistrationResult& r) {
@@ -60,6 +59,10 @@ void print_result(const ScanRegistrationResult& r) {
         r.placed_count, r.scans.size(), r.group_count, r.verified_pair_count, r.pairs.size(),
         refined_pair_count(r), r.link_count, r.dropped_link_count,
         std::string(to_string(r.multiview_status)).c_str());
+    if (std::isfinite(r.session_rms_gate_m)) {
+        std::printf("session RMS gate %.3f mm: %zu verified pairs above it not used\n",
+                    r.session_rms_gate_m * 1e3, r.gated_pair_count);
+    }
     std::printf(
         "time: prepare %.2f s, features %.2f s, matching %.2f s, pairwise %.2f s, pose graph "
         "%.3f s, fine %.2f s, multi-view %.2f s, total %.2f s\n",
@@ -86,6 +89,14 @@ nlohmann::json fine_summary(const ScanRegistrationResult& r) {
             {"overlap", overlap / n}};
 }
 
+/// 4x4 row-major.
+nlohmann::json matrix_json(const Pose& T) {
+    nlohmann::json rows = nlohmann::json::array();
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j) rows.push_back(T.matrix()(i, j));
+    return rows;
+}
+
 nlohmann::json pair_json(const ScanRegistrationResult& r, const PairOutcome& p) {
     return {{"source", r.scans[p.source].name},
             {"target", r.scans[p.target].name},
@@ -94,9 +105,12 @@ nlohmann::json pair_json(const ScanRegistrationResult& r, const PairOutcome& p) 
             {"global_skipped", p.global_skipped},
             {"global_status", p.global_skipped ? std::string("skipped (already connected)")
                                                : std::string(to_string(p.global_status))},
+            {"global_refined", p.global_refined},
             {"verified", p.verified},
+            {"above_rms_gate", p.above_rms_gate},
             {"in_tree", p.in_tree},
             {"weight", p.weight},
+            {"T_target_source", matrix_json(p.T_target_source)},
             {"global_rms_m", p.global_rms_m},
             {"global_overlap", p.global_overlap_fraction},
             {"global_time_s", p.global_time_s},
@@ -134,6 +148,9 @@ std::string stats_json(const ScanRegistrationResult& r) {
                                   {"total", t.total_s}}},
                                 {"fine", fine_summary(r)},
                                 {"multiview_status", std::string(to_string(r.multiview_status))},
+                                {"session_rms_gate_m", std::isfinite(r.session_rms_gate_m)
+                                                           ? nlohmann::json(r.session_rms_gate_m)
+                                                           : nlohmann::json(nullptr)},
                                 {"pairs", pairs},
                                 {"scans", scans}};
     return doc.dump(2) + "\n";

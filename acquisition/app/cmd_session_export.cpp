@@ -1,5 +1,6 @@
 // anascan session export DIR --out MODEL.ply: the registered scans merged in their group's
-// frame, optionally with their poses as a Stanford .conf.
+// frame, optionally with their poses as a Stanford .conf; --truth-poses writes the
+// simulator's true poses of a simulated session as a .conf (for `anascan eval`).
 #include <spdlog/spdlog.h>
 
 #include <cstdio>
@@ -22,6 +23,7 @@ struct ExportOptions {
     std::string dir;
     std::string out;
     std::string poses;
+    std::string truth_poses;
     double voxel_mm = 0.0;
     bool include_failed = false;
     std::optional<int> group;
@@ -64,7 +66,7 @@ std::vector<io::ConfEntry> select_scans(const std::vector<ScanRecord>& scans, in
 }
 
 void write_poses(const fs::path& conf_path, const fs::path& dir,
-                 const std::vector<io::ConfEntry>& entries) {
+                 const std::vector<io::ConfEntry>& entries, const char* what = "poses") {
     const fs::path conf_dir = fs::absolute(conf_path).parent_path();
     io::StanfordConf conf;
     for (const io::ConfEntry& e : entries) {
@@ -78,10 +80,31 @@ void write_poses(const fs::path& conf_path, const fs::path& dir,
         conf.entries.push_back({name, e.T_world_scan});
     }
     if (auto ok = io::write_conf(conf_path, conf); !ok) fail_command(ok.error());
-    std::printf("poses: %s (%zu scans)\n", conf_path.c_str(), conf.entries.size());
+    std::printf("%s: %s (%zu scans)\n", what, conf_path.c_str(), conf.entries.size());
+}
+
+/// Every scan file with a true pose (simulated sessions), excluded or not: the files
+/// `anascan register DIR/scans/*.ply` would read.
+void write_truth_poses(const ExportOptions& o) {
+    auto store = open_session(o.dir, acquisition::SessionOpenMode::kReadOnly);
+    auto scans = store->scans();
+    if (!scans) fail_command(scans.error());
+    std::vector<io::ConfEntry> entries;
+    for (const ScanRecord& r : *scans) {
+        if (r.true_pose) entries.push_back({r.file, *r.true_pose});
+    }
+    if (entries.empty()) {
+        throw CommandFailed(o.dir + ": no scan has a true pose (only simulated sessions have)");
+    }
+    write_poses(o.truth_poses, o.dir, entries, "true poses");
 }
 
 void run_export(const ExportOptions& o) {
+    if (o.out.empty() && o.truth_poses.empty()) {
+        throw CommandFailed("session export: give --out MODEL.ply and/or --truth-poses TRUTH.conf");
+    }
+    if (!o.truth_poses.empty()) write_truth_poses(o);
+    if (o.out.empty()) return;
     auto store = open_session(o.dir, acquisition::SessionOpenMode::kReadOnly);
     auto scans = store->scans();
     if (!scans) fail_command(scans.error());
@@ -115,9 +138,13 @@ void add_session_export_command(CLI::App& session) {
         "Merge the registered, non-excluded scans of a session (placed by their poses, in the "
         "frame of their group) into one model");
     cmd->add_option("dir", o->dir, "Session folder")->required();
-    cmd->add_option("--out", o->out, "Merged model (.ply)")->required();
+    cmd->add_option("--out", o->out, "Merged model (.ply)");
     cmd->add_option("--poses", o->poses,
                     "Also write the poses as a Stanford .conf (scan files named relative to it)");
+    cmd->add_option("--truth-poses", o->truth_poses,
+                    "Write the simulator's true poses of every scan as a Stanford .conf "
+                    "(scan files named relative to it, as `anascan register` names them; "
+                    "simulated sessions only), for `anascan eval`");
     cmd->add_option("--voxel-mm", o->voxel_mm, "Down-sample the model to this voxel size, mm")
         ->check(CLI::NonNegativeNumber);
     cmd->add_option("--group", o->group, "Export this registration group (default: the largest)");

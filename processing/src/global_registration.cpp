@@ -121,15 +121,30 @@ void refine_hypotheses(const PointCloud& source, const PointCloud& target,
     }
 }
 
-/// Best verified outcome by overlap; success unless a distinct pose comes close.
+/// Verified poses whose overlap reaches ambiguity_overlap_ratio of the largest verified one.
+std::vector<bool> contenders(const GlobalRegistrationConfig& config,
+                             const std::vector<HypothesisOutcome>& hypotheses) {
+    double max_overlap = 0.0;
+    for (const HypothesisOutcome& h : hypotheses) {
+        if (h.verified) max_overlap = std::max(max_overlap, h.fine.overlap_fraction);
+    }
+    std::vector<bool> out;
+    for (const HypothesisOutcome& h : hypotheses) {
+        out.push_back(h.verified &&
+                      h.fine.overlap_fraction >= config.ambiguity_overlap_ratio * max_overlap);
+    }
+    return out;
+}
+
+/// The contender of least RMS; success unless a distinct contender comes close
+/// in overlap without fitting clearly worse.
 void decide(const GlobalRegistrationConfig& config, GlobalRegistrationResult& result) {
-    std::optional<std::size_t> best;
-    for (std::size_t i = 0; i < result.hypotheses.size(); ++i) {
-        const HypothesisOutcome& h = result.hypotheses[i];
-        if (!h.verified) continue;
-        if (!best || h.fine.overlap_fraction > result.hypotheses[*best].fine.overlap_fraction) {
+    const std::vector<bool> contender = contenders(config, result.hypotheses);
+    std::optional<std::size_t> best;  // The contender of least RMS.
+    for (std::size_t i = 0; i < contender.size(); ++i) {
+        if (contender[i] &&
+            (!best || result.hypotheses[i].fine.rms_m < result.hypotheses[*best].fine.rms_m))
             best = i;
-        }
     }
     if (!best) {
         result.status = GlobalRegistrationStatus::kFailedVerification;
@@ -143,9 +158,12 @@ void decide(const GlobalRegistrationConfig& config, GlobalRegistrationResult& re
     result.overlap_fraction = fine.overlap_fraction;
     result.normal_deviation_deg = fine.normal_deviation_deg.value_or(0.0);
     result.status = GlobalRegistrationStatus::kSuccess;
-    for (const HypothesisOutcome& h : result.hypotheses) {
-        if (h.verified && distinct(h.fine.T_target_source, fine.T_target_source, config.matching) &&
-            h.fine.overlap_fraction >= config.ambiguity_overlap_ratio * fine.overlap_fraction) {
+    for (std::size_t i = 0; i < contender.size(); ++i) {
+        const HypothesisOutcome& h = result.hypotheses[i];
+        const bool clearly_worse = config.ambiguity_rms_ratio > 0.0 &&
+                                   h.fine.rms_m >= config.ambiguity_rms_ratio * fine.rms_m;
+        if (contender[i] && !clearly_worse &&
+            distinct(h.fine.T_target_source, fine.T_target_source, config.matching)) {
             result.status = GlobalRegistrationStatus::kAmbiguous;
             result.message = "several distinct verified poses";
         }

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <set>
 #include <string>
 #include <utility>
@@ -77,22 +78,24 @@ void copy_global_figures(const GlobalRegistrationResult& g, PairOutcome& pair) {
     pair.global_time_s = g.timing.total_s;
 }
 
-/// Refines and verifies the matched pairs from `first` on (record p of `matchings`), best
-/// consensus score first, until their scans are connected through verified pairs (those
-/// before `first` included); pairs of connected scans are skipped.
+/// Refines and verifies the matched pairs from `first` on (record p of `matchings`) not
+/// refined yet, best consensus score first, until their scans are connected through
+/// verified pairs (those before `first` included); pairs of connected scans are skipped. A
+/// pair verified with an RMS above `gate_m` does not count (apply_rms_gate).
 void verify_pairs(detail::PreparedScans& scans, detail::RecordFile& matchings, std::size_t first,
-                  const ScanRegistrationConfig& config, std::vector<PairOutcome>& pairs,
-                  const RegistrationProgress& progress) {
+                  const ScanRegistrationConfig& config, double gate_m,
+                  std::vector<PairOutcome>& pairs, const RegistrationProgress& progress) {
     detail::DisjointSets connected(scans.size());
     std::vector<std::size_t> order;
+    std::vector<std::size_t> failures(scans.size(), 0);
     for (std::size_t p = 0; p < pairs.size(); ++p) {
-        if (p < first && pairs[p].verified) connected.unite(pairs[p].source, pairs[p].target);
-        if (p >= first && pairs[p].hypotheses > 0) order.push_back(p);
+        const PairOutcome& pair = pairs[p];
+        if (pair.verified) connected.unite(pair.source, pair.target);
+        if (p >= first && pair.hypotheses > 0 && !pair.global_refined) order.push_back(p);
     }
     std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
         return pairs[a].match_score > pairs[b].match_score;
     });
-    std::vector<std::size_t> failures(scans.size(), 0);
     const std::size_t max_failures = config.max_failed_refinements_per_scan;
     const auto gave_up = [&](std::size_t i) {
         return max_failures > 0 && failures[i] >= max_failures;
@@ -100,11 +103,9 @@ void verify_pairs(detail::PreparedScans& scans, detail::RecordFile& matchings, s
     std::size_t tried = 0;
     for (std::size_t p : order) {
         PairOutcome& pair = pairs[p];
-        if (connected.find(pair.source) == connected.find(pair.target) || gave_up(pair.source) ||
-            gave_up(pair.target)) {
-            pair.global_skipped = true;
-            continue;
-        }
+        pair.global_skipped = connected.find(pair.source) == connected.find(pair.target) ||
+                              gave_up(pair.source) || gave_up(pair.target);
+        if (pair.global_skipped) continue;
         const std::shared_ptr<const PointCloud> source = scans.cloud(pair.source);
         const std::shared_ptr<const PointCloud> target = scans.cloud(pair.target);
         const ScanFeatures source_f = scans.full_features(pair.source);
@@ -113,6 +114,8 @@ void verify_pairs(detail::PreparedScans& scans, detail::RecordFile& matchings, s
             detail::refine_and_verify({*source, source_f}, {*target, target_f},
                                       detail::matching_from(matchings.read(p)), config.global);
         copy_global_figures(g, pair);
+        pair.global_refined = true;
+        detail::apply_rms_gate(pair, gate_m);
         if (pair.verified) {
             connected.unite(pair.source, pair.target);
         } else {
@@ -122,8 +125,24 @@ void verify_pairs(detail::PreparedScans& scans, detail::RecordFile& matchings, s
         report(progress, "global registration " + std::to_string(++tried) + ": scan " +
                              std::to_string(pair.source) + " onto " + std::to_string(pair.target) +
                              " (score " + std::to_string(static_cast<int>(pair.match_score)) +
-                             "): " + std::string(to_string(pair.global_status)));
+                             "): " + std::string(to_string(pair.global_status)) +
+                             (pair.above_rms_gate ? " above the session RMS gate" : ""));
     }
+}
+
+/// The session RMS gate: un-verifies the verified pairs above it, then refines (under the
+/// gate) the pairs skipped so far. Returns the gate (metres; infinity when off).
+double gate_pairs(detail::PreparedScans& scans, detail::RecordFile& matchings,
+                  const ScanRegistrationConfig& config, std::vector<PairOutcome>& pairs,
+                  const RegistrationProgress& progress) {
+    const double gate_m = detail::session_rms_gate_m(pairs, scans.size(), config);
+    std::size_t rejected = 0;
+    for (PairOutcome& pair : pairs) rejected += detail::apply_rms_gate(pair, gate_m);
+    if (rejected == 0) return gate_m;
+    report(progress, "session RMS gate " + std::to_string(gate_m * 1e3) +
+                         " mm: " + std::to_string(rejected) + " verified pairs above it");
+    verify_pairs(scans, matchings, 0, config, gate_m, pairs, progress);
+    return gate_m;
 }
 
 /// Bridging rounds (pruning only): while the verified pairs leave several groups, matches
@@ -131,8 +150,8 @@ void verify_pairs(detail::PreparedScans& scans, detail::RecordFile& matchings, s
 /// Returns the number of pairs added.
 std::size_t bridge_groups(detail::PreparedScans& prepared, const detail::CandidatePairs& candidates,
                           const std::vector<bool>& usable, const ScanRegistrationConfig& config,
-                          std::vector<PairOutcome>& pairs, detail::RecordFile& matchings,
-                          const RegistrationProgress& progress) {
+                          double gate_m, std::vector<PairOutcome>& pairs,
+                          detail::RecordFile& matchings, const RegistrationProgress& progress) {
     if (candidates.votes.n == 0 || config.bridge_partners_per_scan == 0) return 0;
     std::set<std::pair<std::size_t, std::size_t>> matched(candidates.pairs.begin(),
                                                           candidates.pairs.end());
@@ -148,7 +167,7 @@ std::size_t bridge_groups(detail::PreparedScans& prepared, const detail::Candida
                              std::to_string(extra.size()) + " more pairs");
         const std::size_t first = pairs.size();
         match_pairs(prepared, extra, config.global, pairs, matchings, progress);
-        verify_pairs(prepared, matchings, first, config, pairs, progress);
+        verify_pairs(prepared, matchings, first, config, gate_m, pairs, progress);
         matched.insert(extra.begin(), extra.end());
         added += extra.size();
     }
@@ -157,18 +176,22 @@ std::size_t bridge_groups(detail::PreparedScans& prepared, const detail::Candida
 
 /// Why scan i is not in the largest group: what its pairs gave.
 std::string not_connected_reason(const ScanRegistrationResult& result, std::size_t i) {
-    std::size_t matched = 0, refined = 0, verified = 0;
+    std::size_t matched = 0, refined = 0, verified = 0, gated = 0;
     for (const PairOutcome& p : result.pairs) {
         if (p.source != i && p.target != i) continue;
         matched += p.hypotheses > 0;
-        refined += p.hypotheses > 0 && !p.global_skipped;
+        refined += p.global_refined;
         verified += p.verified;
+        gated += p.above_rms_gate;
     }
     std::string reason = "no verified chain of pairs to the largest group (in group " +
                          std::to_string(result.scans[i].group) + "): ";
     if (matched == 0) return reason + "no other scan shares consistent features with it";
     return reason + std::to_string(matched) + " pairs with consistent features, " +
-           std::to_string(refined) + " refined, " + std::to_string(verified) + " verified";
+           std::to_string(refined) + " refined, " + std::to_string(verified) + " verified" +
+           (gated > 0 ? ", " + std::to_string(gated) +
+                            " verified alone but above the session RMS gate (look-alike poses?)"
+                      : "");
 }
 
 /// Copies the graph's groups and poses into the outcomes and counts.
@@ -217,16 +240,22 @@ ScanRegistrationResult register_scans(const std::vector<ScanInput>& scans,
     result.timings.matching_s = seconds_since(stage);
 
     stage = std::chrono::steady_clock::now();
-    verify_pairs(prepared, matchings, 0, config, result.pairs, progress);
+    verify_pairs(prepared, matchings, 0, config, std::numeric_limits<double>::infinity(),
+                 result.pairs, progress);
+    result.session_rms_gate_m = gate_pairs(prepared, matchings, config, result.pairs, progress);
     result.timings.pairwise_s = seconds_since(stage);
 
     stage = std::chrono::steady_clock::now();
     result.bridge_pair_count =
-        bridge_groups(prepared, candidates, usable, config, result.pairs, matchings, progress);
+        bridge_groups(prepared, candidates, usable, config, result.session_rms_gate_m, result.pairs,
+                      matchings, progress);
     if (!matchings.error().empty() && prepared.spill_error.empty()) {
         prepared.spill_error = matchings.error();
     }
-    for (const PairOutcome& p : result.pairs) result.verified_pair_count += p.verified;
+    for (const PairOutcome& p : result.pairs) {
+        result.verified_pair_count += p.verified;
+        result.gated_pair_count += p.above_rms_gate;
+    }
     result.timings.bridging_s = seconds_since(stage);
     candidates = {};  // The pruning votes (N²/2 floats) are not needed any more.
 

@@ -136,6 +136,15 @@ struct CandidatePairs {
 /// bucket of them is in memory; a file failure is recorded and gives no pairs.
 CandidatePairs candidate_pairs(PreparedScans& scans, const ScanRegistrationConfig& config);
 
+/// The session RMS gate (metres): session_rms_gate_factor times the median over scans of
+/// each scan's least verified pair RMS; infinity when off or with too few such scans.
+double session_rms_gate_m(const std::vector<PairOutcome>& pairs, std::size_t scan_count,
+                          const ScanRegistrationConfig& config);
+
+/// Un-verifies a verified pair whose RMS exceeds `gate_m` (marks it above_rms_gate).
+/// Returns whether it did.
+bool apply_rms_gate(PairOutcome& pair, double gate_m);
+
 /// Connected components of the verified pairs and the spanning-tree poses within each.
 struct PoseGraph {
     std::vector<int> group;         ///< Per scan: 0 = largest component; -1 = not usable.

@@ -6,7 +6,10 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <cstdint>
+#include <map>
+#include <memory>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "anascan/processing/point_cloud.hpp"
@@ -89,6 +92,50 @@ inline PointCloud pinhole_scan(const sim::RayCaster& caster, const Pose& T_world
 inline Pose true_pose_in_first_placement(const Pose& T_world0_block0, const Pose& T_world_block_now,
                                          const Pose& T_world_sensor) {
     return T_world0_block0 * T_world_block_now.inverse() * T_world_sensor;
+}
+
+/// The small block as the ray-cast sessions see it: 3 mm mesh, no tent, lying as `placement`.
+inline sim::SceneConfig small_block_scene(const sim::BlockPlacement& placement) {
+    sim::SceneConfig config = sim::named_scene("small-block").value();
+    config.block.grid_step_m = 0.003;
+    config.with_tent = false;
+    config.placement = placement;
+    return config;
+}
+
+/// One rendered view of a planned tour.
+struct RenderedScan {
+    PointCloud cloud;                ///< Sensor frame.
+    Pose T_true = Pose::Identity();  ///< Sensor in the first placement's world frame.
+    bool turned_over_before = false;
+};
+
+/// Renders every view of `plan` (small_block_scene, `first` = the first view's placement)
+/// with `pinhole_scan`, seeds 1, 2, ...
+inline std::vector<RenderedScan> render_tour(const std::vector<PlannedView>& plan,
+                                             const PinholeScanConfig& config = {}) {
+    std::map<bool, std::pair<sim::Scene, std::unique_ptr<sim::RayCaster>>> worlds;
+    const sim::Scene scene0 = sim::make_scene(small_block_scene(plan.front().placement));
+    std::vector<RenderedScan> scans;
+    std::uint32_t seed = 1;
+    for (const PlannedView& p : plan) {
+        const bool turned = p.placement.resting_face == sim::BlockFace::kPosZ;
+        if (!worlds.contains(turned)) {
+            sim::Scene scene = sim::make_scene(small_block_scene(p.placement));
+            auto caster =
+                std::make_unique<sim::RayCaster>(sim::RayCaster::create(scene.mesh).value());
+            worlds.emplace(turned, std::make_pair(std::move(scene), std::move(caster)));
+        }
+        const auto& [scene, caster] = worlds.at(turned);
+        const Pose T_world_sensor = sim::sensor_looking_at(aim_point(scene), p.view);
+        RenderedScan scan;
+        scan.cloud = pinhole_scan(*caster, T_world_sensor, config, seed++);
+        scan.T_true =
+            true_pose_in_first_placement(scene0.T_world_block, scene.T_world_block, T_world_sensor);
+        scan.turned_over_before = p.turned_over_before;
+        scans.push_back(std::move(scan));
+    }
+    return scans;
 }
 
 /// Rotation (degrees) and translation (metres, at `centroid_scan_m`) error of an estimated

@@ -168,6 +168,36 @@ TEST_F(SessionCli, ExportMergesRegisteredScansAndWritesAConf) {
     EXPECT_EQ(run_cli("-q assemble " + conf.string()).exit_code, 0);
 }
 
+TEST_F(SessionCli, ExportTruthPosesWritesTheTruePosesForEval) {
+    const fs::path truth = session_ / "truth.conf";
+    const auto run = run_cli("session export " + quoted() + " --truth-poses " + truth.string());
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    auto poses = io::read_conf(truth);
+    ASSERT_TRUE(poses) << poses.error().message;
+    ASSERT_EQ(poses->entries.size(), 1u);                        // Only scan 3 has a true pose.
+    EXPECT_EQ(poses->entries[0].file, "scans/scan_000003.ply");  // As `register scans/*.ply`.
+    EXPECT_TRUE(poses->entries[0].T_world_scan.isApprox(make_test_pose(3), 1e-12));
+    // `anascan eval` reads it: the truth against itself.
+    const auto eval = run_cli("eval " + truth.string() + " --truth " + truth.string());
+    EXPECT_EQ(eval.exit_code, 0) << eval.output;
+    EXPECT_TRUE(contains(eval.output, "placed 1 of 1")) << eval.output;
+    const auto neither = run_cli("session export " + quoted());
+    EXPECT_EQ(neither.exit_code, 1);
+    EXPECT_TRUE(contains(neither.output, "--truth-poses")) << neither.output;
+}
+
+TEST_F(SessionCli, ExportTruthPosesOfARealSessionIsAnError) {
+    auto store = SessionStore::open(dir_ / "real", SessionOpenMode::kCreateOrOpen);
+    ASSERT_TRUE(store) << store.error().message;
+    ASSERT_TRUE((*store)->save_scan(make_scan(100u, 1), std::nullopt));
+    store->reset();
+    const auto run = run_cli("session export " + (dir_ / "real").string() + " --truth-poses " +
+                             (dir_ / "t.conf").string());
+    EXPECT_EQ(run.exit_code, 1);
+    EXPECT_TRUE(contains(run.output, "no scan has a true pose")) << run.output;
+    EXPECT_FALSE(fs::exists(dir_ / "t.conf"));
+}
+
 TEST_F(SessionCli, ErrorsNameTheFolder) {
     const auto missing = run_cli("session info " + (dir_ / "nothing").string());
     EXPECT_EQ(missing.exit_code, 1);

@@ -21,47 +21,13 @@ using anascan::testing::PlannedView;
 
 constexpr int kViewsPerSide = 12;
 
-sim::SceneConfig scene_config(const sim::BlockPlacement& placement) {
-    sim::SceneConfig config = sim::named_scene("small-block").value();
-    config.block.grid_step_m = 0.003;
-    config.with_tent = false;
-    config.placement = placement;
-    return config;
-}
-
-struct CapturedScan {
-    PointCloud cloud;
-    Pose T_true = Pose::Identity();  ///< Sensor in the first placement's world frame.
-    bool turned_over_before = false;
-};
+using CapturedScan = anascan::testing::RenderedScan;
+using anascan::testing::small_block_scene;
 
 /// The session's scans, rendered once per suite.
 std::vector<CapturedScan> capture_session() {
     const sim::BlockPlacement first = sim::named_scene("small-block").value().placement;
-    const std::vector<PlannedView> plan = anascan::testing::plan_tour(kViewsPerSide, first, 7);
-    std::map<bool, std::pair<sim::Scene, std::unique_ptr<sim::RayCaster>>> worlds;
-    const sim::Scene scene0 = sim::make_scene(scene_config(first));
-    std::vector<CapturedScan> scans;
-    std::uint32_t seed = 1;
-    for (const PlannedView& p : plan) {
-        const bool turned = p.placement.resting_face == sim::BlockFace::kPosZ;
-        if (!worlds.contains(turned)) {
-            sim::Scene scene = sim::make_scene(scene_config(p.placement));
-            auto caster =
-                std::make_unique<sim::RayCaster>(sim::RayCaster::create(scene.mesh).value());
-            worlds.emplace(turned, std::make_pair(std::move(scene), std::move(caster)));
-        }
-        const auto& [scene, caster] = worlds.at(turned);
-        const Pose T_world_sensor =
-            sim::sensor_looking_at(anascan::testing::aim_point(scene), p.view);
-        CapturedScan scan;
-        scan.cloud = anascan::testing::pinhole_scan(*caster, T_world_sensor, {}, seed++);
-        scan.T_true = anascan::testing::true_pose_in_first_placement(
-            scene0.T_world_block, scene.T_world_block, T_world_sensor);
-        scan.turned_over_before = p.turned_over_before;
-        scans.push_back(std::move(scan));
-    }
-    return scans;
+    return anascan::testing::render_tour(anascan::testing::plan_tour(kViewsPerSide, first, 7));
 }
 
 class LiveRegistrationSession : public ::testing::Test {
@@ -167,7 +133,7 @@ TEST_F(LiveRegistrationSession, ReducedCloudsAreStoneOnly) {
         const Pose& T_true = (*scans_)[static_cast<std::size_t>(m.seq - 1)].T_true;
         std::size_t near_ground = 0;
         const sim::BlockPlacement first = sim::named_scene("small-block").value().placement;
-        const sim::Scene scene0 = sim::make_scene(scene_config(first));
+        const sim::Scene scene0 = sim::make_scene(small_block_scene(first));
         const Pose T_block_scan = scene0.T_world_block.inverse() * T_true;
         for (std::size_t i = 0; i < m.cloud->size(); ++i) {
             const Eigen::Vector3d p = T_block_scan * m.cloud->world_position(i);

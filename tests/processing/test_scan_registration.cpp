@@ -70,6 +70,40 @@ SyntheticScan make_view(const PointCloud& object, std::mt19937& rng, const std::
             .centroid_scan_m = centroid};
 }
 
+/// Adds Gaussian noise of `sigma_m` along z (object frame) to every point.
+PointCloud with_noise(PointCloud cloud, double sigma_m, std::uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::normal_distribution<float> noise(0.0f, static_cast<float>(sigma_m));
+    for (Eigen::Vector3f& p : cloud.positions) p.z() += noise(rng);
+    return cloud;
+}
+
+// Four windows that fit each other closely and one that fits them only ~0.5 mm RMS (within
+// the pairwise verification's limit of one 1 mm spacing, like a look-alike pose): the
+// session RMS gate leaves the fifth out and says why; without the gate it is placed.
+TEST(ScanRegistration, SessionRmsGateLeavesOutAPoorlyFittingScan) {
+    std::mt19937 rng(7);
+    const std::vector<Bump> bumps = random_bumps(11, 14);
+    std::vector<ScanInput> inputs;
+    for (int k = 0; k < 5; ++k) {
+        PointCloud window = bumpy_window(bumps, -0.1 + 0.03 * k, 0.0 + 0.03 * k, 0.0003 * k);
+        if (k == 4) window = with_noise(std::move(window), 0.0005, 3);
+        inputs.push_back(make_view(window, rng, "view" + std::to_string(k)).input);
+    }
+    const ScanRegistrationResult gated = register_scans(inputs, {}, {});
+    EXPECT_EQ(gated.placed_count, 4u);
+    EXPECT_FALSE(gated.scans[4].placed);
+    EXPECT_NE(gated.scans[4].reason.find("session RMS gate"), std::string::npos)
+        << gated.scans[4].reason;
+    EXPECT_GT(gated.gated_pair_count, 0u);
+    EXPECT_LT(gated.session_rms_gate_m, 0.0005);
+
+    const ScanRegistrationResult ungated =
+        register_scans(inputs, {.session_rms_gate_factor = 0.0}, {});
+    EXPECT_EQ(ungated.placed_count, 5u);
+    EXPECT_TRUE(std::isinf(ungated.session_rms_gate_m));
+}
+
 TEST(ScanRegistration, PlacesViewsAndReportsTheOthers) {
     std::mt19937 rng(20261122);
     std::vector<SyntheticScan> views;

@@ -112,8 +112,14 @@ struct GlobalRegistrationConfig {
     double min_overlap_fraction = 0.25;      ///< Of the source samples (fine.overlap_distance).
     double max_normal_deviation_deg = 20.0;  ///< Mean source/target normal angle (overlap).
     /// Another verified pose (distinct, see matching) whose overlap reaches this fraction of
-    /// the best one's makes the result ambiguous.
+    /// the best one's makes the result ambiguous ...
     double ambiguity_overlap_ratio = 0.8;
+    /// ... unless one of them fits clearly better: among the verified poses with such an
+    /// overlap (contenders) the one of least RMS wins when every other contender's RMS is
+    /// at least this multiple of it. A box seen from two nearby views fits at its true pose
+    /// (0.2 mm on the simulated small block) and turned by 90° or 180° (0.8-0.9 mm); both
+    /// pass the verification limit. 0: any second contender makes the pair ambiguous.
+    double ambiguity_rms_ratio = 2.0;
     /// Inadmissible hypotheses are dropped before refinement and rejected after it.
     std::optional<AxisConstraint> axis_constraint;
 };

@@ -8,7 +8,9 @@
 ///  3. matching: `match_features` for every pair (cheap: patches only);
 ///  4. pairwise: pairs in decreasing order of their best consensus score are refined and
 ///     verified (`register_global` minus the features) until their two scans are connected
-///     through verified pairs; pairs whose scans are already connected are skipped; with
+///     through verified pairs; pairs whose scans are already connected are skipped; then
+///     verified pairs above the session RMS gate are dropped and the skipped pairs refined
+///     under it (`session_rms_gate_factor`); with
 ///     pruning, bridging rounds then match the border scans of the groups left with their
 ///     most similar scans of other groups;
 ///  5. pose graph: the verified pairs form a spanning forest giving initial poses;
@@ -86,6 +88,16 @@ struct ScanRegistrationConfig {
     /// farther than the verification's, so the limit is looser).
     double max_link_rms_spacing_factor = 2.0;
     MultiviewRefinementConfig multiview{};  ///< fixed_scan_index is set per group.
+    /// Session RMS gate: a verified pair counts only when its RMS is at most this multiple
+    /// of the session's typical RMS, the median over scans of each scan's least verified
+    /// pair RMS (after a first pass of the pairwise stage; pairs skipped in it are then
+    /// refined under the gate). Look-alike poses (a box turned by 90° or 180°) pass the
+    /// pairwise verification (RMS within a sample spacing) at 3-4 times the RMS of the true
+    /// poses of the same session. 0: off. The live registrar has the same gate
+    /// (LiveRegistrationConfig::global_rms_median_factor).
+    double session_rms_gate_factor = 2.5;
+    /// The gate needs at least this many scans with a verified pair.
+    std::size_t min_scans_for_rms_gate = 4;
 
     // ---- Scale (thousands of scans; see docs/scan-registration.md "Scale") ----------------
     /// Pair pruning: 0 matches every pair (N(N-1)/2 matchings). Otherwise each scan is
@@ -148,9 +160,12 @@ struct PairOutcome {
     /// one of them had max_failed_refinements_per_scan failures).
     bool global_skipped = false;
     GlobalRegistrationStatus global_status = GlobalRegistrationStatus::kInvalidInput;
-    bool verified = false;  ///< Global status success.
-    bool in_tree = false;   ///< An edge of the maximum spanning tree.
-    double weight = 0.0;    ///< Tree weight: overlap / (1 + rms / target spacing).
+    bool global_refined = false;  ///< Refined and verified (not skipped, or not any more).
+    bool verified = false;        ///< Global status success, within the session RMS gate.
+    /// Global status success but its RMS exceeds the session RMS gate: not used.
+    bool above_rms_gate = false;
+    bool in_tree = false;  ///< An edge of the maximum spanning tree.
+    double weight = 0.0;   ///< Tree weight: overlap / (1 + rms / target spacing).
     Pose T_target_source = Pose::Identity();  ///< Global result (when verified).
     double global_rms_m = 0.0;                ///< Point-to-plane RMS of the global result, metres.
     double global_overlap_fraction = 0.0;
@@ -189,6 +204,10 @@ struct ScanRegistrationResult {
     std::size_t placed_count = 0;
     std::size_t group_count = 0;  ///< Connected components among the loaded scans.
     std::size_t verified_pair_count = 0;
+    /// The session RMS gate (metres; infinity when off or with too few scans) and the pairs
+    /// it rejected.
+    double session_rms_gate_m = 0.0;
+    std::size_t gated_pair_count = 0;
     std::size_t bridge_pair_count = 0;  ///< Pairs added by the bridging rounds (at the end).
     std::size_t link_count = 0;
     std::size_t dropped_link_count = 0;

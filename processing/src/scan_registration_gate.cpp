@@ -1,0 +1,36 @@
+// The session RMS gate of register_scans: verified pairs fitting much worse than the
+// session's typical pair are look-alikes (see ScanRegistrationConfig::session_rms_gate_factor).
+#include <algorithm>
+#include <limits>
+#include <vector>
+
+#include "scan_registration_steps.hpp"
+
+namespace anascan::detail {
+
+double session_rms_gate_m(const std::vector<PairOutcome>& pairs, std::size_t scan_count,
+                          const ScanRegistrationConfig& config) {
+    constexpr double kOff = std::numeric_limits<double>::infinity();
+    if (config.session_rms_gate_factor <= 0.0) return kOff;
+    std::vector<double> best(scan_count, kOff);
+    for (const PairOutcome& p : pairs) {
+        if (!p.verified) continue;
+        best[p.source] = std::min(best[p.source], p.global_rms_m);
+        best[p.target] = std::min(best[p.target], p.global_rms_m);
+    }
+    std::erase_if(best, [](double rms) { return rms == kOff; });
+    if (best.empty() || best.size() < config.min_scans_for_rms_gate) return kOff;
+    const auto middle = best.begin() + static_cast<std::ptrdiff_t>(best.size() / 2);
+    std::nth_element(best.begin(), middle, best.end());
+    return config.session_rms_gate_factor * *middle;
+}
+
+bool apply_rms_gate(PairOutcome& pair, double gate_m) {
+    if (!pair.verified || pair.global_rms_m <= gate_m) return false;
+    pair.verified = false;
+    pair.above_rms_gate = true;
+    pair.weight = 0.0;
+    return true;
+}
+
+}  // namespace anascan::detail
