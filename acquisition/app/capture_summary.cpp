@@ -85,6 +85,11 @@ void print_capture_summary(const acquisition::SessionStore& store) {
             "%s)\n",
             (*truth)->placed, (*truth)->scans.size(), (*truth)->max_rotation_deg,
             (*truth)->max_translation_m * 1e3, (*truth)->reference.c_str());
+    if (truth && *truth)
+        std::printf(
+            "  in the best-fit frame of all placed scans: worst rotation %.4f°, worst "
+            "translation %.3f mm\n",
+            (*truth)->max_rotation_best_fit_deg, (*truth)->max_translation_best_fit_m * 1e3);
     auto coverage = store.value("coverage");
     if (coverage && *coverage) {
         const auto j = nlohmann::json::parse(**coverage, nullptr, false);

@@ -24,12 +24,11 @@ double forecast_overlap(const ScanEntry& source, const ScanEntry& target, const 
         (Eigen::Translation3d(-target.cloud.origin_m) * T_target_source *
          Eigen::Translation3d(source.cloud.origin_m))
             .cast<float>();
-    const float distance_sq = static_cast<float>(distance_m * distance_m);
     std::size_t near = 0, tried = 0;
     Neighbor nearest;
     for (std::size_t i = 0; i < source.cloud.size(); i += step, ++tried) {
-        near += tree.nearest(T_local * source.cloud.positions[i], nearest) &&
-                nearest.distance_sq_m2 <= distance_sq;
+        near += tree.nearest_within(T_local * source.cloud.positions[i],
+                                    static_cast<float>(distance_m), nearest);
     }
     return tried == 0 ? 0.0 : static_cast<double>(near) / static_cast<double>(tried);
 }

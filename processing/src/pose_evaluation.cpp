@@ -1,5 +1,6 @@
 #include "anascan/processing/pose_evaluation.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <unordered_map>
 
@@ -21,6 +22,32 @@ const NamedPose* first_common(const std::vector<NamedPose>& truth, const PoseInd
     return nullptr;
 }
 
+// The maxima in the best-fit frame: estimated world → true world by the least-squares
+// rigid motion of the measure points.
+void add_best_fit(const std::vector<std::pair<const NamedPose*, const NamedPose*>>& pairs,
+                  PoseEvaluation& eval) {
+    eval.max_rotation_best_fit_deg = eval.max_rotation_deg;
+    eval.max_translation_best_fit_m = eval.max_translation_m;
+    if (pairs.size() < 3) return;
+    Eigen::Matrix3Xd est(3, pairs.size()), truth(3, pairs.size());
+    for (std::size_t i = 0; i < pairs.size(); ++i) {
+        const auto& [e, t] = pairs[i];
+        est.col(static_cast<Eigen::Index>(i)) = e->T_world_scan * t->measure_at_scan_m;
+        truth.col(static_cast<Eigen::Index>(i)) = t->T_world_scan * t->measure_at_scan_m;
+    }
+    const Pose A(Eigen::umeyama(est, truth, false));
+    eval.max_rotation_best_fit_deg = eval.max_translation_best_fit_m = 0.0;
+    for (std::size_t i = 0; i < pairs.size(); ++i) {
+        const auto& [e, t] = pairs[i];
+        const Pose T_est = A * e->T_world_scan;
+        eval.max_rotation_best_fit_deg = std::max(
+            eval.max_rotation_best_fit_deg, pose_difference(t->T_world_scan, T_est).rotation_deg);
+        eval.max_translation_best_fit_m = std::max(
+            eval.max_translation_best_fit_m,
+            (T_est * t->measure_at_scan_m - t->T_world_scan * t->measure_at_scan_m).norm());
+    }
+}
+
 }  // namespace
 
 std::optional<PoseEvaluation> evaluate_poses(const std::vector<NamedPose>& estimated,
@@ -34,9 +61,11 @@ std::optional<PoseEvaluation> evaluate_poses(const std::vector<NamedPose>& estim
     eval.reference = reference->name;
     const Pose T_ref_world_truth = reference->T_world_scan.inverse();
     const Pose T_ref_world_est = estimated_index.at(reference->name)->T_world_scan.inverse();
+    std::vector<std::pair<const NamedPose*, const NamedPose*>> pairs;  // (estimated, truth)
     for (const NamedPose& t : truth) {
         ScanPoseError error{.name = t.name};
         if (auto it = estimated_index.find(t.name); it != estimated_index.end()) {
+            pairs.emplace_back(it->second, &t);
             const Pose T_ref_scan_truth = T_ref_world_truth * t.T_world_scan;
             const Pose T_ref_scan_est = T_ref_world_est * it->second->T_world_scan;
             const double rotation_deg =
@@ -54,6 +83,7 @@ std::optional<PoseEvaluation> evaluate_poses(const std::vector<NamedPose>& estim
     for (const NamedPose& e : estimated) {
         if (!truth_index.contains(e.name)) eval.unknown.push_back(e.name);
     }
+    add_best_fit(pairs, eval);
     return eval;
 }
 

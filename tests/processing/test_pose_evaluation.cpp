@@ -37,6 +37,27 @@ TEST(PoseEvaluation, ReportsTheErrorOfOneScan) {
     EXPECT_NEAR(eval->scans[1].translation_m, 0.002, 1e-12);
 }
 
+TEST(PoseEvaluation, TheBestFitFrameDoesNotChargeTheReferenceScansErrorToTheOthers) {
+    // Four scans 1 m apart, measured at their origins; the reference scan alone is off by
+    // 1 mm. In its frame every other scan looks 1 mm off; in the best-fit frame the error
+    // is shared: the reference about 0.75 mm off, the others about 0.25 mm.
+    std::vector<NamedPose> truth;
+    for (int i = 0; i < 4; ++i)
+        truth.push_back({std::string(1, static_cast<char>('a' + i)),
+                         pose(20.0 * i, {0, 0, 1}, {1.0 * i, 0.5 * (i % 2), 0})});
+    std::vector<NamedPose> estimated = truth;
+    estimated[0].T_world_scan = Pose(Eigen::Translation3d(0.001, 0, 0)) * truth[0].T_world_scan;
+    const auto eval = evaluate_poses(estimated, truth);
+    ASSERT_TRUE(eval.has_value());
+    EXPECT_NEAR(eval->max_translation_m, 0.001, 1e-9);
+    EXPECT_NEAR(eval->max_translation_best_fit_m, 0.00075, 5e-5);
+    EXPECT_LT(eval->max_rotation_best_fit_deg, 0.05);
+    // Fewer than three scans: the reference frame's figures.
+    const auto two = evaluate_poses({estimated[0], estimated[1]}, {truth[0], truth[1]});
+    ASSERT_TRUE(two.has_value());
+    EXPECT_EQ(two->max_translation_best_fit_m, two->max_translation_m);
+}
+
 TEST(PoseEvaluation, MissingAndUnknownScansAreListed) {
     const std::vector<NamedPose> truth = {{"a", Pose::Identity()}, {"b", Pose::Identity()}};
     const std::vector<NamedPose> estimated = {{"a", Pose::Identity()}, {"z", Pose::Identity()}};

@@ -37,6 +37,12 @@ struct PoseEvaluation {
     double max_rotation_deg = 0.0;     ///< Over placed scans.
     double max_translation_m = 0.0;    ///< Over placed scans.
     std::size_t placed = 0;
+    /// The same maxima after the one rigid motion that best aligns the estimated measure
+    /// points with the true ones (least squares over all placed scans, Umeyama) instead of
+    /// the reference scan's frame: the common motion is then fixed by every scan, not by the
+    /// reference's own error. Equal to the above with fewer than 3 placed scans.
+    double max_rotation_best_fit_deg = 0.0;
+    double max_translation_best_fit_m = 0.0;
 };
 
 /// Compares `estimated` with `truth`. Returns nullopt when they share no scan.
