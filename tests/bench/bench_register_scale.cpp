@@ -6,6 +6,10 @@
 //   anascan_bench_register_scale --scans 100 [--points 50000] [--candidates 3]
 //       [--voxel-mm 2] [--max-loaded 8] [--link-correspondences 100] [--spill DIR]
 //       [--all-in-memory] [--list] [--max-failures 2] [--bridge-rounds 4] [--seed 1]
+//       [--default-allocator]
+//
+// By default the benchmark fixes glibc's mmap threshold (use_fixed_mmap_threshold, as the
+// register command does); --default-allocator keeps glibc's dynamic threshold.
 //
 // The wall: z = Σ h exp(−|xy − c|²/2w²) over x in [0, L], |y| <= 0.1 m, bumps 3-12 mm high
 // and 6-16 mm wide, 1500 per m² (test_bumpy_surface.hpp has 350: too flat between bumps. Window k
@@ -27,6 +31,7 @@
 #include <string>
 #include <vector>
 
+#include "anascan/processing/allocator.hpp"
 #include "anascan/processing/pose_sampling.hpp"
 #include "anascan/processing/scan_registration.hpp"
 
@@ -51,6 +56,7 @@ struct Options {
     std::string spill;
     bool in_memory = false;
     bool list = false;
+    bool default_allocator = false;  ///< --default-allocator: glibc's dynamic mmap threshold.
     unsigned seed = 1;
 };
 
@@ -141,6 +147,8 @@ bool parse(int argc, char** argv, Options& o) {
             o.in_memory = true;
         else if (a == "--list")
             o.list = true;
+        else if (a == "--default-allocator")
+            o.default_allocator = true;
         else if (a == "--max-failures")
             o.max_failures = std::strtoul(next(), nullptr, 10);
         else if (a == "--bridge-rounds")
@@ -152,7 +160,8 @@ bool parse(int argc, char** argv, Options& o) {
                 stderr,
                 "usage: %s --scans N [--points P] [--candidates K] [--voxel-mm V]\n"
                 "  [--max-loaded M] [--link-correspondences C] [--spill DIR]\n"
-                "  [--all-in-memory] [--list] [--max-failures F] [--bridge-rounds R] [--seed S]\n",
+                "  [--all-in-memory] [--list] [--max-failures F] [--bridge-rounds R] [--seed S]\n"
+                "  [--default-allocator]\n",
                 argv[0]);
             return false;
         }
@@ -243,6 +252,7 @@ void report_chain(const ScanRegistrationResult& r, const std::vector<std::size_t
 int main(int argc, char** argv) {
     Options o;
     if (!parse(argc, argv, o)) return 2;
+    const bool fixed_mmap = !o.default_allocator && use_fixed_mmap_threshold();
     const auto start = std::chrono::steady_clock::now();
     const Wall wall(static_cast<double>(o.scans + 3) * kStepM + kWindowM, o.seed);
     std::mt19937 rng(o.seed);
@@ -329,7 +339,8 @@ int main(int argc, char** argv) {
         "candidate pairs: %zu overlapping of %zu (windows overlap their 2 neighbours "
         "each side: %zu pairs), %zu non-overlapping verified\n",
         overlapping, r.pairs.size(), 2 * o.scans - 3, wrong_verified);
-    std::printf("peak RSS %.1f MB, cloud reloads %zu%s%s\n", peak_rss_mb(), r.cloud_reloads,
+    std::printf("peak RSS %.1f MB (%s), cloud reloads %zu%s%s\n", peak_rss_mb(),
+                fixed_mmap ? "fixed mmap threshold" : "default allocator", r.cloud_reloads,
                 r.spill_error.empty() ? "" : ", spill error: ", r.spill_error.c_str());
     return r.spill_error.empty() ? 0 : 1;
 }
