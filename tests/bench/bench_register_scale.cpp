@@ -125,6 +125,41 @@ double peak_rss_mb() {
     return static_cast<double>(usage.ru_maxrss) / 1024.0;  // Linux: kilobytes.
 }
 
+// The process's peak resident set so far (VmHWM of /proc/self/status), megabytes.
+double high_water_mb() {
+    std::FILE* f = std::fopen("/proc/self/status", "r");
+    if (!f) return 0.0;
+    char line[256];
+    double kb = 0.0;
+    while (std::fgets(line, sizeof line, f)) {
+        if (std::sscanf(line, "VmHWM: %lf kB", &kb) == 1) break;
+    }
+    std::fclose(f);
+    return kb / 1024.0;
+}
+
+// Where the peak resident set rose (by more than 0.5 MB since the last record): between
+// which two progress messages, so that the stage holding the peak can be named.
+struct PeakTrace {
+    double last_mb = 0.0;
+    std::string previous = "start";
+    std::vector<std::pair<double, std::string>> rises;
+
+    void observe(std::string_view message) {
+        const double mb = high_water_mb();
+        if (mb > last_mb + 0.5) {
+            last_mb = mb;
+            rises.emplace_back(mb,
+                               "after '" + previous + "', before '" + std::string(message) + "'");
+        }
+        previous = message;
+    }
+    void print() const {
+        for (std::size_t k = rises.size() > 6 ? rises.size() - 6 : 0; k < rises.size(); ++k)
+            std::printf("peak RSS rose to %.1f MB %s\n", rises[k].first, rises[k].second.c_str());
+    }
+};
+
 bool parse(int argc, char** argv, Options& o) {
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
@@ -295,7 +330,9 @@ int main(int argc, char** argv) {
                                                  : std::filesystem::path(o.spill);
     }
     std::size_t messages = 0;
+    PeakTrace peaks;
     const ScanRegistrationResult r = register_scans(shuffled, config, [&](std::string_view m) {
+        peaks.observe(m);
         if (++messages % 200 == 0)
             std::fprintf(stderr, "[%zu] %.*s\n", messages, int(m.size()), m.data());
     });
@@ -303,6 +340,7 @@ int main(int argc, char** argv) {
         std::error_code ignored;
         std::filesystem::remove(config.spill_directory, ignored);
     }
+    peaks.observe("end of register_scans");
     const Errors e = measure(r, shuffled_views, position, o.list);
     if (o.list) report_chain(r, position);
     const double total_s =
@@ -342,5 +380,6 @@ int main(int argc, char** argv) {
     std::printf("peak RSS %.1f MB (%s), cloud reloads %zu%s%s\n", peak_rss_mb(),
                 fixed_mmap ? "fixed mmap threshold" : "default allocator", r.cloud_reloads,
                 r.spill_error.empty() ? "" : ", spill error: ", r.spill_error.c_str());
+    peaks.print();
     return r.spill_error.empty() ? 0 : 1;
 }
