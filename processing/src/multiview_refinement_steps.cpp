@@ -182,6 +182,8 @@ std::vector<bool> connected_scans(std::size_t scan_count, std::size_t fixed,
     return reached;
 }
 
+namespace {
+
 /// Calls visit(scan, world point) for both ends of every usable correspondence of the
 /// active links, in link order.
 template <typename Visit>
@@ -197,6 +199,8 @@ void for_each_world_point(std::span<const Pose> T_world_scan, std::span<const Mu
         }
     }
 }
+
+}  // namespace
 
 // Two passes over the links (centroids, then spread) instead of a copy of every
 // correspondence's world points: at 1000 scans that copy was the peak of the whole
