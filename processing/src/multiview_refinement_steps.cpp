@@ -203,8 +203,8 @@ void for_each_world_point(std::span<const Pose> T_world_scan, std::span<const Mu
 }  // namespace
 
 // Two passes over the links (centroids, then spread) instead of a copy of every
-// correspondence's world points: at 1000 scans that copy was the peak of the whole
-// registration (+8 MB; docs/scan-registration.md, "Scale").
+// correspondence's world points (2 × 24 B a correspondence; docs/scan-registration.md,
+// "Scale").
 Parametrisation make_parametrisation(std::span<const Pose> T_world_scan,
                                      std::span<const MultiviewLink> links,
                                      const std::vector<bool>& active) {
