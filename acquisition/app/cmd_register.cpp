@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "anascan/processing/allocator.hpp"
 #include "anascan/processing/io/file_bytes.hpp"
 #include "anascan/processing/io/ply.hpp"
 #include "anascan/processing/io/stanford_conf.hpp"
@@ -188,6 +189,9 @@ void write_outputs(const RegisterOptions& o, const ScanRegistrationResult& r) {
 }
 
 void run_register(const RegisterOptions& o) {
+    // Large per-scan buffers mapped and returned on free: peak memory does not grow with
+    // the number of scans through heap fragmentation (docs/scan-registration.md, "Scale").
+    if (!use_fixed_mmap_threshold()) spdlog::debug("allocator: mmap threshold not fixed");
     std::vector<ScanInput> inputs;
     for (const std::string& path : o.scans) {
         inputs.push_back({.name = path,

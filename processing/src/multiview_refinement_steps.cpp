@@ -182,36 +182,56 @@ std::vector<bool> connected_scans(std::size_t scan_count, std::size_t fixed,
     return reached;
 }
 
-Parametrisation make_parametrisation(std::span<const Pose> T_world_scan,
-                                     std::span<const MultiviewLink> links,
-                                     const std::vector<bool>& active) {
-    const std::size_t n = T_world_scan.size();
-    std::vector<std::vector<Eigen::Vector3d>> points(n);
+namespace {
+
+/// Calls visit(scan, world point) for both ends of every usable correspondence of the
+/// active links, in link order.
+template <typename Visit>
+void for_each_world_point(std::span<const Pose> T_world_scan, std::span<const MultiviewLink> links,
+                          const std::vector<bool>& active, Visit&& visit) {
     for (std::size_t l = 0; l < links.size(); ++l) {
         if (!active[l]) continue;
         const MultiviewLink& link = links[l];
         for (const FineCorrespondence& c : link.correspondences) {
             if (!usable(c)) continue;
-            points[link.source_index].push_back(T_world_scan[link.source_index] * c.source_point_m);
-            points[link.target_index].push_back(T_world_scan[link.target_index] * c.target_point_m);
+            visit(link.source_index, T_world_scan[link.source_index] * c.source_point_m);
+            visit(link.target_index, T_world_scan[link.target_index] * c.target_point_m);
         }
     }
+}
+
+}  // namespace
+
+// Two passes over the links (centroids, then spread) instead of a copy of every
+// correspondence's world points (2 × 24 B a correspondence; docs/scan-registration.md,
+// "Scale").
+Parametrisation make_parametrisation(std::span<const Pose> T_world_scan,
+                                     std::span<const MultiviewLink> links,
+                                     const std::vector<bool>& active) {
+    const std::size_t n = T_world_scan.size();
+    std::vector<Eigen::Vector3d> sum(n, Eigen::Vector3d::Zero());
+    std::vector<std::size_t> count(n, 0);
+    for_each_world_point(T_world_scan, links, active, [&](std::size_t s, const Eigen::Vector3d& x) {
+        sum[s] += x;
+        ++count[s];
+    });
     Parametrisation param;
     param.block.assign(n, -1);
-    double sum_sq = 0.0;
-    std::size_t count = 0;
     for (std::size_t s = 0; s < n; ++s) {
-        Eigen::Vector3d p = T_world_scan[s].translation();
-        if (!points[s].empty()) {
-            p.setZero();
-            for (const Eigen::Vector3d& x : points[s]) p += x;
-            p /= static_cast<double>(points[s].size());
-        }
-        for (const Eigen::Vector3d& x : points[s]) sum_sq += (x - p).squaredNorm();
-        count += points[s].size();
-        param.reference_m.push_back(p);
+        param.reference_m.push_back(count[s] > 0 ? Eigen::Vector3d(sum[s] / double(count[s]))
+                                                 : T_world_scan[s].translation());
     }
-    const double length = count > 0 ? std::sqrt(sum_sq / static_cast<double>(count)) : 0.0;
+    std::vector<double> sum_sq(n, 0.0);
+    for_each_world_point(T_world_scan, links, active, [&](std::size_t s, const Eigen::Vector3d& x) {
+        sum_sq[s] += (x - param.reference_m[s]).squaredNorm();
+    });
+    double total_sq = 0.0;
+    std::size_t total = 0;
+    for (std::size_t s = 0; s < n; ++s) {
+        total_sq += sum_sq[s];
+        total += count[s];
+    }
+    const double length = total > 0 ? std::sqrt(total_sq / static_cast<double>(total)) : 0.0;
     param.length_m = length > 0.0 ? length : 1.0;
     return param;
 }

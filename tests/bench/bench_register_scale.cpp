@@ -6,6 +6,10 @@
 //   anascan_bench_register_scale --scans 100 [--points 50000] [--candidates 3]
 //       [--voxel-mm 2] [--max-loaded 8] [--link-correspondences 100] [--spill DIR]
 //       [--all-in-memory] [--list] [--max-failures 2] [--bridge-rounds 4] [--seed 1]
+//       [--default-allocator]
+//
+// By default the benchmark fixes glibc's mmap threshold (use_fixed_mmap_threshold, as the
+// register command does); --default-allocator keeps glibc's dynamic threshold.
 //
 // The wall: z = Σ h exp(−|xy − c|²/2w²) over x in [0, L], |y| <= 0.1 m, bumps 3-12 mm high
 // and 6-16 mm wide, 1500 per m² (test_bumpy_surface.hpp has 350: too flat between bumps. Window k
@@ -27,6 +31,7 @@
 #include <string>
 #include <vector>
 
+#include "anascan/processing/allocator.hpp"
 #include "anascan/processing/pose_sampling.hpp"
 #include "anascan/processing/scan_registration.hpp"
 
@@ -51,6 +56,7 @@ struct Options {
     std::string spill;
     bool in_memory = false;
     bool list = false;
+    bool default_allocator = false;  ///< --default-allocator: glibc's dynamic mmap threshold.
     unsigned seed = 1;
 };
 
@@ -119,6 +125,41 @@ double peak_rss_mb() {
     return static_cast<double>(usage.ru_maxrss) / 1024.0;  // Linux: kilobytes.
 }
 
+// The process's peak resident set so far (VmHWM of /proc/self/status), megabytes.
+double high_water_mb() {
+    std::FILE* f = std::fopen("/proc/self/status", "r");
+    if (!f) return 0.0;
+    char line[256];
+    double kb = 0.0;
+    while (std::fgets(line, sizeof line, f)) {
+        if (std::sscanf(line, "VmHWM: %lf kB", &kb) == 1) break;
+    }
+    std::fclose(f);
+    return kb / 1024.0;
+}
+
+// Where the peak resident set rose (by more than 0.5 MB since the last record): between
+// which two progress messages, so that the stage holding the peak can be named.
+struct PeakTrace {
+    double last_mb = 0.0;
+    std::string previous = "start";
+    std::vector<std::pair<double, std::string>> rises;
+
+    void observe(std::string_view message) {
+        const double mb = high_water_mb();
+        if (mb > last_mb + 0.5) {
+            last_mb = mb;
+            rises.emplace_back(mb,
+                               "after '" + previous + "', before '" + std::string(message) + "'");
+        }
+        previous = message;
+    }
+    void print() const {
+        for (std::size_t k = rises.size() > 6 ? rises.size() - 6 : 0; k < rises.size(); ++k)
+            std::printf("peak RSS rose to %.1f MB %s\n", rises[k].first, rises[k].second.c_str());
+    }
+};
+
 bool parse(int argc, char** argv, Options& o) {
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
@@ -141,6 +182,8 @@ bool parse(int argc, char** argv, Options& o) {
             o.in_memory = true;
         else if (a == "--list")
             o.list = true;
+        else if (a == "--default-allocator")
+            o.default_allocator = true;
         else if (a == "--max-failures")
             o.max_failures = std::strtoul(next(), nullptr, 10);
         else if (a == "--bridge-rounds")
@@ -152,7 +195,8 @@ bool parse(int argc, char** argv, Options& o) {
                 stderr,
                 "usage: %s --scans N [--points P] [--candidates K] [--voxel-mm V]\n"
                 "  [--max-loaded M] [--link-correspondences C] [--spill DIR]\n"
-                "  [--all-in-memory] [--list] [--max-failures F] [--bridge-rounds R] [--seed S]\n",
+                "  [--all-in-memory] [--list] [--max-failures F] [--bridge-rounds R] [--seed S]\n"
+                "  [--default-allocator]\n",
                 argv[0]);
             return false;
         }
@@ -243,6 +287,7 @@ void report_chain(const ScanRegistrationResult& r, const std::vector<std::size_t
 int main(int argc, char** argv) {
     Options o;
     if (!parse(argc, argv, o)) return 2;
+    const bool fixed_mmap = !o.default_allocator && use_fixed_mmap_threshold();
     const auto start = std::chrono::steady_clock::now();
     const Wall wall(static_cast<double>(o.scans + 3) * kStepM + kWindowM, o.seed);
     std::mt19937 rng(o.seed);
@@ -285,7 +330,9 @@ int main(int argc, char** argv) {
                                                  : std::filesystem::path(o.spill);
     }
     std::size_t messages = 0;
+    PeakTrace peaks;
     const ScanRegistrationResult r = register_scans(shuffled, config, [&](std::string_view m) {
+        peaks.observe(m);
         if (++messages % 200 == 0)
             std::fprintf(stderr, "[%zu] %.*s\n", messages, int(m.size()), m.data());
     });
@@ -293,6 +340,7 @@ int main(int argc, char** argv) {
         std::error_code ignored;
         std::filesystem::remove(config.spill_directory, ignored);
     }
+    peaks.observe("end of register_scans");
     const Errors e = measure(r, shuffled_views, position, o.list);
     if (o.list) report_chain(r, position);
     const double total_s =
@@ -329,7 +377,9 @@ int main(int argc, char** argv) {
         "candidate pairs: %zu overlapping of %zu (windows overlap their 2 neighbours "
         "each side: %zu pairs), %zu non-overlapping verified\n",
         overlapping, r.pairs.size(), 2 * o.scans - 3, wrong_verified);
-    std::printf("peak RSS %.1f MB, cloud reloads %zu%s%s\n", peak_rss_mb(), r.cloud_reloads,
+    std::printf("peak RSS %.1f MB (%s), cloud reloads %zu%s%s\n", peak_rss_mb(),
+                fixed_mmap ? "fixed mmap threshold" : "default allocator", r.cloud_reloads,
                 r.spill_error.empty() ? "" : ", spill error: ", r.spill_error.c_str());
+    peaks.print();
     return r.spill_error.empty() ? 0 : 1;
 }

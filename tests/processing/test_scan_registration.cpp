@@ -200,6 +200,7 @@ TEST(ScanRegistration, BridgingJoinsTheGroupsLeftByPruning) {
     std::vector<ScanInput> inputs;
     for (int k : {3, 6, 0, 5, 1, 7, 4, 2}) inputs.push_back(views[std::size_t(k)].input);
     ScanRegistrationConfig config{.max_candidates_per_scan = 2, .max_link_correspondences = 200};
+    config.bridge_rounds = 0;
     const ScanRegistrationResult pruned = register_scans(inputs, config, {});
     config.bridge_rounds = 4;
     const ScanRegistrationResult bridged = register_scans(inputs, config, {});

@@ -123,12 +123,12 @@ struct ScanRegistrationConfig {
     std::size_t max_failed_refinements_per_scan = 0;
     /// Correspondences a multi-view link keeps (evenly thinned; 0 = all of them).
     std::size_t max_link_correspondences = 0;
-    /// Bridging (with pruning only): while the verified pairs leave several groups, up to
-    /// `bridge_rounds` rounds match and verify, for the `bridge_scans_per_group` scans of
-    /// each group with the fewest group members close by (its border under the spanning-tree
-    /// poses), their `bridge_partners_per_scan` most similar scans (pruning votes) of other
-    /// groups not matched yet. 0 rounds: off.
-    std::size_t bridge_rounds = 0;
+    /// Bridging (with pruning only; without pruning every pair is matched anyway): while the
+    /// verified pairs leave several groups, up to `bridge_rounds` rounds match and verify,
+    /// for the `bridge_scans_per_group` scans of each group with the fewest group members
+    /// close by (its border under the spanning-tree poses), their `bridge_partners_per_scan`
+    /// most similar (pruning votes) border scans of other groups not matched yet. 0: off.
+    std::size_t bridge_rounds = 4;
     std::size_t bridge_scans_per_group = 4;
     std::size_t bridge_partners_per_scan = 2;
 };
