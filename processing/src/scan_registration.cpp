@@ -74,6 +74,7 @@ void copy_global_figures(const GlobalRegistrationResult& g, PairOutcome& pair) {
     pair.weight = pair.verified ? pair_weight(g) : 0.0;
     pair.T_target_source = g.T_target_source;
     pair.global_rms_m = g.rms_m;
+    pair.global_target_spacing_m = g.target_spacing_m;
     pair.global_overlap_fraction = g.overlap_fraction;
     pair.global_time_s = g.timing.total_s;
 }

@@ -7,22 +7,31 @@
 #include "scan_registration_steps.hpp"
 
 namespace anascan::detail {
+namespace {
+
+double median(std::vector<double> values) {
+    const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+    std::nth_element(values.begin(), middle, values.end());
+    return *middle;
+}
+
+}  // namespace
 
 double session_rms_gate_m(const std::vector<PairOutcome>& pairs, std::size_t scan_count,
                           const ScanRegistrationConfig& config) {
     constexpr double kOff = std::numeric_limits<double>::infinity();
     if (config.session_rms_gate_factor <= 0.0) return kOff;
-    std::vector<double> best(scan_count, kOff);
+    std::vector<double> best(scan_count, kOff), spacings;
     for (const PairOutcome& p : pairs) {
         if (!p.verified) continue;
         best[p.source] = std::min(best[p.source], p.global_rms_m);
         best[p.target] = std::min(best[p.target], p.global_rms_m);
+        spacings.push_back(p.global_target_spacing_m);
     }
     std::erase_if(best, [](double rms) { return rms == kOff; });
     if (best.empty() || best.size() < config.min_scans_for_rms_gate) return kOff;
-    const auto middle = best.begin() + static_cast<std::ptrdiff_t>(best.size() / 2);
-    std::nth_element(best.begin(), middle, best.end());
-    return config.session_rms_gate_factor * *middle;
+    return std::max(config.session_rms_gate_factor * median(best),
+                    config.session_rms_gate_min_spacing_fraction * median(spacings));
 }
 
 bool apply_rms_gate(PairOutcome& pair, double gate_m) {
