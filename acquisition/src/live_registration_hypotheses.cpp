@@ -7,6 +7,7 @@
 #include <string>
 
 #include "anascan/processing/kdtree.hpp"
+#include "anascan/processing/median.hpp"
 #include "live_registration_state.hpp"
 #include "live_registration_votes.hpp"
 
@@ -173,26 +174,17 @@ live::Verified LiveRegistrar::State::verify_hypothesis(const ScanEntry& entry, i
     return v;
 }
 
-namespace {
-
-double median_of(std::vector<double> values) {
-    std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
-    return values[values.size() / 2];
-}
-
-}  // namespace
-
 live::VerificationLimits LiveRegistrar::State::limits() const {
     live::VerificationLimits out{.max_rms_m = config.max_rms_voxel_factor * config.voxel_size_m,
                                  .max_normal_deviation_deg = config.max_normal_deviation_deg};
     if (accepted_rms_m.size() < config.min_accepted_for_limits) return out;
     out.max_rms_m =
         std::min(out.max_rms_m, std::max(config.min_rms_limit_m, config.accepted_rms_median_factor *
-                                                                     median_of(accepted_rms_m)));
+                                                                     upper_median(accepted_rms_m)));
     out.max_normal_deviation_deg = std::min(
         out.max_normal_deviation_deg,
         std::max(config.min_normal_deviation_limit_deg,
-                 config.accepted_normal_median_factor * median_of(accepted_normal_deviation)));
+                 config.accepted_normal_median_factor * upper_median(accepted_normal_deviation)));
     return out;
 }
 
@@ -200,9 +192,7 @@ double LiveRegistrar::State::rms_gate() const {
     if (link_rms_m.size() < config.min_links_for_rms_gate) {
         return std::numeric_limits<double>::infinity();
     }
-    std::vector<double> rms = link_rms_m;
-    std::nth_element(rms.begin(), rms.begin() + rms.size() / 2, rms.end());
-    return config.global_rms_median_factor * rms[rms.size() / 2];
+    return config.global_rms_median_factor * upper_median(link_rms_m);
 }
 
 std::vector<std::pair<std::string, Pose>> LiveRegistrar::State::priors(std::int64_t seq,

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <optional>
 
+#include "anascan/processing/median.hpp"
 #include "multiview_refinement_steps.hpp"
 
 namespace anascan {
@@ -56,13 +57,6 @@ bool exceeds_bound(double rms_m, double median_m, const MultiviewRefinementConfi
     return rms_m > config.max_link_rms_m || rms_m > robust_bound_m;
 }
 
-double median(std::vector<double> values) {
-    if (values.empty()) return 0.0;
-    const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-    std::nth_element(values.begin(), middle, values.end());
-    return *middle;
-}
-
 // The regression step (paper §4.2.4): evaluates ε_mv of every active link at the current
 // poses and drops the single worst link above the bound (one per round, so that a biased
 // link that bent its neighbours does not take good links with it). Returns the dropped link.
@@ -79,7 +73,7 @@ std::optional<std::size_t> prune_worst_link(std::span<const MultiviewLink> links
         rms[l] = multiview_detail::link_rms_m(links[l], poses);
         active_rms.push_back(rms[l]);
     }
-    const double median_m = median(active_rms);
+    const double median_m = upper_median(active_rms);
     std::optional<std::size_t> worst;
     for (std::size_t l = 0; l < links.size(); ++l) {
         if (!active[l] || !connected[links[l].target_index]) continue;

@@ -4,19 +4,10 @@
 #include <limits>
 #include <vector>
 
+#include "anascan/processing/median.hpp"
 #include "scan_registration_steps.hpp"
 
 namespace anascan::detail {
-namespace {
-
-double median(std::vector<double> values) {
-    const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-    std::nth_element(values.begin(), middle, values.end());
-    return *middle;
-}
-
-}  // namespace
-
 double session_rms_gate_m(const std::vector<PairOutcome>& pairs, std::size_t scan_count,
                           const ScanRegistrationConfig& config) {
     constexpr double kOff = std::numeric_limits<double>::infinity();
@@ -30,8 +21,8 @@ double session_rms_gate_m(const std::vector<PairOutcome>& pairs, std::size_t sca
     }
     std::erase_if(best, [](double rms) { return rms == kOff; });
     if (best.empty() || best.size() < config.min_scans_for_rms_gate) return kOff;
-    return std::max(config.session_rms_gate_factor * median(best),
-                    config.session_rms_gate_min_spacing_fraction * median(spacings));
+    return std::max(config.session_rms_gate_factor * upper_median(best),
+                    config.session_rms_gate_min_spacing_fraction * upper_median(spacings));
 }
 
 bool apply_rms_gate(PairOutcome& pair, double gate_m) {
