@@ -98,7 +98,8 @@ LiveDecision LiveRegistrar::State::place(LiveScanInput scan, bool newest, std::o
         // The operator's predictions belong to the newest scan; a scan registered again
         // goes straight to global registration.
         if (newest) accepted = try_cheap(scans[index], group, decision.method, decision);
-        if (!accepted) {
+        const bool opens_the_new_side = turned && newest && config.new_group_after_turn;
+        if (!accepted && !opens_the_new_side) {
             accepted = try_global(index, group, decision);
             decision.method = "global";
         }

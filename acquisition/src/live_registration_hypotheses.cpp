@@ -151,6 +151,16 @@ const live::ModelCache& LiveRegistrar::State::model_of(
 
 live::Verified LiveRegistrar::State::verify_hypothesis(const ScanEntry& entry, int group,
                                                        const Pose& T_group_scan) const {
+    return verify(entry, group, T_group_scan, false);
+}
+
+live::Verified LiveRegistrar::State::verify_prediction(const ScanEntry& entry, int group,
+                                                       const Pose& T_predicted) const {
+    return verify(entry, group, T_predicted, true);
+}
+
+live::Verified LiveRegistrar::State::verify(const ScanEntry& entry, int group,
+                                            const Pose& T_group_scan, bool prediction) const {
     // The model: the group's scans whose sensors stood nearest the hypothesis's sensor.
     std::vector<std::size_t> candidates = members(group);
     const Eigen::Vector3d sensor = sensor_in_group(entry, T_group_scan);
@@ -170,7 +180,14 @@ live::Verified LiveRegistrar::State::verify_hypothesis(const ScanEntry& entry, i
     const KdTree& tree = *cache.tree;
     v.fine = register_fine(entry.cloud, model, tree, T_group_scan, config.fine);
     v.rejection = live::rejection(v.fine, config, limits());
-    if (v.rejection.empty()) probe_slides(entry, model, tree, v);
+    const auto check_correction = [&] {
+        if (prediction && v.rejection.empty())
+            v.rejection = live::correction_problem(entry, T_group_scan, v.fine, config);
+    };
+    check_correction();
+    if (!v.rejection.empty()) return v;
+    probe_slides(entry, model, tree, v);
+    check_correction();
     return v;
 }
 
@@ -223,8 +240,7 @@ std::optional<live::Verified> LiveRegistrar::State::try_cheap(const ScanEntry& e
     const auto hypotheses = priors(entry.seq, group);
     for (const auto& [name, T] : hypotheses) {
         const Clock::time_point start = Clock::now();
-        Verified v = verify_hypothesis(entry, group, T);
-        if (v.rejection.empty()) v.rejection = live::correction_problem(entry, T, v.fine, config);
+        Verified v = verify_prediction(entry, group, T);
         decision.attempts.push_back(attempt_of(name, v, scans[members(group)[0]].seq, group));
         decision.attempts.back().time_s = seconds_since(start);  // Model, fine and probes.
         if (v.rejection.empty()) {

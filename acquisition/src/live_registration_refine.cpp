@@ -1,6 +1,7 @@
 // LiveRegistrar::refine: features ahead of need, group merges by global registration of
 // stone-only scans, multi-view links between overlapping scans, multi-view refinement.
 #include <algorithm>
+#include <cmath>
 #include <map>
 
 #include "anascan/processing/kdtree.hpp"
@@ -34,10 +35,14 @@ double forecast_overlap(const ScanEntry& source, const ScanEntry& target, const 
 }
 
 bool usable_link(const FineRegistrationResult& fine, const LiveRegistrationConfig& config) {
+    // A degenerate link moved only along the directions its overlap fixes; fewer
+    // iterations than the limit means it settled along those.
+    const bool settled_on_what_it_fixes = config.degenerate_links &&
+                                          fine.status == FineRegistrationStatus::kDegenerate &&
+                                          fine.iterations < config.link_fine.max_iterations;
     return (fine.status == FineRegistrationStatus::kConverged ||
-            fine.status == FineRegistrationStatus::kMaxIterations) &&
+            fine.status == FineRegistrationStatus::kMaxIterations || settled_on_what_it_fixes) &&
            fine.overlap_fraction >= config.min_link_overlap_fraction &&
-           fine.degeneracy.eigenvalue_ratio >= config.link_fine.degeneracy_threshold &&
            fine.normal_deviation_deg.value_or(0.0) <= config.max_normal_deviation_deg &&
            fine.rms_m <= config.max_link_rms_voxel_factor * config.voxel_size_m;
 }
@@ -180,6 +185,11 @@ std::vector<PoseUpdate> LiveRegistrar::State::merge_groups() {
     std::size_t attempts = 0;
     for (std::size_t b = 1; b < ids.size(); ++b) {
         for (std::size_t a = 0; a < b; ++a) {
+            // Across a turn-over single scans match by look-alike poses that fit only a few
+            // times worse than the right one: without the session's RMS gate (enough
+            // links), their votes can carry a wrong merge (seen on the demo session when
+            // the capture kept the background too busy for links). Wait for the gate.
+            if (group_side(ids[a]) != group_side(ids[b]) && !std::isfinite(rms_gate())) continue;
             live::PoseVotes& box = merge_votes
                                        .try_emplace({ids[a], ids[b]}, config.vote_rotation_deg,
                                                     config.vote_displacement_m)

@@ -44,9 +44,7 @@ std::vector<PoseUpdate> LiveRegistrar::State::merge_by_sequence() {
             it->second = size;
             ++report.merge_attempts;
             for (const auto& [name, T] : sequence_priors(i, into, direction)) {
-                live::Verified v = verify_hypothesis(scans[i], into, T);
-                if (v.rejection.empty())
-                    v.rejection = live::correction_problem(scans[i], T, v.fine, config);
+                live::Verified v = verify_prediction(scans[i], into, T);
                 if (!v.rejection.empty()) continue;
                 // T_into_from maps the scan's group into `into`; the lower id survives.
                 const int from = scans[i].group;

@@ -144,6 +144,13 @@ struct LiveRegistrar::State {
     /// Fine registration of `entry` from `T_group_scan` against the group's model.
     live::Verified verify_hypothesis(const live::ScanEntry& entry, int group,
                                      const Pose& T_group_scan) const;
+    /// The same for a prediction (motion prior, previous pose): also rejected when the
+    /// refined pose moved too far from it, checked before the slide probes (a wrong basin
+    /// is not worth probing) and after them.
+    live::Verified verify_prediction(const live::ScanEntry& entry, int group,
+                                     const Pose& T_predicted) const;
+    live::Verified verify(const live::ScanEntry& entry, int group, const Pose& T_group_scan,
+                          bool prediction) const;
     /// Restarts along the weakest direction of `v` (see LiveRegistrationConfig::slide_probe_m).
     void probe_slides(const live::ScanEntry& entry, const PointCloud& model, const KdTree& tree,
                       live::Verified& v) const;

@@ -94,25 +94,31 @@ TEST_F(LiveRegistrationSession, PosesMatchTheTruthInTheFirstPlacement) {
     }
     RecordProperty("worst_rotation_deg", std::to_string(worst_rotation_deg));
     RecordProperty("worst_translation_mm", std::to_string(worst_translation_m * 1e3));
-    EXPECT_LT(worst_rotation_deg, 0.1);
-    EXPECT_LT(worst_translation_m, 0.0005);
+    // Measured: 0.0035° / 0.091 mm; without the links across the turn-over (degenerate:
+    // a band of the sides) 0.0063° / 0.145 mm, the second side hanging on the merge.
+    EXPECT_LT(worst_rotation_deg, 0.005);
+    EXPECT_LT(worst_translation_m, 0.00012);
 }
 
-TEST_F(LiveRegistrationSession, CheapHypothesesCarryTheTourAndGlobalTheFlip) {
+TEST_F(LiveRegistrationSession, CheapHypothesesCarryTheTourAndTheFlipOpensAGroup) {
     const std::vector<LiveDecision>& d = *decisions_;
     EXPECT_EQ(d[0].method, "first");
     std::size_t cheap = 0;
     for (std::size_t i = 1; i < d.size(); ++i) {
         cheap += d[i].method == "motion-prior" || d[i].method == "previous-pose";
-        EXPECT_FALSE(d[i].attempts.empty()) << d[i].message;
+        if (i != kViewsPerSide) {
+            EXPECT_FALSE(d[i].attempts.empty()) << d[i].message;
+        }
     }
     // Steps of 30° with elevations alternating by 20°: the motion priors need three placed
     // scans of a group, and the operator's jitter defeats them now and then.
     EXPECT_GE(cheap, d.size() / 2);
-    // The first scan after the flip tries no motion prior: the stone moved.
+    // The first scan after the flip tries nothing: the stone moved, and the other side
+    // matches it only by look-alike poses. It opens a group of its own, which the
+    // whole-group merge joins to the first side later (EveryScanEndsInOneGroup).
     const LiveDecision& flipped = d[kViewsPerSide];
-    ASSERT_FALSE(flipped.attempts.empty());
-    EXPECT_EQ(flipped.attempts.front().method, "global") << flipped.message;
+    EXPECT_TRUE(flipped.attempts.empty()) << flipped.message;
+    EXPECT_EQ(flipped.method, "new-group") << flipped.message;
 }
 
 TEST_F(LiveRegistrationSession, DecisionsCarryTheirFigures) {

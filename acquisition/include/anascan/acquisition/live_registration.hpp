@@ -105,6 +105,11 @@ struct LiveRegistrationConfig {
     double min_degeneracy_ratio = 0.0;
     double min_overlap_fraction = 0.3;       ///< ... overlap of the new scan at least this ...
     double max_normal_deviation_deg = 20.0;  ///< ... and mean normal angle at most this.
+    /// The first scan after the operator marked the stone turned over opens a new group at
+    /// once: the other side's scans match it only by look-alike poses (on the demo session
+    /// eight global attempts, ~6 s, decided nothing), and the whole-group merge joins the
+    /// sides once the new one has a few scans. False: it tries global registration first.
+    bool new_group_after_turn = true;
     /// Global registration (features at radii fixed for the session, see `radii_m`).
     GlobalRegistrationConfig global{};
     /// Descriptor radii for the session; all zero = from the first usable scan's diagonal.
@@ -147,6 +152,13 @@ struct LiveRegistrationConfig {
     /// gets links to its true neighbours, and links computed from a wrong pose are redone.
     double link_retry_deg = 0.05;
     double link_retry_m = 0.0005;
+    /// Links whose overlap only fixes some directions (one face, a band of the sides: the
+    /// fine registration reports them degenerate) are kept too: their fine registration
+    /// moved only along the fixed directions, and in the multi-view solve they add stiffness
+    /// only there. Across a turn-over every pair is of this kind (eigenvalue ratios 2e-5 to
+    /// 6e-4 on the demo session); without them the second side hangs on the one rigid
+    /// transform of the group merge (docs/live-registration.md, "Seventh pass").
+    bool degenerate_links = true;
     /// A link needs an RMS within this many voxel sizes (looser than the verification:
     /// its correspondences reach farther).
     double max_link_rms_voxel_factor = 1.0;
