@@ -36,17 +36,29 @@ LiveAttempt attempt_of(std::string method, const Verified& v, std::int64_t targe
 
 }  // namespace
 
-/// Why the refined pose cannot come from the hypothesis `T_prior` (too far from it).
-std::string live::correction_problem(const ScanEntry& entry, const Pose& T_prior,
-                                     const FineRegistrationResult& fine,
-                                     const LiveRegistrationConfig& config) {
-    const double rotation_deg = rotation_angle_deg(T_prior.inverse() * fine.T_target_source);
-    const double moved_m =
-        (T_prior * entry.centroid_m - fine.T_target_source * entry.centroid_m).norm();
-    if (rotation_deg > config.max_prior_correction_deg || moved_m > config.max_prior_correction_m) {
-        return "moved too far from the hypothesis";
+live::Correction live::correction(const ScanEntry& entry, const Pose& T_prior,
+                                  const FineRegistrationResult& fine) {
+    return {
+        .rotation_deg = rotation_angle_deg(T_prior.inverse() * fine.T_target_source),
+        .moved_m = (T_prior * entry.centroid_m - fine.T_target_source * entry.centroid_m).norm()};
+}
+
+std::string LiveRegistrar::State::correction_problem(const ScanEntry& entry, const Pose& T_prior,
+                                                     const FineRegistrationResult& fine) const {
+    const live::Correction c = live::correction(entry, T_prior, fine);
+    if (c.rotation_deg <= config.max_prior_correction_deg &&
+        c.moved_m <= config.max_prior_correction_m) {
+        return {};
     }
-    return {};
+    const bool within_fitting_bounds = c.rotation_deg <= config.max_fitting_correction_deg &&
+                                       c.moved_m <= config.max_fitting_correction_m;
+    if (within_fitting_bounds && accepted_rms_m.size() >= config.min_accepted_for_limits &&
+        fine.rms_m <= config.fitting_correction_factor * upper_median(accepted_rms_m) &&
+        fine.normal_deviation_deg.value_or(0.0) <=
+            config.fitting_correction_factor * upper_median(accepted_normal_deviation)) {
+        return {};
+    }
+    return "moved too far from the hypothesis";
 }
 
 std::vector<std::pair<std::string, Pose>> live::motion_priors(const std::vector<Pose>& recent) {
@@ -182,7 +194,7 @@ live::Verified LiveRegistrar::State::verify(const ScanEntry& entry, int group,
     v.rejection = live::rejection(v.fine, config, limits());
     const auto check_correction = [&] {
         if (prediction && v.rejection.empty())
-            v.rejection = live::correction_problem(entry, T_group_scan, v.fine, config);
+            v.rejection = correction_problem(entry, T_group_scan, v.fine);
     };
     check_correction();
     if (!v.rejection.empty()) return v;

@@ -78,11 +78,13 @@ struct VerificationLimits {
 std::string rejection(const FineRegistrationResult& fine, const LiveRegistrationConfig& config,
                       const VerificationLimits& limits);
 
-/// Why a pose refined from the hypothesis `T_prior` cannot come from it (moved too far, so
-/// the fine registration fell into another minimum); empty when it can.
-std::string correction_problem(const ScanEntry& entry, const Pose& T_prior,
-                               const FineRegistrationResult& fine,
-                               const LiveRegistrationConfig& config);
+/// How far fine registration moved a scan from the hypothesis it started at.
+struct Correction {
+    double rotation_deg = 0.0;
+    double moved_m = 0.0;  ///< Of the scan's centroid.
+};
+Correction correction(const ScanEntry& entry, const Pose& T_prior,
+                      const FineRegistrationResult& fine);
 
 /// The operator's predicted poses from the poses of the scans next to it in the capture order
 /// (`recent[0]` the nearest, at most 3 used): constant velocity ("motion-prior"), double step
@@ -151,6 +153,10 @@ struct LiveRegistrar::State {
                                      const Pose& T_predicted) const;
     live::Verified verify(const live::ScanEntry& entry, int group, const Pose& T_group_scan,
                           bool prediction) const;
+    /// Why a pose refined from the prediction `T_prior` cannot come from it (moved too far,
+    /// so the fine registration fell into another minimum); empty when it can.
+    std::string correction_problem(const live::ScanEntry& entry, const Pose& T_prior,
+                                   const FineRegistrationResult& fine) const;
     /// Restarts along the weakest direction of `v` (see LiveRegistrationConfig::slide_probe_m).
     void probe_slides(const live::ScanEntry& entry, const PointCloud& model, const KdTree& tree,
                       live::Verified& v) const;
