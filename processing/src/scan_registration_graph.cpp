@@ -5,6 +5,7 @@
 #include <string>
 #include <utility>
 
+#include "anascan/processing/link_compression.hpp"
 #include "global_registration_steps.hpp"
 #include "scan_registration_steps.hpp"
 
@@ -97,15 +98,6 @@ double predicted_overlap(const ScanFeatures& source, const ScanFeatures& target,
         config.site_overlap_spacing_factor * target.invariants.site_spacing_m);
 }
 
-/// Every `step`-th correspondence, at most `max_count` (0: all).
-std::vector<FineCorrespondence> thinned(std::vector<FineCorrespondence> all,
-                                        std::size_t max_count) {
-    if (max_count == 0 || all.size() <= max_count) return all;
-    std::vector<FineCorrespondence> out(max_count);
-    for (std::size_t k = 0; k < max_count; ++k) out[k] = all[k * all.size() / max_count];
-    return out;
-}
-
 bool usable_link(const FineRegistrationResult& fine, double target_spacing_m,
                  const ScanRegistrationConfig& config) {
     return (fine.status == FineRegistrationStatus::kConverged ||
@@ -188,10 +180,11 @@ PairLinks make_links(PreparedScans& scans, const PoseGraph& graph, std::vector<P
         }
         if (!usable_link(fine, scans.spacing_m[t], config)) continue;
         pair.linked = true;
-        links.links.push_back({.target_index = t,
-                               .source_index = s,
-                               .correspondences = thinned(std::move(fine.correspondences),
-                                                          config.max_link_correspondences)});
+        links.links.push_back(
+            {.target_index = t,
+             .source_index = s,
+             .correspondences = compress_link(std::move(fine.correspondences), fine.T_target_source,
+                                              config.max_link_correspondences)});
         links.pair_of_link.push_back(p);
     }
     return links;

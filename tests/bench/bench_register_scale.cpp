@@ -4,9 +4,9 @@
 // the error of every placed scan against its known pose.
 //
 //   anascan_bench_register_scale --scans 100 [--points 50000] [--candidates 3]
-//       [--voxel-mm 2] [--max-loaded 8] [--link-correspondences 100] [--spill DIR]
+//       [--voxel-mm 2] [--max-loaded 8] [--link-correspondences 50] [--spill DIR]
 //       [--all-in-memory] [--list] [--max-failures 2] [--bridge-rounds 4] [--seed 1]
-//       [--default-allocator]
+//       [--default-allocator] [--multiview-tikhonov 1e-10]
 //
 // By default the benchmark fixes glibc's mmap threshold (use_fixed_mmap_threshold, as the
 // register command does); --default-allocator keeps glibc's dynamic threshold.
@@ -50,7 +50,7 @@ struct Options {
     std::size_t candidates = 3;
     double voxel_mm = 2.0;
     std::size_t max_loaded = 8;
-    std::size_t link_correspondences = 100;
+    std::size_t link_correspondences = 50;  // compress_link: the optimum of all of them.
     std::size_t max_failures = 2;
     std::size_t bridge_rounds = 4;
     std::string spill;
@@ -58,6 +58,7 @@ struct Options {
     bool list = false;
     bool default_allocator = false;  ///< --default-allocator: glibc's dynamic mmap threshold.
     unsigned seed = 1;
+    double multiview_tikhonov = MultiviewRefinementConfig{}.tikhonov_relative;
 };
 
 struct Bump {
@@ -188,6 +189,8 @@ bool parse(int argc, char** argv, Options& o) {
             o.max_failures = std::strtoul(next(), nullptr, 10);
         else if (a == "--bridge-rounds")
             o.bridge_rounds = std::strtoul(next(), nullptr, 10);
+        else if (a == "--multiview-tikhonov")
+            o.multiview_tikhonov = std::strtod(next(), nullptr);
         else if (a == "--seed")
             o.seed = static_cast<unsigned>(std::strtoul(next(), nullptr, 10));
         else {
@@ -196,7 +199,7 @@ bool parse(int argc, char** argv, Options& o) {
                 "usage: %s --scans N [--points P] [--candidates K] [--voxel-mm V]\n"
                 "  [--max-loaded M] [--link-correspondences C] [--spill DIR]\n"
                 "  [--all-in-memory] [--list] [--max-failures F] [--bridge-rounds R] [--seed S]\n"
-                "  [--default-allocator]\n",
+                "  [--default-allocator] [--multiview-tikhonov T]\n",
                 argv[0]);
             return false;
         }
@@ -324,6 +327,7 @@ int main(int argc, char** argv) {
                                   .max_failed_refinements_per_scan = o.max_failures,
                                   .max_link_correspondences = o.link_correspondences,
                                   .bridge_rounds = o.bridge_rounds};
+    config.multiview.tikhonov_relative = o.multiview_tikhonov;
     if (!o.in_memory) {
         config.spill_directory = o.spill.empty() ? std::filesystem::temp_directory_path() /
                                                        ("anascan-scale-" + std::to_string(getpid()))

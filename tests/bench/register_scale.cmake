@@ -5,3 +5,9 @@
 add_executable(anascan_bench_register_scale ${CMAKE_CURRENT_LIST_DIR}/bench_register_scale.cpp)
 target_link_libraries(anascan_bench_register_scale PRIVATE anascan::processing)
 anascan_set_warnings(anascan_bench_register_scale)
+
+# The multi-view stage alone at 1000 scans (memory and convergence, about a second):
+#   <build>/tests/bench/anascan_bench_multiview_scale --scans 1000
+add_executable(anascan_bench_multiview_scale ${CMAKE_CURRENT_LIST_DIR}/bench_multiview_scale.cpp)
+target_link_libraries(anascan_bench_multiview_scale PRIVATE anascan::processing)
+anascan_set_warnings(anascan_bench_multiview_scale)

@@ -126,7 +126,8 @@ struct ScanRegistrationConfig {
     /// refinements (0 = no limit). With pruning, a scan whose true partners failed would
     /// otherwise have all its remaining candidates refined, each failing slowly.
     std::size_t max_failed_refinements_per_scan = 0;
-    /// Correspondences a multi-view link keeps (evenly thinned; 0 = all of them).
+    /// Correspondences a multi-view link keeps (`compress_link`: evenly thinned, with the
+    /// optimum of all of them; 0 = all of them).
     std::size_t max_link_correspondences = 0;
     /// Bridging (with pruning only; without pruning every pair is matched anyway): while the
     /// verified pairs leave several groups, up to `bridge_rounds` rounds match and verify,
