@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <numbers>
 #include <optional>
@@ -18,7 +19,7 @@
 namespace anascan {
 namespace {
 
-const Eigen::Vector3d kBoxMin(-0.15, -0.10, 0.0), kBoxMax(0.15, 0.10, 0.12);
+const Eigen::Vector3d kBoxMin(-0.2, -0.08, 0.0), kBoxMax(0.2, 0.08, 0.12);
 constexpr double kGroundHalfWidthM = 0.6;
 
 /// Distance along a unit ray to the box (slab test) or the ground z = 0 in its square.
@@ -96,6 +97,7 @@ TEST(FreeSpace, TruePoseLeavesFreeSpaceEmpty) {
     ASSERT_GT(views.a.size(), 10000u);
     const FreeSpaceResult r = views.check(Pose::Identity());
     ASSERT_TRUE(r.valid);
+    std::printf("violation fraction at the true pose: %.4f\n", r.violation_fraction);
     EXPECT_GT(r.in_view, r.samples / 2);  // Both see most of the ground and the box.
     EXPECT_LT(r.violation_fraction, 0.01);
     EXPECT_LE(r.violation_fraction, FreeSpaceConfig{}.max_violation_fraction);
@@ -107,8 +109,10 @@ TEST(FreeSpace, TurnedPosesPutPointsInFreeSpace) {
     const FreeSpaceResult over = views.check(turn(Eigen::Vector3d::UnitX(), 180.0));
     ASSERT_TRUE(quarter.valid);
     ASSERT_TRUE(over.valid);
+    std::printf("violation fraction: turned 90 deg %.4f, turned over %.4f\n",
+                quarter.violation_fraction, over.violation_fraction);
     // Only the box can violate: the ground of one view lies on the other's.
-    EXPECT_GT(quarter.violation_fraction, FreeSpaceConfig{}.max_violation_fraction);
+    EXPECT_GT(quarter.violation_fraction, 1.5 * FreeSpaceConfig{}.max_violation_fraction);
     EXPECT_GT(over.violation_fraction, 2.0 * FreeSpaceConfig{}.max_violation_fraction);
     EXPECT_GT(quarter.violation_fraction, 5.0 * views.check(Pose::Identity()).violation_fraction);
 }
