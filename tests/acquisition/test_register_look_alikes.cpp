@@ -23,18 +23,7 @@ namespace {
 
 using anascan::testing::PlannedView;
 
-sim::SceneConfig scene_config(const sim::BlockPlacement& placement) {
-    sim::SceneConfig config = sim::named_scene("small-block").value();
-    config.block.grid_step_m = 0.003;
-    config.with_tent = false;
-    config.placement = placement;
-    return config;
-}
-
-struct TrueScan {
-    PointCloud cloud;  ///< Sensor frame (the sensor at the origin).
-    Pose T_true = Pose::Identity();
-};
+using TrueScan = anascan::testing::RenderedScan;
 
 constexpr int kViewsPerSide = 12;
 
@@ -51,30 +40,8 @@ std::vector<PlannedView> session_plan(const sim::BlockPlacement& first) {
 }
 
 std::vector<TrueScan> capture_session() {
-    const sim::BlockPlacement first = sim::named_scene("small-block").value().placement;
-    const std::vector<PlannedView> plan = session_plan(first);
-    std::map<bool, std::pair<sim::Scene, std::unique_ptr<sim::RayCaster>>> worlds;
-    const sim::Scene scene0 = sim::make_scene(scene_config(first));
-    std::vector<TrueScan> scans;
-    std::uint32_t seed = 1;
-    for (const PlannedView& p : plan) {
-        const bool turned = p.placement.resting_face == sim::BlockFace::kPosZ;
-        if (!worlds.contains(turned)) {
-            sim::Scene scene = sim::make_scene(scene_config(p.placement));
-            auto caster =
-                std::make_unique<sim::RayCaster>(sim::RayCaster::create(scene.mesh).value());
-            worlds.emplace(turned, std::make_pair(std::move(scene), std::move(caster)));
-        }
-        const auto& [scene, caster] = worlds.at(turned);
-        const Pose T_world_sensor =
-            sim::sensor_looking_at(anascan::testing::aim_point(scene), p.view);
-        TrueScan scan;
-        scan.cloud = anascan::testing::pinhole_scan(*caster, T_world_sensor, {}, seed++);
-        scan.T_true = anascan::testing::true_pose_in_first_placement(
-            scene0.T_world_block, scene.T_world_block, T_world_sensor);
-        scans.push_back(std::move(scan));
-    }
-    return scans;
+    return anascan::testing::render_tour(
+        session_plan(sim::named_scene("small-block").value().placement));
 }
 
 // DISABLED: still fails, with fewer wrong scans (docs/scan-registration.md "Free-space
