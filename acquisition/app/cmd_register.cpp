@@ -109,6 +109,7 @@ nlohmann::json pair_json(const ScanRegistrationResult& r, const PairOutcome& p) 
             {"global_refined", p.global_refined},
             {"verified", p.verified},
             {"above_rms_gate", p.above_rms_gate},
+            {"free_space_rejections", p.free_space_rejections},
             {"in_tree", p.in_tree},
             {"weight", p.weight},
             {"T_target_source", matrix_json(p.T_target_source)},
@@ -196,7 +197,8 @@ void run_register(const RegisterOptions& o) {
     for (const std::string& path : o.scans) {
         inputs.push_back({.name = path,
                           .load = [path] { return load_ply_cloud(path); },
-                          .sensor_origin_scan_m = sensor_origin(o.sensor)});
+                          .sensor_origin_scan_m = sensor_origin(o.sensor),
+                          .sensor_origin_known = o.sensor.origin_given && !o.sensor.no_sensor});
     }
     const ScanRegistrationResult result =
         register_scans(inputs, {}, [](std::string_view m) { spdlog::info("{}", m); });

@@ -8,8 +8,12 @@ void add_sensor_options(CLI::App* cmd, SensorOptions& options) {
     cmd->add_option("--sensor-origin", options.origin_m,
                     "Sensor position X Y Z in each scan's own frame, metres, toward which "
                     "estimated normals point (default 0 0 1: fits Cyberware and structured-"
-                    "light scans whose frame looks along +z). PLY normals are used as they are")
-        ->expected(3);
+                    "light scans whose frame looks along +z). PLY normals are used as they are. "
+                    "Given explicitly, it is taken as where each scan was taken from: `register` "
+                    "then also rejects pair poses that put points where the other scan's sensor "
+                    "saw empty space (free-space check)")
+        ->expected(3)
+        ->each([&options](const std::string&) { options.origin_given = true; });
     cmd->add_flag("--sensor-z", options.sensor_z,
                   "Sensor at (0,0,1) m in each scan frame (the default, stated explicitly)");
     cmd->add_flag("--no-sensor", options.no_sensor,

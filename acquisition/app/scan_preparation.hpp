@@ -16,6 +16,9 @@ struct SensorOptions {
     std::vector<double> origin_m{0.0, 0.0, 1.0};
     bool no_sensor = false;  ///< Orient consistently instead.
     bool sensor_z = false;   ///< Explicitly the default (0,0,1) m.
+    /// --sensor-origin was given: the position is where the scans were taken from (enables
+    /// the free-space check of `register`), not the default guess for orienting normals.
+    bool origin_given = false;
 };
 
 /// Adds --sensor-origin X Y Z, --sensor-z and --no-sensor to `cmd`.

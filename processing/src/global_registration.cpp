@@ -100,11 +100,46 @@ bool near_verified(const std::vector<HypothesisOutcome>& done, const Pose& T,
     });
 }
 
-void refine_hypotheses(const PointCloud& source, const PointCloud& target,
+/// The larger free-space violation fraction of the directions whose viewer's sensor is
+/// known (source points in the target's view, target points in the source's); empty when
+/// neither is known or too few points fall in a view.
+std::optional<double> free_space_fraction(const detail::DescribedScan& source,
+                                          const detail::DescribedScan& target, const Pose& T,
+                                          const FreeSpaceConfig& config) {
+    std::optional<double> worst;
+    const auto add = [&](const FreeSpaceResult& r) {
+        if (r.valid && r.in_view >= config.min_points_in_view)
+            worst = std::max(worst.value_or(0.0), r.violation_fraction);
+    };
+    if (target.viewpoint_m) {
+        add(check_free_space(target.cloud, *target.viewpoint_m, target.features.spacing_m,
+                             source.cloud, T, config));
+    }
+    if (source.viewpoint_m) {
+        add(check_free_space(source.cloud, *source.viewpoint_m, source.features.spacing_m,
+                             target.cloud, T.inverse(), config));
+    }
+    return worst;
+}
+
+/// Rejects a hypothesis that passed the other tests when it puts points in free space.
+void verify_free_space(const detail::DescribedScan& source, const detail::DescribedScan& target,
+                       const FreeSpaceConfig& config, HypothesisOutcome& outcome) {
+    if (!outcome.rejection.empty()) return;
+    outcome.free_space_violation_fraction =
+        free_space_fraction(source, target, outcome.fine.T_target_source, config);
+    const double fraction = outcome.free_space_violation_fraction.value_or(0.0);
+    if (fraction <= config.max_violation_fraction) return;
+    outcome.free_space_rejected = true;
+    outcome.rejection = "free space: " + std::to_string(static_cast<int>(fraction * 100.0 + 0.5)) +
+                        "% of the points seen by the other sensor lie where it saw empty space";
+}
+
+void refine_hypotheses(const detail::DescribedScan& source, const detail::DescribedScan& target,
                        std::vector<HypothesisOutcome> ranked,
                        const GlobalRegistrationConfig& config, GlobalRegistrationResult& result) {
     std::unique_ptr<KdTree> tree;
-    if (all_finite(target)) tree = std::make_unique<KdTree>(target.positions);
+    if (all_finite(target.cloud)) tree = std::make_unique<KdTree>(target.cloud.positions);
     double verified_key = 0.0;  // Ranking key of the first verified hypothesis.
     for (HypothesisOutcome& outcome : ranked) {
         if (result.hypotheses.size() >= config.max_refined) break;
@@ -112,9 +147,12 @@ void refine_hypotheses(const PointCloud& source, const PointCloud& target,
         if (key < config.min_rank_ratio_after_verified * verified_key) break;
         const Pose& T_initial = outcome.hypothesis.T_target_source;
         if (near_verified(result.hypotheses, T_initial, config.matching)) continue;
-        outcome.fine = tree ? register_fine(source, target, *tree, T_initial, config.fine)
-                            : register_fine(source, target, T_initial, config.fine);
+        outcome.fine =
+            tree ? register_fine(source.cloud, target.cloud, *tree, T_initial, config.fine)
+                 : register_fine(source.cloud, target.cloud, T_initial, config.fine);
         outcome.rejection = rejection(outcome.fine, result.target_spacing_m, config);
+        verify_free_space(source, target, config.free_space, outcome);
+        result.free_space_rejections += outcome.free_space_rejected;
         outcome.verified = outcome.rejection.empty();
         if (outcome.verified && verified_key == 0.0) verified_key = key;
         result.hypotheses.push_back(std::move(outcome));
@@ -221,7 +259,7 @@ GlobalRegistrationResult refine_and_verify(const DescribedScan& source, const De
         result.status = GlobalRegistrationStatus::kNoConsensus;
         result.message = "no consistent set of feature correspondences";
     } else {
-        refine_hypotheses(source.cloud, target.cloud,
+        refine_hypotheses(source, target,
                           rank_by_site_overlap(source.features.invariants,
                                                target.features.invariants, config, result.matching),
                           config, result);
@@ -294,7 +332,8 @@ std::vector<ScanFeatures> scan_features(std::vector<IntegralInvariantResult> inv
 
 GlobalRegistrationResult register_global(const PointCloud& source, const ScanFeatures& source_f,
                                          const PointCloud& target, const ScanFeatures& target_f,
-                                         const GlobalRegistrationConfig& config) {
+                                         const GlobalRegistrationConfig& config,
+                                         const Viewpoints& viewpoints) {
     const Clock::time_point start = Clock::now();
     FeatureMatchingResult matching;
     if (features_valid(source_f) && features_valid(target_f)) {
@@ -302,14 +341,16 @@ GlobalRegistrationResult register_global(const PointCloud& source, const ScanFea
     }
     const double matching_s = seconds_since(start);
     GlobalRegistrationResult result = detail::refine_and_verify(
-        {source, source_f}, {target, target_f}, std::move(matching), config);
+        {source, source_f, viewpoints.source_m}, {target, target_f, viewpoints.target_m},
+        std::move(matching), config);
     result.timing.matching_s = matching_s;
     result.timing.total_s = seconds_since(start);
     return result;
 }
 
 GlobalRegistrationResult register_global(const PointCloud& source, const PointCloud& target,
-                                         const GlobalRegistrationConfig& config) {
+                                         const GlobalRegistrationConfig& config,
+                                         const Viewpoints& viewpoints) {
     const Clock::time_point start = Clock::now();
     if (const std::string problem = input_problem(source, target); !problem.empty()) {
         GlobalRegistrationResult result;
@@ -328,7 +369,7 @@ GlobalRegistrationResult register_global(const PointCloud& source, const PointCl
         scan_features(std::move(invariants), spacings_m, config);
     const double patches_s = seconds_since(patches_start);
     GlobalRegistrationResult result =
-        register_global(source, features[0], target, features[1], config);
+        register_global(source, features[0], target, features[1], config, viewpoints);
     result.radii_m = radii_m;
     result.timing.invariants_s = invariants_s;
     result.timing.patches_s = patches_s;

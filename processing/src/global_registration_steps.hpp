@@ -54,6 +54,7 @@ double site_overlap_fraction(const IntegralInvariantResult& source,
 struct DescribedScan {
     const PointCloud& cloud;
     const ScanFeatures& features;
+    std::optional<Eigen::Vector3d> viewpoint_m;  ///< Sensor position (cloud frame), if known.
 };
 
 /// The second half of `register_global`: ranks the matching's hypotheses, refines and

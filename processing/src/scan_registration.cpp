@@ -77,15 +77,18 @@ void copy_global_figures(const GlobalRegistrationResult& g, PairOutcome& pair) {
     pair.global_target_spacing_m = g.target_spacing_m;
     pair.global_overlap_fraction = g.overlap_fraction;
     pair.global_time_s = g.timing.total_s;
+    pair.free_space_rejections = g.free_space_rejections;
 }
 
 /// Refines and verifies the matched pairs from `first` on (record p of `matchings`) not
 /// refined yet, best consensus score first, until their scans are connected through
-/// verified pairs (those before `first` included); pairs of connected scans are skipped. A
-/// pair verified with an RMS above `gate_m` does not count (apply_rms_gate).
+/// verified pairs (those before `first` included); pairs of connected scans are skipped
+/// unless `every_pair`. A pair verified with an RMS above `gate_m` does not count
+/// (apply_rms_gate).
 void verify_pairs(detail::PreparedScans& scans, detail::RecordFile& matchings, std::size_t first,
                   const ScanRegistrationConfig& config, double gate_m,
-                  std::vector<PairOutcome>& pairs, const RegistrationProgress& progress) {
+                  std::vector<PairOutcome>& pairs, const RegistrationProgress& progress,
+                  bool every_pair = false) {
     detail::DisjointSets connected(scans.size());
     std::vector<std::size_t> order;
     std::vector<std::size_t> failures(scans.size(), 0);
@@ -104,15 +107,17 @@ void verify_pairs(detail::PreparedScans& scans, detail::RecordFile& matchings, s
     std::size_t tried = 0;
     for (std::size_t p : order) {
         PairOutcome& pair = pairs[p];
-        pair.global_skipped = connected.find(pair.source) == connected.find(pair.target) ||
-                              gave_up(pair.source) || gave_up(pair.target);
+        pair.global_skipped =
+            (!every_pair && connected.find(pair.source) == connected.find(pair.target)) ||
+            gave_up(pair.source) || gave_up(pair.target);
         if (pair.global_skipped) continue;
         const std::shared_ptr<const PointCloud> source = scans.cloud(pair.source);
         const std::shared_ptr<const PointCloud> target = scans.cloud(pair.target);
         const ScanFeatures source_f = scans.full_features(pair.source);
         const ScanFeatures target_f = scans.full_features(pair.target);
         const GlobalRegistrationResult g =
-            detail::refine_and_verify({*source, source_f}, {*target, target_f},
+            detail::refine_and_verify({*source, source_f, scans.viewpoint_m[pair.source]},
+                                      {*target, target_f, scans.viewpoint_m[pair.target]},
                                       detail::matching_from(matchings.read(p)), config.global);
         copy_global_figures(g, pair);
         pair.global_refined = true;
@@ -129,6 +134,17 @@ void verify_pairs(detail::PreparedScans& scans, detail::RecordFile& matchings, s
                              "): " + std::string(to_string(pair.global_status)) +
                              (pair.above_rms_gate ? " above the session RMS gate" : ""));
     }
+}
+
+/// Whether the first pairwise pass refines every matched pair (see
+/// ScanRegistrationConfig::full_pairwise_max_scans).
+bool every_pair_before_gate(const detail::PreparedScans& scans,
+                            const ScanRegistrationConfig& config) {
+    if (scans.size() > config.full_pairwise_max_scans) return false;
+    for (std::size_t i = 0; i < scans.size(); ++i) {
+        if (scans.usable(i) && !scans.viewpoint_m[i]) return false;
+    }
+    return true;
 }
 
 /// The session RMS gate: un-verifies the verified pairs above it, then refines (under the
@@ -177,13 +193,14 @@ std::size_t bridge_groups(detail::PreparedScans& prepared, const detail::Candida
 
 /// Why scan i is not in the largest group: what its pairs gave.
 std::string not_connected_reason(const ScanRegistrationResult& result, std::size_t i) {
-    std::size_t matched = 0, refined = 0, verified = 0, gated = 0;
+    std::size_t matched = 0, refined = 0, verified = 0, gated = 0, free_space = 0;
     for (const PairOutcome& p : result.pairs) {
         if (p.source != i && p.target != i) continue;
         matched += p.hypotheses > 0;
         refined += p.global_refined;
         verified += p.verified;
         gated += p.above_rms_gate;
+        free_space += p.free_space_rejections > 0;
     }
     std::string reason = "no verified chain of pairs to the largest group (in group " +
                          std::to_string(result.scans[i].group) + "): ";
@@ -192,7 +209,11 @@ std::string not_connected_reason(const ScanRegistrationResult& result, std::size
            std::to_string(refined) + " refined, " + std::to_string(verified) + " verified" +
            (gated > 0 ? ", " + std::to_string(gated) +
                             " verified alone but above the session RMS gate (look-alike poses?)"
-                      : "");
+                      : "") +
+           (free_space > 0 ? ", " + std::to_string(free_space) +
+                                 " with poses rejected by the free-space check (look-alike poses "
+                                 "putting points where the other sensor saw empty space)"
+                           : "");
 }
 
 /// Copies the graph's groups and poses into the outcomes and counts.
@@ -242,7 +263,7 @@ ScanRegistrationResult register_scans(const std::vector<ScanInput>& scans,
 
     stage = std::chrono::steady_clock::now();
     verify_pairs(prepared, matchings, 0, config, std::numeric_limits<double>::infinity(),
-                 result.pairs, progress);
+                 result.pairs, progress, every_pair_before_gate(prepared, config));
     result.session_rms_gate_m = gate_pairs(prepared, matchings, config, result.pairs, progress);
     result.timings.pairwise_s = seconds_since(stage);
 

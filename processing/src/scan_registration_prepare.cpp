@@ -99,7 +99,12 @@ PreparedScans load_and_prepare(const std::vector<ScanInput>& inputs,
                                                 .max_loaded = config.max_loaded_clouds}),
                            .summary = std::vector<ScanSummary>(inputs.size()),
                            .spacing_m = std::vector<double>(inputs.size(), 0.0),
+                           .viewpoint_m = {},
                            .spill_directory = config.spill_directory};
+    for (const ScanInput& input : inputs) {
+        prepared.viewpoint_m.push_back(input.sensor_origin_known ? input.sensor_origin_scan_m
+                                                                 : std::nullopt);
+    }
     for (std::size_t i = 0; i < inputs.size(); ++i) {
         ScanOutcome& scan = result.scans[i];
         if (progress) progress("preparing " + inputs[i].name);

@@ -7,6 +7,7 @@
 #include <functional>
 #include <memory>
 #include <numeric>
+#include <optional>
 #include <set>
 #include <span>
 #include <string>
@@ -58,6 +59,8 @@ struct PreparedScans {
     CloudStore store;
     std::vector<ScanSummary> summary;
     std::vector<double> spacing_m;
+    /// Sensor positions (scan frame, metres) known exactly (ScanInput::sensor_origin_known).
+    std::vector<std::optional<Eigen::Vector3d>> viewpoint_m;
     std::vector<ScanFeatures> features;
     std::string spill_error;                ///< The first store failure.
     std::filesystem::path spill_directory;  ///< Empty: everything in memory.

@@ -22,6 +22,7 @@
 
 #include "anascan/processing/feature_patches.hpp"
 #include "anascan/processing/fine_registration.hpp"
+#include "anascan/processing/free_space.hpp"
 #include "anascan/processing/integral_invariants.hpp"
 #include "anascan/processing/pose.hpp"
 
@@ -122,6 +123,21 @@ struct GlobalRegistrationConfig {
     double ambiguity_rms_ratio = 2.0;
     /// Inadmissible hypotheses are dropped before refinement and rejected after it.
     std::optional<AxisConstraint> axis_constraint;
+    /// Free-space check of the poses that pass the tests above, when a scan's sensor
+    /// position is known (`Viewpoints`): rejected when more than
+    /// free_space.max_violation_fraction of one scan's points seen by the other's sensor lie
+    /// in front of its surface. Look-alike poses of a box (turned by 90° or 180°) fit within
+    /// a sample spacing but put the block's faces and the ground where the other sensor saw
+    /// empty space.
+    FreeSpaceConfig free_space{};
+};
+
+/// Sensor positions of the two scans of a pair, each in its own scan frame (metres), when
+/// known exactly (where the scan was taken from, not a guess for orienting normals). Each
+/// known one enables the free-space check of the other scan's points in its view.
+struct Viewpoints {
+    std::optional<Eigen::Vector3d> source_m;
+    std::optional<Eigen::Vector3d> target_m;
 };
 
 enum class GlobalRegistrationStatus {
@@ -142,6 +158,10 @@ struct HypothesisOutcome {
     FineRegistrationResult fine;  ///< After refinement (pose and figures).
     bool verified = false;
     std::string rejection;  ///< Why verification failed (empty when verified).
+    /// Free-space check (passed the other tests, a viewpoint known): the larger violation
+    /// fraction of the two directions checked.
+    std::optional<double> free_space_violation_fraction;
+    bool free_space_rejected = false;  ///< Rejected by the free-space check alone.
 };
 
 /// Wall-clock seconds per stage.
@@ -169,6 +189,7 @@ struct GlobalRegistrationResult {
     /// In the order tried (best site overlap × score first); hypotheses that started
     /// within the distinct-pose tolerance of an already verified pose are skipped.
     std::vector<HypothesisOutcome> hypotheses;
+    std::size_t free_space_rejections = 0;  ///< Hypotheses rejected by the free-space check.
     GlobalRegistrationTiming timing;
 };
 
@@ -204,12 +225,15 @@ std::vector<ScanFeatures> scan_features(std::vector<IntegralInvariantResult> inv
 /// `scan_features`): matching, refinement, verification. Otherwise as below.
 GlobalRegistrationResult register_global(const PointCloud& source, const ScanFeatures& source_f,
                                          const PointCloud& target, const ScanFeatures& target_f,
-                                         const GlobalRegistrationConfig& config);
+                                         const GlobalRegistrationConfig& config,
+                                         const Viewpoints& viewpoints = {});
 
 /// Registers `source` onto `target` without an initial pose. Both clouds need unit normals
 /// pointing out of the solid (e.g. toward the scanner). The returned `T_target_source`
-/// maps source points (cloud frame, origin included) into the target frame.
+/// maps source points (cloud frame, origin included) into the target frame. With
+/// `viewpoints`, verification includes the free-space check (config.free_space).
 GlobalRegistrationResult register_global(const PointCloud& source, const PointCloud& target,
-                                         const GlobalRegistrationConfig& config);
+                                         const GlobalRegistrationConfig& config,
+                                         const Viewpoints& viewpoints = {});
 
 }  // namespace anascan
