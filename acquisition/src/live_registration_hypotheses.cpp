@@ -44,7 +44,8 @@ live::Correction live::correction(const ScanEntry& entry, const Pose& T_prior,
 }
 
 std::string LiveRegistrar::State::correction_problem(const ScanEntry& entry, const Pose& T_prior,
-                                                     const FineRegistrationResult& fine) const {
+                                                     const FineRegistrationResult& fine,
+                                                     bool fitting_corrections) const {
     const live::Correction c = live::correction(entry, T_prior, fine);
     if (c.rotation_deg <= config.max_prior_correction_deg &&
         c.moved_m <= config.max_prior_correction_m) {
@@ -52,7 +53,8 @@ std::string LiveRegistrar::State::correction_problem(const ScanEntry& entry, con
     }
     const bool within_fitting_bounds = c.rotation_deg <= config.max_fitting_correction_deg &&
                                        c.moved_m <= config.max_fitting_correction_m;
-    if (within_fitting_bounds && accepted_rms_m.size() >= config.min_accepted_for_limits &&
+    if (fitting_corrections && within_fitting_bounds &&
+        accepted_rms_m.size() >= config.min_accepted_for_limits &&
         fine.rms_m <= config.fitting_correction_factor * upper_median(accepted_rms_m) &&
         fine.normal_deviation_deg.value_or(0.0) <=
             config.fitting_correction_factor * upper_median(accepted_normal_deviation)) {
@@ -163,16 +165,18 @@ const live::ModelCache& LiveRegistrar::State::model_of(
 
 live::Verified LiveRegistrar::State::verify_hypothesis(const ScanEntry& entry, int group,
                                                        const Pose& T_group_scan) const {
-    return verify(entry, group, T_group_scan, false);
+    return verify(entry, group, T_group_scan, false, false);
 }
 
 live::Verified LiveRegistrar::State::verify_prediction(const ScanEntry& entry, int group,
-                                                       const Pose& T_predicted) const {
-    return verify(entry, group, T_predicted, true);
+                                                       const Pose& T_predicted,
+                                                       bool fitting_corrections) const {
+    return verify(entry, group, T_predicted, true, fitting_corrections);
 }
 
 live::Verified LiveRegistrar::State::verify(const ScanEntry& entry, int group,
-                                            const Pose& T_group_scan, bool prediction) const {
+                                            const Pose& T_group_scan, bool prediction,
+                                            bool fitting_corrections) const {
     // The model: the group's scans whose sensors stood nearest the hypothesis's sensor.
     std::vector<std::size_t> candidates = members(group);
     const Eigen::Vector3d sensor = sensor_in_group(entry, T_group_scan);
@@ -194,7 +198,7 @@ live::Verified LiveRegistrar::State::verify(const ScanEntry& entry, int group,
     v.rejection = live::rejection(v.fine, config, limits());
     const auto check_correction = [&] {
         if (prediction && v.rejection.empty())
-            v.rejection = correction_problem(entry, T_group_scan, v.fine);
+            v.rejection = correction_problem(entry, T_group_scan, v.fine, fitting_corrections);
     };
     check_correction();
     if (!v.rejection.empty()) return v;
@@ -252,7 +256,7 @@ std::optional<live::Verified> LiveRegistrar::State::try_cheap(const ScanEntry& e
     const auto hypotheses = priors(entry.seq, group);
     for (const auto& [name, T] : hypotheses) {
         const Clock::time_point start = Clock::now();
-        Verified v = verify_prediction(entry, group, T);
+        Verified v = verify_prediction(entry, group, T, true);
         decision.attempts.push_back(attempt_of(name, v, scans[members(group)[0]].seq, group));
         decision.attempts.back().time_s = seconds_since(start);  // Model, fine and probes.
         if (v.rejection.empty()) {

@@ -44,7 +44,8 @@ std::vector<PoseUpdate> LiveRegistrar::State::merge_by_sequence() {
             it->second = size;
             ++report.merge_attempts;
             for (const auto& [name, T] : sequence_priors(i, into, direction)) {
-                live::Verified v = verify_prediction(scans[i], into, T);
+                // A merge moves a whole group: only the usual bound on the correction.
+                live::Verified v = verify_prediction(scans[i], into, T, false);
                 if (!v.rejection.empty()) continue;
                 // T_into_from maps the scan's group into `into`; the lower id survives.
                 const int from = scans[i].group;

@@ -149,14 +149,17 @@ struct LiveRegistrar::State {
     /// The same for a prediction (motion prior, previous pose): also rejected when the
     /// refined pose moved too far from it, checked before the slide probes (a wrong basin
     /// is not worth probing) and after them.
+    /// `fitting_corrections`: larger corrections that fit like the session are taken too
+    /// (LiveRegistrationConfig::max_fitting_correction_deg); not for group merges.
     live::Verified verify_prediction(const live::ScanEntry& entry, int group,
-                                     const Pose& T_predicted) const;
+                                     const Pose& T_predicted, bool fitting_corrections) const;
     live::Verified verify(const live::ScanEntry& entry, int group, const Pose& T_group_scan,
-                          bool prediction) const;
+                          bool prediction, bool fitting_corrections) const;
     /// Why a pose refined from the prediction `T_prior` cannot come from it (moved too far,
     /// so the fine registration fell into another minimum); empty when it can.
     std::string correction_problem(const live::ScanEntry& entry, const Pose& T_prior,
-                                   const FineRegistrationResult& fine) const;
+                                   const FineRegistrationResult& fine,
+                                   bool fitting_corrections) const;
     /// Restarts along the weakest direction of `v` (see LiveRegistrationConfig::slide_probe_m).
     void probe_slides(const live::ScanEntry& entry, const PointCloud& model, const KdTree& tree,
                       live::Verified& v) const;

@@ -146,11 +146,12 @@ struct LiveRegistrationConfig {
     /// The links sample many points: along a weakly constrained direction (two faces in
     /// view) a link's error falls with the square root of its samples, and the chain of
     /// links around the stone adds them up (3000 samples: 0.6 mm at the far side of the
-    /// demo session; 20 000: 0.17 mm, docs/live-registration.md).
+    /// demo session; 20 000: 0.17 mm; 60 000, about all of a reduced scan: 0.15-0.17 mm on
+    /// two live captures against 0.16-0.22 mm, docs/live-registration.md).
     FineRegistrationConfig link_fine{.max_correspondence_distance_m = 0.006,
                                      .min_correspondence_distance_m = 0.002,
                                      .max_iterations = 30,
-                                     .sample_count = 20000,
+                                     .sample_count = 60000,
                                      .overlap_distance_m = 0.003,
                                      .keep_correspondences = true};
     /// Correspondences a link keeps for the multi-view solve (`compress_link`: same optimum
