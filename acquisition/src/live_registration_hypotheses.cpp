@@ -36,24 +36,19 @@ LiveAttempt attempt_of(std::string method, const Verified& v, std::int64_t targe
 
 }  // namespace
 
-live::Correction live::correction(const ScanEntry& entry, const Pose& T_prior,
-                                  const FineRegistrationResult& fine) {
-    return {
-        .rotation_deg = rotation_angle_deg(T_prior.inverse() * fine.T_target_source),
-        .moved_m = (T_prior * entry.centroid_m - fine.T_target_source * entry.centroid_m).norm()};
-}
-
 std::string LiveRegistrar::State::correction_problem(const ScanEntry& entry, const Pose& T_prior,
                                                      const FineRegistrationResult& fine,
-                                                     bool fitting_corrections) const {
-    const live::Correction c = live::correction(entry, T_prior, fine);
-    if (c.rotation_deg <= config.max_prior_correction_deg &&
-        c.moved_m <= config.max_prior_correction_m) {
+                                                     live::CorrectionCheck check) const {
+    const double rotation_deg = rotation_angle_deg(T_prior.inverse() * fine.T_target_source);
+    const double moved_m =
+        (T_prior * entry.centroid_m - fine.T_target_source * entry.centroid_m).norm();
+    if (rotation_deg <= config.max_prior_correction_deg &&
+        moved_m <= config.max_prior_correction_m) {
         return {};
     }
-    const bool within_fitting_bounds = c.rotation_deg <= config.max_fitting_correction_deg &&
-                                       c.moved_m <= config.max_fitting_correction_m;
-    if (fitting_corrections && within_fitting_bounds &&
+    const bool within_fitting_bounds = rotation_deg <= config.max_fitting_correction_deg &&
+                                       moved_m <= config.max_fitting_correction_m;
+    if (check == live::CorrectionCheck::kBoundOrFit && within_fitting_bounds &&
         accepted_rms_m.size() >= config.min_accepted_for_limits &&
         fine.rms_m <= config.fitting_correction_factor * upper_median(accepted_rms_m) &&
         fine.normal_deviation_deg.value_or(0.0) <=
@@ -164,19 +159,8 @@ const live::ModelCache& LiveRegistrar::State::model_of(
 }
 
 live::Verified LiveRegistrar::State::verify_hypothesis(const ScanEntry& entry, int group,
-                                                       const Pose& T_group_scan) const {
-    return verify(entry, group, T_group_scan, false, false);
-}
-
-live::Verified LiveRegistrar::State::verify_prediction(const ScanEntry& entry, int group,
-                                                       const Pose& T_predicted,
-                                                       bool fitting_corrections) const {
-    return verify(entry, group, T_predicted, true, fitting_corrections);
-}
-
-live::Verified LiveRegistrar::State::verify(const ScanEntry& entry, int group,
-                                            const Pose& T_group_scan, bool prediction,
-                                            bool fitting_corrections) const {
+                                                       const Pose& T_group_scan,
+                                                       live::CorrectionCheck check) const {
     // The model: the group's scans whose sensors stood nearest the hypothesis's sensor.
     std::vector<std::size_t> candidates = members(group);
     const Eigen::Vector3d sensor = sensor_in_group(entry, T_group_scan);
@@ -197,8 +181,8 @@ live::Verified LiveRegistrar::State::verify(const ScanEntry& entry, int group,
     v.fine = register_fine(entry.cloud, model, tree, T_group_scan, config.fine);
     v.rejection = live::rejection(v.fine, config, limits());
     const auto check_correction = [&] {
-        if (prediction && v.rejection.empty())
-            v.rejection = correction_problem(entry, T_group_scan, v.fine, fitting_corrections);
+        if (check != live::CorrectionCheck::kNone && v.rejection.empty())
+            v.rejection = correction_problem(entry, T_group_scan, v.fine, check);
     };
     check_correction();
     if (!v.rejection.empty()) return v;
@@ -256,7 +240,7 @@ std::optional<live::Verified> LiveRegistrar::State::try_cheap(const ScanEntry& e
     const auto hypotheses = priors(entry.seq, group);
     for (const auto& [name, T] : hypotheses) {
         const Clock::time_point start = Clock::now();
-        Verified v = verify_prediction(entry, group, T, true);
+        Verified v = verify_hypothesis(entry, group, T, live::CorrectionCheck::kBoundOrFit);
         decision.attempts.push_back(attempt_of(name, v, scans[members(group)[0]].seq, group));
         decision.attempts.back().time_s = seconds_since(start);  // Model, fine and probes.
         if (v.rejection.empty()) {

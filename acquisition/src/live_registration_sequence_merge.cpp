@@ -45,7 +45,8 @@ std::vector<PoseUpdate> LiveRegistrar::State::merge_by_sequence() {
             ++report.merge_attempts;
             for (const auto& [name, T] : sequence_priors(i, into, direction)) {
                 // A merge moves a whole group: only the usual bound on the correction.
-                live::Verified v = verify_prediction(scans[i], into, T, false);
+                live::Verified v =
+                    verify_hypothesis(scans[i], into, T, live::CorrectionCheck::kBound);
                 if (!v.rejection.empty()) continue;
                 // T_into_from maps the scan's group into `into`; the lower id survives.
                 const int from = scans[i].group;

@@ -78,13 +78,12 @@ struct VerificationLimits {
 std::string rejection(const FineRegistrationResult& fine, const LiveRegistrationConfig& config,
                       const VerificationLimits& limits);
 
-/// How far fine registration moved a scan from the hypothesis it started at.
-struct Correction {
-    double rotation_deg = 0.0;
-    double moved_m = 0.0;  ///< Of the scan's centroid.
+/// How far a prediction's refined pose may be from it.
+enum class CorrectionCheck {
+    kNone,        ///< Not a prediction (a global pose): no bound.
+    kBound,       ///< LiveRegistrationConfig::max_prior_correction_* (group merges).
+    kBoundOrFit,  ///< Also larger ones that fit like the session (max_fitting_correction_*).
 };
-Correction correction(const ScanEntry& entry, const Pose& T_prior,
-                      const FineRegistrationResult& fine);
 
 /// The operator's predicted poses from the poses of the scans next to it in the capture order
 /// (`recent[0]` the nearest, at most 3 used): constant velocity ("motion-prior"), double step
@@ -143,23 +142,18 @@ struct LiveRegistrar::State {
     mutable live::ModelCache model_cache;
     /// The merged model of `candidates` (group frame), cached while they and their poses stay.
     const live::ModelCache& model_of(int group, const std::vector<std::size_t>& candidates) const;
-    /// Fine registration of `entry` from `T_group_scan` against the group's model.
-    live::Verified verify_hypothesis(const live::ScanEntry& entry, int group,
-                                     const Pose& T_group_scan) const;
-    /// The same for a prediction (motion prior, previous pose): also rejected when the
-    /// refined pose moved too far from it, checked before the slide probes (a wrong basin
-    /// is not worth probing) and after them.
-    /// `fitting_corrections`: larger corrections that fit like the session are taken too
-    /// (LiveRegistrationConfig::max_fitting_correction_deg); not for group merges.
-    live::Verified verify_prediction(const live::ScanEntry& entry, int group,
-                                     const Pose& T_predicted, bool fitting_corrections) const;
-    live::Verified verify(const live::ScanEntry& entry, int group, const Pose& T_group_scan,
-                          bool prediction, bool fitting_corrections) const;
+    /// Fine registration of `entry` from `T_group_scan` against the group's model. For a
+    /// prediction (`check` not kNone) the refined pose is also rejected when it moved too
+    /// far from it, checked before the slide probes (a wrong basin is not worth probing)
+    /// and after them.
+    live::Verified verify_hypothesis(
+        const live::ScanEntry& entry, int group, const Pose& T_group_scan,
+        live::CorrectionCheck check = live::CorrectionCheck::kNone) const;
     /// Why a pose refined from the prediction `T_prior` cannot come from it (moved too far,
     /// so the fine registration fell into another minimum); empty when it can.
     std::string correction_problem(const live::ScanEntry& entry, const Pose& T_prior,
                                    const FineRegistrationResult& fine,
-                                   bool fitting_corrections) const;
+                                   live::CorrectionCheck check) const;
     /// Restarts along the weakest direction of `v` (see LiveRegistrationConfig::slide_probe_m).
     void probe_slides(const live::ScanEntry& entry, const PointCloud& model, const KdTree& tree,
                       live::Verified& v) const;

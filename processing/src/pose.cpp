@@ -49,4 +49,17 @@ Pose orthonormalized(const Pose& T) {
     return out;
 }
 
+Pose look_at(const Eigen::Vector3d& eye, const Eigen::Vector3d& target, const Eigen::Vector3d& up) {
+    const Eigen::Vector3d z = (target - eye).normalized();
+    Eigen::Vector3d x = z.cross(up);
+    if (x.norm() < 1e-9) x = z.cross(Eigen::Vector3d::UnitX());  // Looking along up.
+    x.normalize();
+    Pose T = Pose::Identity();
+    T.linear().col(0) = x;
+    T.linear().col(1) = z.cross(x);
+    T.linear().col(2) = z;
+    T.translation() = eye;
+    return T;
+}
+
 }  // namespace anascan

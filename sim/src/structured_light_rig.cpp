@@ -40,19 +40,6 @@ Eigen::Vector3d PinholeModel::project(const Eigen::Vector3d& p_world) const {
     return {fx_px * p.x() / p.z() + cx_px, fy_px * p.y() / p.z() + cy_px, p.z()};
 }
 
-Pose look_at(const Eigen::Vector3d& eye, const Eigen::Vector3d& target, const Eigen::Vector3d& up) {
-    const Eigen::Vector3d z = (target - eye).normalized();
-    Eigen::Vector3d x = z.cross(up);
-    if (x.norm() < 1e-9) x = z.cross(Eigen::Vector3d::UnitX());  // Looking along up.
-    x.normalize();
-    Pose T = Pose::Identity();
-    T.linear().col(0) = x;
-    T.linear().col(1) = z.cross(x);
-    T.linear().col(2) = z;
-    T.translation() = eye;
-    return T;
-}
-
 StructuredLightRig make_structured_light_rig(const StructuredLightRigConfig& c,
                                              const Pose& T_world_rig) {
     const Eigen::Vector3d meet(0.0, 0.0, c.working_distance_m);  // Rig (projector) frame.

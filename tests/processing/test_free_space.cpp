@@ -44,16 +44,7 @@ std::optional<double> cast(const Eigen::Vector3d& eye, const Eigen::Vector3d& ra
 }
 
 /// Sensor at `eye` looking at the box's middle (OpenCV frame: z forward, y down).
-Pose sensor_pose(const Eigen::Vector3d& eye) {
-    const Eigen::Vector3d z = (Eigen::Vector3d(0, 0, 0.06) - eye).normalized();
-    const Eigen::Vector3d x = z.cross(Eigen::Vector3d::UnitZ()).normalized();
-    Pose T = Pose::Identity();
-    T.linear().col(0) = x;
-    T.linear().col(1) = z.cross(x);
-    T.linear().col(2) = z;
-    T.translation() = eye;
-    return T;
-}
+Pose sensor_pose(const Eigen::Vector3d& eye) { return look_at(eye, {0.0, 0.0, 0.06}); }
 
 /// A 320×240 pinhole scan (sensor frame, sensor at the origin), 0.2 mm depth noise.
 PointCloud scan_from(const Pose& T_world_sensor, std::uint32_t seed) {

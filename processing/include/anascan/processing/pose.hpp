@@ -34,4 +34,9 @@ PointCloud transformed(const PointCloud& cloud_from, const Pose& T_to_from);
 /// Re-orthonormalises the rotation part (after accumulated products or parsing 4x4 text).
 Pose orthonormalized(const Pose& T);
 
+/// A sensor pose at `eye` looking at `target` along its +z, with +y (image down) toward -up
+/// (the OpenCV camera frame).
+Pose look_at(const Eigen::Vector3d& eye, const Eigen::Vector3d& target,
+             const Eigen::Vector3d& up = Eigen::Vector3d::UnitZ());
+
 }  // namespace anascan

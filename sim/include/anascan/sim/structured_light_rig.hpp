@@ -48,10 +48,6 @@ struct StructuredLightRigConfig {
 StructuredLightRig make_structured_light_rig(const StructuredLightRigConfig& config,
                                              const Pose& T_world_rig);
 
-/// A device pose at `eye` looking at `target` (+z), with +y (image down) toward -up.
-Pose look_at(const Eigen::Vector3d& eye, const Eigen::Vector3d& target,
-             const Eigen::Vector3d& up = Eigen::Vector3d::UnitZ());
-
 /// The rig's exact stereo calibration as the decoder takes it (metres, cam1 = rig.cam1).
 drivers::sl::StereoCalibration stereo_calibration(const StructuredLightRig& rig);
 
