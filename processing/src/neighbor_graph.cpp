@@ -39,6 +39,10 @@ constexpr int kMaxRing = 4;
 // Up to this many times k candidates within the bound are ranked all pairs at once (no
 // data-dependent branch); more are inserted one by one.
 constexpr std::size_t kMaxRanked = 3;
+// Fewer than k candidates within the hint: the bound grows by this much (clamped) and the
+// block is picked again, at most kMaxWidenings times before a scan without a bound.
+constexpr float kMinWidening = 1.5f, kMaxWidening = 8.0f;
+constexpr int kMaxWidenings = 2;
 // Open addressing from cell key to cell number (keys < 2^63; the empty slot is ~0).
 class CellTable {
 public:
@@ -266,12 +270,16 @@ bool too_dense(const Candidates& block, std::size_t k) {  // Piles of duplicates
     return block.size() > 64 * k + 1024;
 }
 
-void write_row(const TopK& top, std::size_t row, NeighborGraph& graph) {
+// Hands a finished row to the visitor, unpacked into the caller's scratch arrays.
+void emit_row(const TopK& top, std::size_t row, const NeighborRowVisitor& visit,
+              std::vector<std::uint32_t>& indices, std::vector<float>& d2) {
+    indices.resize(top.size());
+    d2.resize(top.size());
     for (std::size_t j = 0; j < top.size(); ++j) {
-        graph.distances_sq_m2[row * graph.k + j] = top.d2(j);
-        graph.indices[row * graph.k + j] = top.index(j);
+        d2[j] = top.d2(j);
+        indices[j] = top.index(j);
     }
-    graph.counts[row] = std::uint32_t(top.size());
+    visit(row, indices, d2);
 }
 
 // One worker's scratch: the 3x3x3 block of the current cell and, loaded only for rows it
@@ -288,6 +296,8 @@ struct Scratch {
     std::vector<std::uint32_t> picked_index;
     std::vector<std::int32_t> picked_rank;
     std::vector<std::uint64_t> picked_key;
+    std::vector<std::uint32_t> row_indices;  // The row handed to the visitor.
+    std::vector<float> row_d2;
 };
 
 // The parts of the block that may hold a point within sqrt(bound_d2) of q: with the rows
@@ -354,37 +364,60 @@ void select_ranked(const Candidates& block, const std::vector<float>& d2, std::s
     top.set_size(std::min(n, top.capacity()));
 }
 
+// Squared distances from q (sorted point s) to the block's points that may lie within
+// `bound_d2` into scratch.d2; those within it listed in scratch.picked. Returns their count.
+std::size_t pick_within(const CellGrid& grid, std::size_t cell, std::size_t s, float bound_d2,
+                        Candidates& block, Scratch& scratch) {
+    const Eigen::Vector3f q = grid.position(s);
+    reachable_ranges(grid, cell, block, q, bound_d2, scratch.ranges);
+    const std::size_t self_pos = block.origin + (s - grid.cell_begin[cell]);
+    const float self_x = block.x[self_pos];
+    block.x[self_pos] = std::numeric_limits<float>::quiet_NaN();  // Never within any bound.
+    std::size_t picked = 0;
+    for (const auto& [begin, end] : scratch.ranges) {
+        picked = pick_range(block, begin, end, q, bound_d2, scratch.d2, scratch.picked, picked);
+    }
+    block.x[self_pos] = self_x;
+    return picked;
+}
+
+// The bound to try next when only `picked` of k lay within the last one: on a surface the
+// count grows with the squared radius, so in proportion, with some margin.
+float widened(float bound_d2, std::size_t picked, std::size_t k) {
+    const float factor = 1.25f * float(k + 1) / float(picked + 1);
+    return bound_d2 * std::clamp(factor, kMinWidening, kMaxWidening);
+}
+
 // Nearest neighbours of sorted point s among the block's points. `hint_d2` (the previous
-// query's k-th distance, grown) filters candidates first; when fewer than k pass, the
-// block is scanned again without it, so the answer is the same either way.
+// query's k-th distance, grown) bounds the candidates first; when fewer than k lie within
+// it, the bound is widened and the block picked again, and after kMaxWidenings the block
+// is scanned without a bound, so the answer is the same either way.
 void scan_block(const CellGrid& grid, std::size_t cell, std::size_t s, float hint_d2,
                 Candidates& block, Scratch& scratch, TopK& top) {
-    const Eigen::Vector3f q = grid.position(s);
-    const std::uint32_t self = grid.sorted.indices[s];
-    const std::size_t self_pos = block.origin + (s - grid.cell_begin[cell]);
-    const float bound = std::min(hint_d2, top.max_d2());
-    reachable_ranges(grid, cell, block, q, bound, scratch.ranges);
     if (scratch.d2.size() < block.size() + kGroup) {  // Grown only: no refill per query.
         scratch.d2.resize(block.size() + kGroup);
         scratch.picked.resize(block.size() + kGroup);
     }
-    std::size_t picked = 0;
-    const float self_x = block.x[self_pos];
-    block.x[self_pos] = std::numeric_limits<float>::quiet_NaN();  // Never within any bound.
-    for (const auto& [begin, end] : scratch.ranges) {
-        picked = pick_range(block, begin, end, q, bound, scratch.d2, scratch.picked, picked);
-    }
-    block.x[self_pos] = self_x;
-    if (picked >= top.capacity() || bound >= top.max_d2()) {
-        if (picked <= kMaxRanked * top.capacity()) {
+    const std::size_t k = top.capacity();
+    float bound = std::min(hint_d2, top.max_d2());
+    for (int widening = 0;; ++widening) {
+        const std::size_t picked = pick_within(grid, cell, s, bound, block, scratch);
+        const bool enough = picked >= k || bound >= top.max_d2();
+        if (enough && picked <= kMaxRanked * k) {
             select_ranked(block, scratch.d2, picked, scratch, top);
             return;
         }
-        top.clear(bound);
-    } else {
-        top.clear(top.max_d2());  // Too few within the hint: all candidates.
+        if (enough) {  // Too many to rank: one by one, within the bound.
+            top.clear(bound);
+            break;
+        }
+        if (widening == kMaxWidenings) {
+            top.clear(top.max_d2());
+            break;
+        }
+        bound = std::min(widened(bound, picked, k), top.max_d2());
     }
-    offer_range(block, 0, block.size(), q, self, scratch.d2, top);
+    offer_range(block, 0, block.size(), grid.position(s), grid.sorted.indices[s], scratch.d2, top);
 }
 
 // Retries sorted point s on ever wider blocks around its cell; false when none proves it.
@@ -406,11 +439,12 @@ bool answer_wide(const CellGrid& grid, std::size_t cell, std::size_t s, Scratch&
 }
 
 // Answers the points of `cell` from its blocks; rows they cannot prove exact get flagged.
-void answer_cell(const CellGrid& grid, std::size_t cell, float max_d2, Scratch& scratch,
-                 NeighborGraph& graph, std::vector<std::uint8_t>& fallback) {
+void answer_cell(const CellGrid& grid, std::size_t cell, std::size_t k, float max_d2,
+                 Scratch& scratch, const NeighborRowVisitor& visit,
+                 std::vector<std::uint8_t>& fallback) {
     gather_block(grid, cell, 1, scratch.near);
-    const bool dense = too_dense(scratch.near, graph.k);
-    TopK top(graph.k, max_d2);
+    const bool dense = too_dense(scratch.near, k);
+    TopK top(k, max_d2);
     float& hint_d2 = scratch.hint_d2;  // Carried over from the previous cell.
     for (std::size_t s = grid.cell_begin[cell]; s < grid.cell_begin[cell + 1]; ++s) {
         const std::uint32_t row = grid.sorted.indices[s];
@@ -419,36 +453,37 @@ void answer_cell(const CellGrid& grid, std::size_t cell, float max_d2, Scratch& 
             continue;
         }
         scan_block(grid, cell, s, hint_d2, scratch.near, scratch, top);
-        if (top.size() == graph.k) hint_d2 = kHintGrowth * top.worst();
+        if (top.size() == k) hint_d2 = kHintGrowth * top.worst();
         if (!proven(grid, cell, 1, s, top) && !answer_wide(grid, cell, s, scratch, top)) {
             fallback[row] = 1;
             continue;
         }
-        write_row(top, row, graph);
+        emit_row(top, row, visit, scratch.row_indices, scratch.row_d2);
     }
 }
 
 // Exact answers for the flagged rows: linear scans when they are few (building a k-d tree
-// costs about as much as kBruteForceRows scans), else k-d tree queries.
-void answer_fallbacks(std::span<const Eigen::Vector3f> points, const Candidates& finite,
-                      float max_d2, const std::vector<std::uint8_t>& flags, NeighborGraph& graph) {
+// costs about as much as kBruteForceRows scans), else k-d tree queries. Returns their count.
+std::size_t answer_fallbacks(std::span<const Eigen::Vector3f> points, const Candidates& finite,
+                             std::size_t k, float max_d2, const std::vector<std::uint8_t>& flags,
+                             const NeighborRowVisitor& visit) {
     constexpr std::size_t kBruteForceRows = 256;
     std::vector<std::uint32_t> rows;
     for (std::size_t i = 0; i < flags.size(); ++i) {
         if (flags[i]) rows.push_back(std::uint32_t(i));
     }
-    graph.num_exact_fallbacks = rows.size();
-    if (rows.empty()) return;
+    if (rows.empty()) return 0;
     if (rows.size() <= kBruteForceRows) {
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rows.size(), 8), [&](auto r) {
-            TopK top(graph.k, max_d2);
-            std::vector<float> d2;
+            TopK top(k, max_d2);
+            std::vector<float> d2, row_d2;
+            std::vector<std::uint32_t> row_indices;
             for (std::size_t j = r.begin(); j < r.end(); ++j) {
                 scan_all(finite, points[rows[j]], rows[j], d2, top);
-                write_row(top, rows[j], graph);
+                emit_row(top, rows[j], visit, row_indices, row_d2);
             }
         });
-        return;
+        return rows.size();
     }
     std::vector<Eigen::Vector3f> positions(finite.size());
     for (std::size_t s = 0; s < finite.size(); ++s) {
@@ -457,34 +492,34 @@ void answer_fallbacks(std::span<const Eigen::Vector3f> points, const Candidates&
     const KdTree tree(positions);  // Finite points only; map back through finite.indices.
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rows.size(), 64), [&](const auto& r) {
         std::vector<Neighbor> found;
-        TopK top(graph.k, max_d2);
+        TopK top(k, max_d2);
+        std::vector<float> row_d2;
+        std::vector<std::uint32_t> row_indices;
         for (std::size_t j = r.begin(); j < r.end(); ++j) {
             const std::uint32_t row = rows[j];
-            tree.knn(points[row], graph.k + 1, found);
+            tree.knn(points[row], k + 1, found);
             top.clear(max_d2);
             for (const Neighbor& n : found) {
                 const std::uint32_t index = finite.indices[n.index];
                 if (index != row) top.offer(n.distance_sq_m2, index);
             }
-            write_row(top, row, graph);
+            emit_row(top, row, visit, row_indices, row_d2);
         }
     });
+    return rows.size();
 }
 
 }  // namespace
 
-NeighborGraph build_neighbor_graph(std::span<const Eigen::Vector3f> points,
-                                   const NeighborGraphConfig& config) {
+std::size_t visit_neighbor_rows(std::span<const Eigen::Vector3f> points,
+                                const NeighborGraphConfig& config,
+                                const NeighborRowVisitor& visit) {
     assert(points.size() < std::numeric_limits<std::uint32_t>::max());
-    NeighborGraph graph;
-    graph.k = std::size_t(std::max(config.k_neighbors, 1));
-    graph.indices.assign(points.size() * graph.k, 0);
-    graph.distances_sq_m2.assign(points.size() * graph.k, 0.0f);
-    graph.counts.assign(points.size(), 0);
+    const auto k = std::size_t(std::max(config.k_neighbors, 1));
     const Candidates finite = finite_points(points);
-    if (finite.size() == 0) return graph;
+    if (finite.size() == 0) return 0;
     CellGrid grid;
-    size_cells(finite, config, graph.k, grid);
+    size_cells(finite, config, k, grid);
     sort_into_cells(finite, grid);
     const float max_d2 = max_distance_sq(config);
     std::vector<std::uint8_t> fallback(points.size(), 0);
@@ -492,10 +527,28 @@ NeighborGraph build_neighbor_graph(std::span<const Eigen::Vector3f> points,
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, num_cells, 16), [&](const auto& r) {
         Scratch scratch;
         for (std::size_t cell = r.begin(); cell < r.end(); ++cell) {
-            answer_cell(grid, cell, max_d2, scratch, graph, fallback);
+            answer_cell(grid, cell, k, max_d2, scratch, visit, fallback);
         }
     });
-    answer_fallbacks(points, finite, max_d2, fallback, graph);
+    return answer_fallbacks(points, finite, k, max_d2, fallback, visit);
+}
+
+NeighborGraph build_neighbor_graph(std::span<const Eigen::Vector3f> points,
+                                   const NeighborGraphConfig& config) {
+    NeighborGraph graph;
+    graph.k = std::size_t(std::max(config.k_neighbors, 1));
+    graph.indices.assign(points.size() * graph.k, 0);
+    graph.distances_sq_m2.assign(points.size() * graph.k, 0.0f);
+    graph.counts.assign(points.size(), 0);
+    graph.num_exact_fallbacks = visit_neighbor_rows(
+        points, config,
+        [&](std::size_t i, std::span<const std::uint32_t> neighbors, std::span<const float> d2) {
+            std::copy(neighbors.begin(), neighbors.end(),
+                      graph.indices.begin() + std::ptrdiff_t(i * graph.k));
+            std::copy(d2.begin(), d2.end(),
+                      graph.distances_sq_m2.begin() + std::ptrdiff_t(i * graph.k));
+            graph.counts[i] = std::uint32_t(neighbors.size());
+        });
     return graph;
 }
 

@@ -157,7 +157,8 @@ void orient_part(PointCloud& cloud, const std::vector<std::uint32_t>& part) {
 OrientationResult orient_consistently(PointCloud& cloud, const NeighborGraph& graph) {
     OrientationResult result;
     const std::size_t n = cloud.size();
-    if (cloud.normals.size() != n || graph.size() != n) return result;
+    if (cloud.normals.size() != n) return result;
+    if (graph.size() != n) return orient_consistently(cloud, ConsistentOrientationConfig{});
     const std::vector<Eigen::Vector3f> before = cloud.normals;
     const Forest forest = spanning_forest(n, weighted_edges(cloud, graph));
     std::vector<std::uint8_t> visited(n, 0);

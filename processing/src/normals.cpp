@@ -20,15 +20,17 @@ struct LocalFit {
     Fit fit = Fit::kTooFew;
 };
 
-// Covariance of the point and its neighbours about their centroid, in double; coordinates
-// are taken relative to the point itself first so that large local offsets cost no bits.
+// Covariance of the point and its neighbours about their centroid. Coordinates are taken
+// relative to the point itself first, so that large offsets from the origin cost no bits
+// and float sums suffice (a neighbourhood spans millimetres: its products are far above
+// float's rounding of them); the moments are then combined in double.
 Eigen::Matrix3d neighbourhood_covariance(std::span<const Eigen::Vector3f> positions, std::size_t i,
                                          std::span<const std::uint32_t> nbrs) {
-    const Eigen::Vector3d p0 = positions[i].cast<double>();
-    double sx = 0, sy = 0, sz = 0, sxx = 0, sxy = 0, sxz = 0, syy = 0, syz = 0, szz = 0;
+    const Eigen::Vector3f p0 = positions[i];
+    float sx = 0, sy = 0, sz = 0, sxx = 0, sxy = 0, sxz = 0, syy = 0, syz = 0, szz = 0;
     for (const std::uint32_t j : nbrs) {  // The six distinct products only.
-        const double x = double(positions[j].x()) - p0.x(), y = double(positions[j].y()) - p0.y(),
-                     z = double(positions[j].z()) - p0.z();
+        const float x = positions[j].x() - p0.x(), y = positions[j].y() - p0.y(),
+                    z = positions[j].z() - p0.z();
         sx += x;
         sy += y;
         sz += z;
@@ -86,10 +88,9 @@ bool smallest_eigenpair(const Eigen::Matrix3d& a, double& lambda, Eigen::Vector3
 }
 
 // Local PCA: the normal is the eigenvector of the smallest eigenvalue.
-LocalFit fit_point(std::span<const Eigen::Vector3f> positions, const NeighborGraph& graph,
-                   std::size_t i, std::size_t min_neighbors) {
+LocalFit fit_point(std::span<const Eigen::Vector3f> positions, std::size_t i,
+                   std::span<const std::uint32_t> nbrs, std::size_t min_neighbors) {
     LocalFit out;
-    const std::span<const std::uint32_t> nbrs = graph.neighbors(i);
     if (nbrs.size() < min_neighbors) return out;
     const Eigen::Matrix3d cov = neighbourhood_covariance(positions, i, nbrs);
     const double trace = cov.trace();
@@ -125,27 +126,39 @@ NormalEstimationResult estimate_normals(PointCloud& cloud, const NormalEstimatio
         cloud.normals.clear();
         return result;
     }
-    result.graph = build_neighbor_graph(
-        cloud.positions, {.k_neighbors = config.k_neighbors, .max_radius_m = config.max_radius_m});
-    const bool had_normals = cloud.normals.size() == cloud.size();
-    cloud.normals.resize(cloud.size(), Eigen::Vector3f::Zero());
+    // Points the neighbour search never reaches (non-finite) keep kTooFew and a zero normal.
+    std::vector<Eigen::Vector3f> old;
+    if (cloud.normals.size() == cloud.size()) old = std::move(cloud.normals);
+    cloud.normals.assign(cloud.size(), Eigen::Vector3f::Zero());
     result.curvature.assign(cloud.size(), 0.0f);
     std::vector<Fit> fits(cloud.size(), Fit::kTooFew);
     const std::size_t min_neighbors = std::size_t(std::max(config.min_neighbors, 2));
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cloud.size(), 1024), [&](const auto& r) {
-        for (std::size_t i = r.begin(); i < r.end(); ++i) {
-            const LocalFit local = fit_point(cloud.positions, result.graph, i, min_neighbors);
-            const Eigen::Vector3f old = cloud.normals[i];
-            const bool flip = had_normals && local.normal.dot(old) < 0.0f;
-            cloud.normals[i] = flip ? Eigen::Vector3f(-local.normal) : local.normal;
-            result.curvature[i] = local.curvature;
-            fits[i] = local.fit;
-        }
-    });
-    for (const Fit fit : fits) {
-        result.num_estimated += fit == Fit::kOk;
-        result.num_too_few_neighbors += fit == Fit::kTooFew;
-        result.num_degenerate += fit == Fit::kDegenerate;
+    const auto fit = [&](std::size_t i, std::span<const std::uint32_t> neighbors) {
+        const LocalFit local = fit_point(cloud.positions, i, neighbors, min_neighbors);
+        const bool flip = !old.empty() && local.normal.dot(old[i]) < 0.0f;
+        cloud.normals[i] = flip ? Eigen::Vector3f(-local.normal) : local.normal;
+        result.curvature[i] = local.curvature;
+        fits[i] = local.fit;
+    };
+    const NeighborGraphConfig search{.k_neighbors = config.k_neighbors,
+                                     .max_radius_m = config.max_radius_m};
+    if (config.keep_graph) {
+        result.graph = build_neighbor_graph(cloud.positions, search);
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cloud.size(), 1024),
+                          [&](const auto& r) {
+                              for (std::size_t i = r.begin(); i < r.end(); ++i) {
+                                  fit(i, result.graph.neighbors(i));
+                              }
+                          });
+    } else {
+        visit_neighbor_rows(cloud.positions, search,
+                            [&](std::size_t i, std::span<const std::uint32_t> neighbors,
+                                std::span<const float>) { fit(i, neighbors); });
+    }
+    for (const Fit f : fits) {
+        result.num_estimated += f == Fit::kOk;
+        result.num_too_few_neighbors += f == Fit::kTooFew;
+        result.num_degenerate += f == Fit::kDegenerate;
     }
     return result;
 }

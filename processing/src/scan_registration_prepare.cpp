@@ -75,7 +75,9 @@ std::size_t prepare_scan(PointCloud& cloud, const std::optional<Eigen::Vector3d>
     remove_non_finite(cloud);
     if (cloud.empty()) return 0;
     if (!cloud.has_normals()) {
-        NormalEstimationResult estimated = estimate_normals(cloud, config.normals);
+        NormalEstimationConfig normals = config.normals;
+        normals.keep_graph = !sensor_origin_m;  // orient_consistently reuses it.
+        NormalEstimationResult estimated = estimate_normals(cloud, normals);
         if (sensor_origin_m) {
             orient_toward(cloud, (*sensor_origin_m - cloud.origin_m).cast<float>());
         } else {

@@ -104,7 +104,7 @@ TEST(Normals, PlaneNormalsAreVertical) {
 TEST(Normals, ConsistentOrientationOnAClosedSphereIsOutward) {
     const Eigen::Vector3f centre(1.0f, 2.0f, 3.0f);
     PointCloud cloud = sphere(10000, 0.05f, centre);
-    NormalEstimationResult result = estimate_normals(cloud, {});
+    NormalEstimationResult result = estimate_normals(cloud, {.keep_graph = true});
     const OrientationResult oriented = orient_consistently(cloud, result.graph);
     EXPECT_EQ(oriented.num_components, 1u);
     for (std::size_t i = 0; i < cloud.size(); ++i) {
@@ -125,7 +125,7 @@ TEST(Normals, ConsistentOrientationOnAFoldedSheetAgreesEverywhere) {
 TEST(Normals, SeveralComponentsAreEachOriented) {
     PointCloud cloud = sphere(3000, 0.05f, Eigen::Vector3f::Zero());
     append(cloud, sphere(3000, 0.05f, Eigen::Vector3f(1.0f, 0.0f, 0.0f)));
-    NormalEstimationResult result = estimate_normals(cloud, {});
+    NormalEstimationResult result = estimate_normals(cloud, {.keep_graph = true});
     const OrientationResult oriented = orient_consistently(cloud, result.graph);
     EXPECT_EQ(oriented.num_components, 2u);
     for (std::size_t i = 0; i < cloud.size(); ++i) {
@@ -140,7 +140,7 @@ TEST(Normals, IsolatedAndNonFinitePointsGetZeroNormalsAndAreCounted) {
     cloud.positions.emplace_back(NAN, 0.0f, 0.0f);
     cloud.positions.emplace_back(0.0f, INFINITY, 0.0f);
     const NormalEstimationResult result =
-        estimate_normals(cloud, {.k_neighbors = 8, .max_radius_m = 0.01f});
+        estimate_normals(cloud, {.k_neighbors = 8, .max_radius_m = 0.01f, .keep_graph = true});
     EXPECT_EQ(result.num_too_few_neighbors, 3u);
     EXPECT_EQ(result.num_estimated, 400u);
     for (std::size_t i = 0; i < cloud.size(); ++i) {
@@ -166,6 +166,31 @@ TEST(Normals, DegenerateInputsReportInsteadOfFailing) {
     for (const Eigen::Vector3f& n : line.normals) ASSERT_TRUE(n.allFinite());
 }
 
+TEST(Normals, FittingRowsAsFoundEqualsFittingTheKeptGraph) {
+    PointCloud streamed = sphere(20000, 0.1f, Eigen::Vector3f::Zero());
+    streamed.positions[17] = Eigen::Vector3f(NAN, 0.0f, 0.0f);
+    PointCloud kept = streamed;
+    const NormalEstimationResult a = estimate_normals(streamed, {});
+    const NormalEstimationResult b = estimate_normals(kept, {.keep_graph = true});
+    EXPECT_EQ(a.graph.size(), 0u);
+    EXPECT_EQ(b.graph.size(), kept.size());
+    EXPECT_EQ(streamed.normals, kept.normals);
+    EXPECT_EQ(a.curvature, b.curvature);
+    EXPECT_EQ(a.num_estimated, b.num_estimated);
+    EXPECT_EQ(a.num_too_few_neighbors, 1u);
+    EXPECT_EQ(b.num_too_few_neighbors, 1u);
+}
+
+TEST(Normals, ConsistentOrientationBuildsTheGraphWhenNoneWasKept) {
+    const Eigen::Vector3f centre(1.0f, 2.0f, 3.0f);
+    PointCloud cloud = sphere(5000, 0.05f, centre);
+    const NormalEstimationResult result = estimate_normals(cloud, {});
+    EXPECT_EQ(orient_consistently(cloud, result.graph).num_components, 1u);
+    for (std::size_t i = 0; i < cloud.size(); ++i) {
+        ASSERT_GT(cloud.normals[i].dot(cloud.positions[i] - centre), 0.0f) << i;
+    }
+}
+
 TEST(Normals, ExistingNormalsKeepTheirSide) {
     PointCloud cloud = plane(30, 0.001f, 5);
     cloud.normals.assign(cloud.size(), -Eigen::Vector3f::UnitZ());
@@ -177,7 +202,7 @@ TEST(Normals, ResultDoesNotDependOnThreadCount) {
     auto run = [](int threads) {
         tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
         PointCloud cloud = sphere(20000, 0.1f, Eigen::Vector3f::Zero());
-        NormalEstimationResult result = estimate_normals(cloud, {});
+        NormalEstimationResult result = estimate_normals(cloud, {.keep_graph = true});
         orient_consistently(cloud, result.graph);
         return std::make_pair(cloud.normals, result.curvature);
     };

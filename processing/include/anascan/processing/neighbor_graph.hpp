@@ -16,6 +16,7 @@
 #include <Eigen/Core>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -53,5 +54,19 @@ struct NeighborGraph {
 /// with TBB; the result does not depend on the thread count. Fewer than 2^32 - 1 points.
 NeighborGraph build_neighbor_graph(std::span<const Eigen::Vector3f> points,
                                    const NeighborGraphConfig& config);
+
+/// One finished row: point i's neighbours, closest first, and their squared distances
+/// (metres squared). The spans are valid during the call only.
+using NeighborRowVisitor =
+    std::function<void(std::size_t i, std::span<const std::uint32_t> neighbors,
+                       std::span<const float> distances_sq_m2)>;
+
+/// The rows of `build_neighbor_graph`, handed to `visit` as they are found instead of
+/// stored: for work that needs each neighbourhood once (normal estimation), this saves
+/// the graph's memory and reads each neighbourhood while it is still in cache. Rows come
+/// in no particular order and from several threads at once, each row once; non-finite
+/// points get no call. Returns the number of rows answered by the exact fallback.
+std::size_t visit_neighbor_rows(std::span<const Eigen::Vector3f> points,
+                                const NeighborGraphConfig& config, const NeighborRowVisitor& visit);
 
 }  // namespace anascan
