@@ -65,13 +65,14 @@ bool smallest_eigenpair(const Eigen::Matrix3d& a, double& lambda, Eigen::Vector3
     const double c1 = a(0, 0) * a(1, 1) - a(0, 1) * a(0, 1) + a(0, 0) * a(2, 2) -
                       a(0, 2) * a(0, 2) + a(1, 1) * a(2, 2) - a(1, 2) * a(1, 2);
     const double c0 = a.determinant();
-    double x = 0.0;
+    if (!(c1 > 0.0)) return false;
+    double x = c0 / c1;  // The first step from 0.
     for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
         const double slope = (3.0 * x - 2.0 * c2) * x + c1;
         if (!(slope > 0.0)) return false;
         const double step = (((x - c2) * x + c1) * x - c0) / slope;
         x -= step;
-        if (std::abs(step) <= 1e-15 * c2) break;
+        if (std::abs(step) <= 1e-13 * c2) break;
     }
     lambda = x;
     const Eigen::Matrix3d m = a - lambda * Eigen::Matrix3d::Identity();
@@ -98,7 +99,7 @@ LocalFit fit_point(std::span<const Eigen::Vector3f> positions, std::size_t i,
         out.fit = Fit::kDegenerate;
         return out;
     }
-    const Eigen::Matrix3d unit = cov / trace;  // Unit trace: the thresholds are scale-free.
+    const Eigen::Matrix3d unit = cov * (1.0 / trace);  // Unit trace: scale-free thresholds.
     double lambda = 0.0;
     Eigen::Vector3d normal;
     if (!smallest_eigenpair(unit, lambda, normal)) {
@@ -106,12 +107,13 @@ LocalFit fit_point(std::span<const Eigen::Vector3f> positions, std::size_t i,
         solver.computeDirect(unit);
         normal = solver.eigenvectors().col(0);
         lambda = solver.eigenvalues()(0);
+        if (!normal.allFinite() || normal.squaredNorm() < 0.5) {
+            out.fit = Fit::kDegenerate;
+            return out;
+        }
+        normal.normalize();
     }
-    if (!normal.allFinite() || normal.squaredNorm() < 0.5) {
-        out.fit = Fit::kDegenerate;
-        return out;
-    }
-    out.normal = normal.normalized().cast<float>();
+    out.normal = normal.cast<float>();
     out.curvature = float(std::clamp(lambda, 0.0, 1.0));  // λ0 / Σλ.
     out.fit = Fit::kOk;
     return out;
