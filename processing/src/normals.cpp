@@ -9,12 +9,19 @@
 #include <cmath>
 #include <cstdint>
 
+#include "normals_solve.hpp"
+
 namespace anascan {
 namespace {
 
+using normals_detail::CovarianceArrays;
+using normals_detail::EigenpairArrays;
+using normals_detail::smallest_eigenpair;
+using normals_detail::solve_smallest;
+
 enum class Fit : std::uint8_t { kOk, kTooFew, kDegenerate };
 
-struct LocalFit {
+struct LocalFit {  // One point's result.
     Eigen::Vector3f normal = Eigen::Vector3f::Zero();
     float curvature = 0.0f;
     Fit fit = Fit::kTooFew;
@@ -53,60 +60,38 @@ Eigen::Matrix3d neighbourhood_covariance(std::span<const Eigen::Vector3f> positi
     return cov;
 }
 
-// The smallest eigenvalue of a symmetric positive semi-definite 3x3 matrix by Newton's
-// method on its characteristic cubic from 0 (left of the smallest root the cubic rises
-// and is concave, so the iterates climb to it without overshooting), and its unit
-// eigenvector as the longest cross product of two rows of a - lambda I. False where that
-// is ill-conditioned (the two smallest eigenvalues nearly equal), for the general solver.
-bool smallest_eigenpair(const Eigen::Matrix3d& a, double& lambda, Eigen::Vector3d& vector) {
-    constexpr double kMinGapProduct = 1e-8;  // (λ1 - λ0)(λ2 - λ0) at unit trace.
-    constexpr int kMaxIterations = 16;
-    const double c2 = a.trace();
-    const double c1 = a(0, 0) * a(1, 1) - a(0, 1) * a(0, 1) + a(0, 0) * a(2, 2) -
-                      a(0, 2) * a(0, 2) + a(1, 1) * a(2, 2) - a(1, 2) * a(1, 2);
-    const double c0 = a.determinant();
-    if (!(c1 > 0.0)) return false;
-    double x = c0 / c1;  // The first step from 0.
-    for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
-        const double slope = (3.0 * x - 2.0 * c2) * x + c1;
-        if (!(slope > 0.0)) return false;
-        const double step = (((x - c2) * x + c1) * x - c0) / slope;
-        x -= step;
-        if (std::abs(step) <= 1e-13 * c2) break;
-    }
-    lambda = x;
-    const Eigen::Matrix3d m = a - lambda * Eigen::Matrix3d::Identity();
-    const std::array<Eigen::Vector3d, 3> candidates = {
-        m.row(0).cross(m.row(1)), m.row(0).cross(m.row(2)), m.row(1).cross(m.row(2))};
-    std::size_t best = 0;
-    for (std::size_t c = 1; c < 3; ++c) {
-        if (candidates[c].squaredNorm() > candidates[best].squaredNorm()) best = c;
-    }
-    const double norm_sq = candidates[best].squaredNorm();
-    if (!(norm_sq > kMinGapProduct * kMinGapProduct)) return false;
-    vector = candidates[best] / std::sqrt(norm_sq);
-    return true;
-}
-
-// Local PCA: the normal is the eigenvector of the smallest eigenvalue.
-LocalFit fit_point(std::span<const Eigen::Vector3f> positions, std::size_t i,
-                   std::span<const std::uint32_t> nbrs, std::size_t min_neighbors) {
-    LocalFit out;
-    if (nbrs.size() < min_neighbors) return out;
+// Stores point i's covariance at unit trace (the thresholds are scale-free) for the batch
+// solve, or says why it has none.
+Fit store_covariance(std::span<const Eigen::Vector3f> positions, std::size_t i,
+                     std::span<const std::uint32_t> nbrs, std::size_t min_neighbors,
+                     CovarianceArrays& covariances) {
+    if (nbrs.size() < min_neighbors) return Fit::kTooFew;
     const Eigen::Matrix3d cov = neighbourhood_covariance(positions, i, nbrs);
     const double trace = cov.trace();
-    if (!(trace > 0.0) || !std::isfinite(trace)) {
-        out.fit = Fit::kDegenerate;
+    if (!(trace > 0.0) || !std::isfinite(trace)) return Fit::kDegenerate;
+    covariances.set(i, cov * (1.0 / trace));
+    return Fit::kOk;
+}
+
+// Local PCA: the normal is the eigenvector of the smallest eigenvalue, from the batch solve
+// where it settled, else solved alone (Newton, then Eigen's general solver).
+LocalFit finish_point(const CovarianceArrays& covariances, std::size_t i,
+                      const Eigen::Vector3f& vector, float lambda, bool settled) {
+    LocalFit out;
+    if (settled) {
+        out.normal = vector.normalized();
+        out.curvature = std::clamp(lambda, 0.0f, 1.0f);  // λ0 / Σλ.
+        out.fit = Fit::kOk;
         return out;
     }
-    const Eigen::Matrix3d unit = cov * (1.0 / trace);  // Unit trace: scale-free thresholds.
-    double lambda = 0.0;
+    const Eigen::Matrix3d unit = covariances.get(i);
+    double smallest = 0.0;
     Eigen::Vector3d normal;
-    if (!smallest_eigenpair(unit, lambda, normal)) {
+    if (!smallest_eigenpair(unit, smallest, normal)) {
         Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver;
         solver.computeDirect(unit);
         normal = solver.eigenvectors().col(0);
-        lambda = solver.eigenvalues()(0);
+        smallest = solver.eigenvalues()(0);
         if (!normal.allFinite() || normal.squaredNorm() < 0.5) {
             out.fit = Fit::kDegenerate;
             return out;
@@ -114,7 +99,7 @@ LocalFit fit_point(std::span<const Eigen::Vector3f> positions, std::size_t i,
         normal.normalize();
     }
     out.normal = normal.cast<float>();
-    out.curvature = float(std::clamp(lambda, 0.0, 1.0));  // λ0 / Σλ.
+    out.curvature = float(std::clamp(smallest, 0.0, 1.0));
     out.fit = Fit::kOk;
     return out;
 }
@@ -123,40 +108,53 @@ LocalFit fit_point(std::span<const Eigen::Vector3f> positions, std::size_t i,
 
 NormalEstimationResult estimate_normals(PointCloud& cloud, const NormalEstimationConfig& config) {
     NormalEstimationResult result;
-    if (cloud.empty()) {
+    const std::size_t n = cloud.size();
+    if (n == 0) {
         result.status = NormalStatus::kEmptyCloud;
         cloud.normals.clear();
         return result;
     }
     // Points the neighbour search never reaches (non-finite) keep kTooFew and a zero normal.
-    std::vector<Eigen::Vector3f> old;
-    if (cloud.normals.size() == cloud.size()) old = std::move(cloud.normals);
-    cloud.normals.assign(cloud.size(), Eigen::Vector3f::Zero());
-    result.curvature.assign(cloud.size(), 0.0f);
-    std::vector<Fit> fits(cloud.size(), Fit::kTooFew);
+    std::vector<Fit> fits(n, Fit::kTooFew);
+    CovarianceArrays covariances;
+    covariances.resize(n);
     const std::size_t min_neighbors = std::size_t(std::max(config.min_neighbors, 2));
-    const auto fit = [&](std::size_t i, std::span<const std::uint32_t> neighbors) {
-        const LocalFit local = fit_point(cloud.positions, i, neighbors, min_neighbors);
-        const bool flip = !old.empty() && local.normal.dot(old[i]) < 0.0f;
-        cloud.normals[i] = flip ? Eigen::Vector3f(-local.normal) : local.normal;
-        result.curvature[i] = local.curvature;
-        fits[i] = local.fit;
+    const auto store = [&](std::size_t i, std::span<const std::uint32_t> neighbors) {
+        fits[i] = store_covariance(cloud.positions, i, neighbors, min_neighbors, covariances);
     };
     const NeighborGraphConfig search{.k_neighbors = config.k_neighbors,
                                      .max_radius_m = config.max_radius_m};
     if (config.keep_graph) {
         result.graph = build_neighbor_graph(cloud.positions, search);
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cloud.size(), 1024),
-                          [&](const auto& r) {
-                              for (std::size_t i = r.begin(); i < r.end(); ++i) {
-                                  fit(i, result.graph.neighbors(i));
-                              }
-                          });
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024), [&](const auto& r) {
+            for (std::size_t i = r.begin(); i < r.end(); ++i) store(i, result.graph.neighbors(i));
+        });
     } else {
         visit_neighbor_rows(cloud.positions, search,
                             [&](std::size_t i, std::span<const std::uint32_t> neighbors,
-                                std::span<const float>) { fit(i, neighbors); });
+                                std::span<const float>) { store(i, neighbors); });
     }
+    std::vector<Eigen::Vector3f> old;
+    if (cloud.normals.size() == n) old = std::move(cloud.normals);
+    cloud.normals.assign(n, Eigen::Vector3f::Zero());
+    result.curvature.assign(n, 0.0f);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024), [&](const auto& r) {
+        const std::size_t m = r.size();
+        std::vector<float> x(m), y(m), z(m), lambda(m);
+        std::vector<std::uint8_t> settled(m);
+        solve_smallest(covariances, r.begin(), r.end(),
+                       {x.data(), y.data(), z.data(), lambda.data(), settled.data()});
+        for (std::size_t i = r.begin(); i < r.end(); ++i) {
+            if (fits[i] != Fit::kOk) continue;
+            const std::size_t j = i - r.begin();
+            const LocalFit local =
+                finish_point(covariances, i, {x[j], y[j], z[j]}, lambda[j], settled[j] != 0);
+            const bool flip = !old.empty() && local.normal.dot(old[i]) < 0.0f;
+            cloud.normals[i] = flip ? Eigen::Vector3f(-local.normal) : local.normal;
+            result.curvature[i] = local.curvature;
+            fits[i] = local.fit;
+        }
+    });
     for (const Fit f : fits) {
         result.num_estimated += f == Fit::kOk;
         result.num_too_few_neighbors += f == Fit::kTooFew;
