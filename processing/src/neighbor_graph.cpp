@@ -84,6 +84,7 @@ struct CellGrid {
     Candidates sorted;                      // Finite points in cell order, original indices.
     std::vector<std::uint64_t> cell_keys;   // Sorted, unique.
     std::vector<std::uint32_t> cell_begin;  // cell_keys.size() + 1 offsets into `sorted`.
+    std::vector<Eigen::Array3d> cell_lo_m;  // Lower corner of each cell (no division per query).
     CellTable table;
 
     std::uint64_t key(const Eigen::Array3<std::int64_t>& c) const {
@@ -186,6 +187,11 @@ void sort_into_cells(const Candidates& finite, CellGrid& grid) {
     }
     grid.cell_begin.push_back(std::uint32_t(n));
     grid.table.build(grid.cell_keys);
+    grid.cell_lo_m.resize(grid.cell_keys.size());
+    for (std::size_t c = 0; c < grid.cell_keys.size(); ++c) {
+        grid.cell_lo_m[c] =
+            grid.min_m.array() + grid.coords(grid.cell_keys[c]).cast<double>() * grid.cell_m;
+    }
 }
 
 // Row offsets (dy, dz) of a (2r+1)^3 block, nearest first, so that the k-th distance
@@ -245,8 +251,7 @@ void gather_block(const CellGrid& grid, std::size_t cell, int r, Candidates& blo
 // Distance (metres) from sorted point s to the outside of the (2r+1)^3 block of cells
 // around its cell: every point closer than that lies in the block.
 double block_reach_m(const CellGrid& grid, std::size_t cell, int r, std::size_t s) {
-    const Eigen::Array3d lo =
-        grid.min_m.array() + grid.coords(grid.cell_keys[cell]).cast<double>() * grid.cell_m;
+    const Eigen::Array3d& lo = grid.cell_lo_m[cell];
     const Eigen::Array3d u = grid.position(s).cast<double>().array();
     const double margin = std::max(((u - lo).min(lo + grid.cell_m - u)).minCoeff(), 0.0);
     return (double(r) * grid.cell_m + margin) * (1.0 - 1e-6);
@@ -313,8 +318,7 @@ void reachable_ranges(const CellGrid& grid, std::size_t cell, const Candidates& 
     }
     // Slightly wide, so that no point the float distances would accept is skipped.
     const double reach = std::sqrt(double(bound_d2)) * (1.0 + 1e-5) + 1e-9;
-    const Eigen::Array3d lo =
-        grid.min_m.array() + grid.coords(grid.cell_keys[cell]).cast<double>() * grid.cell_m;
+    const Eigen::Array3d& lo = grid.cell_lo_m[cell];
     const Eigen::Array3d u = q.cast<double>().array();
     const Eigen::Array3<bool> below = u - reach<lo, above = u + reach> lo + grid.cell_m;
     const std::size_t t0 = below.x() ? 0 : 1, t1 = above.x() ? 3 : 2;
@@ -336,32 +340,32 @@ void select_ranked(const Candidates& block, const std::vector<float>& d2, std::s
         scratch.picked_index.resize(n + 2 * kGroup);
         scratch.picked_rank.resize(n + 2 * kGroup);
     }
+    // Raw pointers: the stores below cannot then be taken to move the vectors' buffers.
+    float* const picked_d2 = scratch.picked_d2.data();
+    std::uint32_t* const picked_index = scratch.picked_index.data();
+    const std::uint32_t* const picked = scratch.picked.data();
+    const std::uint32_t* const indices = block.indices.data();
     for (std::size_t c = 0; c < n; ++c) {
-        scratch.picked_d2[c] = d2[scratch.picked[c]];
-        scratch.picked_index[c] = block.indices[scratch.picked[c]];
+        picked_d2[c] = d2[picked[c]];
+        picked_index[c] = indices[picked[c]];
     }
     for (std::size_t c = n; c < n + 2 * kGroup; ++c) {  // Padding: ranks last.
-        scratch.picked_d2[c] = std::numeric_limits<float>::infinity();
-        scratch.picked_index[c] = std::numeric_limits<std::uint32_t>::max();
+        picked_d2[c] = std::numeric_limits<float>::infinity();
+        picked_index[c] = std::numeric_limits<std::uint32_t>::max();
     }
     std::int32_t* rank = scratch.picked_rank.data();
     if (!knn_detail::have_avx2()) {
-        rank_all(scratch.picked_d2.data(), scratch.picked_index.data(), n, rank);
-    } else if (knn_detail::rank_distances_avx2(scratch.picked_d2.data(), n, rank) !=
+        rank_all(picked_d2, picked_index, n, rank);
+    } else if (knn_detail::rank_distances_avx2(picked_d2, n, rank) !=
                n * (n - 1) / 2) {  // Equal distances: rank by (distance, index) keys.
         scratch.picked_key.assign(n + kGroup,
                                   std::uint64_t(std::numeric_limits<std::int64_t>::max()));
         for (std::size_t c = 0; c < n; ++c) {
-            scratch.picked_key[c] = TopK::pack(scratch.picked_d2[c], scratch.picked_index[c]);
+            scratch.picked_key[c] = TopK::pack(picked_d2[c], picked_index[c]);
         }
         knn_detail::rank_keys_avx2(scratch.picked_key.data(), n, rank);
     }
-    top.clear(top.max_d2());
-    for (std::size_t c = 0; c < n; ++c) {
-        const auto r = std::size_t(rank[c]);
-        if (r < top.capacity()) top.place(r, scratch.picked_d2[c], scratch.picked_index[c]);
-    }
-    top.set_size(std::min(n, top.capacity()));
+    top.place_ranked(picked_d2, picked_index, rank, n);
 }
 
 // Squared distances from q (sorted point s) to the block's points that may lie within
@@ -374,8 +378,10 @@ std::size_t pick_within(const CellGrid& grid, std::size_t cell, std::size_t s, f
     const float self_x = block.x[self_pos];
     block.x[self_pos] = std::numeric_limits<float>::quiet_NaN();  // Never within any bound.
     std::size_t picked = 0;
+    float* d2 = scratch.d2.data();
+    std::uint32_t* picks = scratch.picked.data();
     for (const auto& [begin, end] : scratch.ranges) {
-        picked = pick_range(block, begin, end, q, bound_d2, scratch.d2, scratch.picked, picked);
+        picked = pick_range(block, begin, end, q, bound_d2, d2, picks, picked);
     }
     block.x[self_pos] = self_x;
     return picked;

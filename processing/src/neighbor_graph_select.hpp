@@ -65,10 +65,18 @@ public:
             worst_ = d2_of(worst_key_);
         }
     }
-    // Puts a pair at its known rank; set_size then ends the row.
-    void place(std::size_t rank, float d2, std::uint32_t index) { keys_[rank] = pack(d2, index); }
-    void set_size(std::size_t size) {
-        size_ = size;
+    // Starts over with the n pairs of known ranks (0 .. n - 1, all different): those
+    // ranked below k, in their places.
+    void place_ranked(const float* d2, const std::uint32_t* index, const std::int32_t* rank,
+                      std::size_t n) {
+        std::uint64_t* const keys = keys_.data();
+        const std::size_t k = k_;  // A copy: a key store could be taken to change k_.
+        for (std::size_t c = 0; c < n; ++c) {
+            const auto r = std::size_t(rank[c]);
+            if (r < k) keys[r] = pack(d2[c], index[c]);
+        }
+        clear(max_d2_);
+        size_ = std::min(n, k_);
         if (size_ == k_) {
             worst_key_ = keys_[k_ - 1];
             worst_ = d2_of(worst_key_);
@@ -180,8 +188,8 @@ alignas(16) inline constexpr std::array<std::array<std::int32_t, kGroup>, 16> kM
 }();
 
 // Appends start + the lanes of `mask` to `picked` from slot n; returns the new count.
-inline std::size_t append_lanes(std::size_t start, unsigned mask,
-                                std::vector<std::uint32_t>& picked, std::size_t n) {
+inline std::size_t append_lanes(std::size_t start, unsigned mask, std::uint32_t* picked,
+                                std::size_t n) {
 #if defined(__SSE2__)
     const __m128i lanes =
         _mm_add_epi32(_mm_set1_epi32(std::int32_t(start)),
@@ -216,18 +224,18 @@ inline unsigned pick_group(const float* x, const float* y, const float* z, std::
 // block's x, y, z have kGroup - 1 readable entries past end (Candidates::pad). The caller
 // hides the query's own entry (a NaN coordinate: never within the bound).
 inline std::size_t pick_range(const Candidates& block, std::size_t begin, std::size_t end,
-                              const Eigen::Vector3f& q, float bound, std::vector<float>& d2,
-                              std::vector<std::uint32_t>& picked, std::size_t n) {
+                              const Eigen::Vector3f& q, float bound, float* d2,
+                              std::uint32_t* picked, std::size_t n) {
     const float *x = block.x.data(), *y = block.y.data(), *z = block.z.data();
     std::size_t j0 = begin;
 #if defined(__SSE2__)
     const __m128 qx = _mm_set1_ps(q.x()), qy = _mm_set1_ps(q.y()), qz = _mm_set1_ps(q.z());
     const __m128 limit = _mm_set1_ps(bound);
     for (; j0 + kGroup <= end; j0 += kGroup) {
-        n = append_lanes(j0, pick_group(x, y, z, j0, qx, qy, qz, limit, d2.data()), picked, n);
+        n = append_lanes(j0, pick_group(x, y, z, j0, qx, qy, qz, limit, d2), picked, n);
     }
     if (j0 < end) {  // The last partial group reads into the padding or the next range.
-        const unsigned mask = pick_group(x, y, z, j0, qx, qy, qz, limit, d2.data());
+        const unsigned mask = pick_group(x, y, z, j0, qx, qy, qz, limit, d2);
         n = append_lanes(j0, mask & (0xfu >> (kGroup - (end - j0))), picked, n);
     }
 #else

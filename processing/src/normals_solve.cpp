@@ -23,15 +23,32 @@ struct CovarianceView {  // The arrays' data, read only (the loop then keeps the
     const float* __restrict yz;
 };
 
-CovarianceView view(const CovarianceArrays& a) {
-    return {a.xx.data(), a.yy.data(), a.zz.data(), a.xy.data(), a.xz.data(), a.yz.data()};
-}
+// Points [begin, end) as arrays, so that the batch loop loads whole vectors.
+struct CovarianceBatch {
+    std::vector<float> xx, yy, zz, xy, xz, yz;
 
-// One point of the batch, its outputs at o: plain arithmetic and selects only, so that the
-// loop over points vectorises (no branch, no call; sqrt is left to the caller).
-inline void solve_one(const CovarianceView& a, std::size_t i, std::size_t o,
-                      const EigenpairArrays& out) {
-    const double xx = a.xx[i], yy = a.yy[i], zz = a.zz[i], xy = a.xy[i], xz = a.xz[i], yz = a.yz[i];
+    CovarianceBatch(const CovarianceArrays& a, std::size_t begin, std::size_t end) {
+        const std::size_t m = end - begin;
+        for (std::vector<float>* v : {&xx, &yy, &zz, &xy, &xz, &yz}) v->resize(m);
+        for (std::size_t o = 0; o < m; ++o) {
+            const std::array<float, 6>& e = a.entries[begin + o];
+            xx[o] = e[0];
+            yy[o] = e[1];
+            zz[o] = e[2];
+            xy[o] = e[3];
+            xz[o] = e[4];
+            yz[o] = e[5];
+        }
+    }
+    CovarianceView view() const {
+        return {xx.data(), yy.data(), zz.data(), xy.data(), xz.data(), yz.data()};
+    }
+};
+
+// Point o of the batch: plain arithmetic and selects only, so that the loop over points
+// vectorises (no branch, no call; sqrt is left to the caller).
+inline void solve_one(const CovarianceView& a, std::size_t o, const EigenpairArrays& out) {
+    const double xx = a.xx[o], yy = a.yy[o], zz = a.zz[o], xy = a.xy[o], xz = a.xz[o], yz = a.yz[o];
     const double c2 = xx + yy + zz;
     const double c1 = xx * yy - xy * xy + xx * zz - xz * xz + yy * zz - yz * yz;
     const double c0 =
@@ -67,15 +84,14 @@ inline void solve_one(const CovarianceView& a, std::size_t i, std::size_t o,
                      (best > kMinGapProduct * kMinGapProduct) & (x >= -1.0) & (x <= 1.0));
 }
 
-void solve_plain(const CovarianceView a, std::size_t begin, std::size_t end,
-                 const EigenpairArrays out) {
-    for (std::size_t i = begin; i < end; ++i) solve_one(a, i, i - begin, out);
+void solve_plain(const CovarianceView a, std::size_t m, const EigenpairArrays out) {
+    for (std::size_t o = 0; o < m; ++o) solve_one(a, o, out);
 }
 
 #if defined(__x86_64__) && defined(__GNUC__)
-__attribute__((target("avx2"))) void solve_avx2(const CovarianceView a, std::size_t begin,
-                                                std::size_t end, const EigenpairArrays out) {
-    for (std::size_t i = begin; i < end; ++i) solve_one(a, i, i - begin, out);
+__attribute__((target("avx2"))) void solve_avx2(const CovarianceView a, std::size_t m,
+                                                const EigenpairArrays out) {
+    for (std::size_t o = 0; o < m; ++o) solve_one(a, o, out);
 }
 
 bool have_avx2() {
@@ -86,31 +102,27 @@ bool have_avx2() {
 
 }  // namespace
 
-void CovarianceArrays::resize(std::size_t n) {
-    for (std::vector<float>* v : {&xx, &yy, &zz, &xy, &xz, &yz}) v->assign(n, 0.0f);
-}
+void CovarianceArrays::resize(std::size_t n) { entries.assign(n, {}); }
 
 void CovarianceArrays::set(std::size_t i, const Eigen::Matrix3d& unit) {
-    xx[i] = float(unit(0, 0));
-    yy[i] = float(unit(1, 1));
-    zz[i] = float(unit(2, 2));
-    xy[i] = float(unit(0, 1));
-    xz[i] = float(unit(0, 2));
-    yz[i] = float(unit(1, 2));
+    entries[i] = {float(unit(0, 0)), float(unit(1, 1)), float(unit(2, 2)),
+                  float(unit(0, 1)), float(unit(0, 2)), float(unit(1, 2))};
 }
 
 Eigen::Matrix3d CovarianceArrays::get(std::size_t i) const {
+    const std::array<float, 6>& e = entries[i];
     Eigen::Matrix3d m;
-    m << xx[i], xy[i], xz[i], xy[i], yy[i], yz[i], xz[i], yz[i], zz[i];
+    m << e[0], e[3], e[4], e[3], e[1], e[5], e[4], e[5], e[2];
     return m;
 }
 
 void solve_smallest(const CovarianceArrays& a, std::size_t begin, std::size_t end,
                     const EigenpairArrays& out) {
+    const CovarianceBatch batch(a, begin, end);
 #if defined(__x86_64__) && defined(__GNUC__)
-    if (have_avx2()) return solve_avx2(view(a), begin, end, out);
+    if (have_avx2()) return solve_avx2(batch.view(), end - begin, out);
 #endif
-    solve_plain(view(a), begin, end, out);
+    solve_plain(batch.view(), end - begin, out);
 }
 
 // Newton's method on the characteristic cubic from c0 / c1, its first step from 0 (left

@@ -6,15 +6,18 @@
 /// results as the plain loop); the few points it cannot settle are solved one at a time.
 
 #include <Eigen/Core>
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
 
 namespace anascan::normals_detail {
 
-/// Covariances scaled to unit trace, one entry per point; the six distinct entries.
+/// Covariances scaled to unit trace, one record per point of the six distinct entries
+/// (xx, yy, zz, xy, xz, yz): points are filled in neighbour-search order, so one record
+/// is one cache line touched, not six.
 struct CovarianceArrays {
-    std::vector<float> xx, yy, zz, xy, xz, yz;
+    std::vector<std::array<float, 6>> entries;
 
     void resize(std::size_t n);
     void set(std::size_t i, const Eigen::Matrix3d& unit);
