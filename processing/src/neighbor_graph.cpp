@@ -2,7 +2,6 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_sort.h>
 
 #include <algorithm>
 #include <array>
@@ -154,6 +153,26 @@ void size_cells(const Candidates& finite, const NeighborGraphConfig& config, std
     grid.dims = ((hi - lo) / cell).array().floor().cast<std::int64_t>() + 1;
 }
 
+// Stable LSD radix sort on the key, a byte a pass (the buckets stay in L1), as many passes
+// as the largest key needs (three for ~10^5 cells): linear passes, no comparison sort.
+void sort_by_key(std::vector<std::pair<std::uint64_t, std::uint32_t>>& keyed) {
+    constexpr int kDigitBits = 8;
+    constexpr std::size_t kBuckets = std::size_t(1) << kDigitBits;
+    std::uint64_t largest = 0;
+    for (const auto& entry : keyed) largest = std::max(largest, entry.first);
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> other(keyed.size());
+    std::vector<std::size_t> start(kBuckets);
+    for (int shift = 0; shift < int(std::bit_width(largest)); shift += kDigitBits) {
+        std::fill(start.begin(), start.end(), 0);
+        for (const auto& entry : keyed) ++start[(entry.first >> shift) & (kBuckets - 1)];
+        std::size_t offset = 0;
+        for (std::size_t& s : start) offset += std::exchange(s, offset);
+        for (const auto& entry : keyed)
+            other[start[(entry.first >> shift) & (kBuckets - 1)]++] = entry;
+        keyed.swap(other);
+    }
+}
+
 // Sorts the finite points by cell (ties by index: deterministic) and numbers the cells.
 void sort_into_cells(const Candidates& finite, CellGrid& grid) {
     const std::size_t n = finite.size();
@@ -164,7 +183,7 @@ void sort_into_cells(const Candidates& finite, CellGrid& grid) {
                         std::uint32_t(s)};
         }
     });
-    tbb::parallel_sort(keyed.begin(), keyed.end());
+    sort_by_key(keyed);
     Candidates& out = grid.sorted;
     out.x.resize(n);
     out.y.resize(n);
