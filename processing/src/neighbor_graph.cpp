@@ -228,7 +228,30 @@ std::vector<Eigen::Array2<std::int64_t>> row_offsets(int r) {
 
 // The points of the (2r+1)^3 block of cells around `cell`, one contiguous run per row,
 // nearest rows first.
-void gather_block(const CellGrid& grid, std::size_t cell, int r, Candidates& block) {
+// Where each row of the 3x3x3 block stood in the sorted cells for the previous cell: a
+// worker answers cells in increasing order, and the first key of each row (when the row
+// lies in the grid) then only grows, so rows are found by stepping forward from there
+// instead of by hash look-ups.
+struct RowCursors {
+    std::array<std::size_t, 9> at{};
+    std::array<bool, 9> started{};
+};
+
+// The first cell with a key in [lo, hi] (a run of one row), or -1; row o of the block.
+std::ptrdiff_t first_in_row(const CellGrid& grid, std::uint64_t lo, std::uint64_t hi,
+                            RowCursors& cursors, std::size_t o) {
+    const std::vector<std::uint64_t>& keys = grid.cell_keys;
+    std::size_t& at = cursors.at[o];
+    if (!cursors.started[o]) {
+        at = std::size_t(std::lower_bound(keys.begin(), keys.end(), lo) - keys.begin());
+        cursors.started[o] = true;
+    }
+    while (at < keys.size() && keys[at] < lo) ++at;
+    return at < keys.size() && keys[at] <= hi ? std::ptrdiff_t(at) : -1;
+}
+
+void gather_block(const CellGrid& grid, std::size_t cell, int r, Candidates& block,
+                  RowCursors* cursors = nullptr) {
     static const std::array<std::vector<Eigen::Array2<std::int64_t>>, kMaxRing + 1> kRows = [] {
         std::array<std::vector<Eigen::Array2<std::int64_t>>, kMaxRing + 1> rows;
         for (int ring = 1; ring <= kMaxRing; ++ring) rows[std::size_t(ring)] = row_offsets(ring);
@@ -238,14 +261,20 @@ void gather_block(const CellGrid& grid, std::size_t cell, int r, Candidates& blo
     const Eigen::Array3<std::int64_t> c = grid.coords(grid.cell_keys[cell]);
     const std::int64_t x0 = std::max<std::int64_t>(c.x() - r, 0);
     const std::int64_t x1 = std::min<std::int64_t>(c.x() + r, grid.dims.x() - 1);
-    for (const Eigen::Array2<std::int64_t>& offset : kRows[std::size_t(r)]) {
+    const std::vector<Eigen::Array2<std::int64_t>>& offsets = kRows[std::size_t(r)];
+    for (std::size_t o = 0; o < offsets.size(); ++o) {
+        const Eigen::Array2<std::int64_t>& offset = offsets[o];
         const std::int64_t y = c.y() + offset.x(), z = c.z() + offset.y();
         if (y < 0 || z < 0 || y >= grid.dims.y() || z >= grid.dims.z()) continue;
-        std::ptrdiff_t first = -1;
-        for (std::int64_t x = x0; x <= x1 && first < 0; ++x)
-            first = grid.table.find(grid.key({x, y, z}));
-        if (first < 0) continue;
         const std::uint64_t last_key = grid.key({x1, y, z});
+        std::ptrdiff_t first = -1;
+        if (cursors) {
+            first = first_in_row(grid, grid.key({x0, y, z}), last_key, *cursors, o);
+        } else {
+            for (std::int64_t x = x0; x <= x1 && first < 0; ++x)
+                first = grid.table.find(grid.key({x, y, z}));
+        }
+        if (first < 0) continue;
         auto last = std::size_t(first);
         while (last + 1 < grid.cell_keys.size() && grid.cell_keys[last + 1] <= last_key) ++last;
         const std::uint32_t base = grid.cell_begin[std::size_t(first)];
@@ -322,6 +351,7 @@ struct Scratch {
     std::vector<std::uint64_t> picked_key;
     std::vector<std::uint32_t> row_indices;  // The row handed to the visitor.
     std::vector<float> row_d2;
+    RowCursors cursors;  // Of the 3x3x3 blocks, for cells in increasing order.
 };
 
 // The parts of the block that may hold a point within sqrt(bound_d2) of q: with the rows
@@ -467,7 +497,7 @@ bool answer_wide(const CellGrid& grid, std::size_t cell, std::size_t s, Scratch&
 void answer_cell(const CellGrid& grid, std::size_t cell, std::size_t k, float max_d2,
                  Scratch& scratch, const NeighborRowVisitor& visit,
                  std::vector<std::uint8_t>& fallback) {
-    gather_block(grid, cell, 1, scratch.near);
+    gather_block(grid, cell, 1, scratch.near, &scratch.cursors);
     const bool dense = too_dense(scratch.near, k);
     TopK top(k, max_d2);
     float& hint_d2 = scratch.hint_d2;  // Carried over from the previous cell.
