@@ -2,12 +2,14 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include <algorithm>
 #include <array>
 #include <bit>
 #include <cassert>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <utility>
 
@@ -103,13 +105,38 @@ struct CellGrid {
 };
 
 // Finite points as arrays, in index order.
+// Copied in parallel; the rare cloud with non-finite points is then compacted in order.
 Candidates finite_points(std::span<const Eigen::Vector3f> points) {
+    const std::size_t n = points.size();
     Candidates out;
-    for (std::size_t i = 0; i < points.size(); ++i) {
-        if (points[i].allFinite()) {
-            out.push_back(points[i].x(), points[i].y(), points[i].z(), std::uint32_t(i));
-        }
+    out.x.resize(n);
+    out.y.resize(n);
+    out.z.resize(n);
+    out.indices.resize(n);
+    const std::size_t finite = tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, n, 8192), std::size_t(0),
+        [&](const auto& r, std::size_t count) {
+            for (std::size_t i = r.begin(); i < r.end(); ++i) {
+                out.x[i] = points[i].x();
+                out.y[i] = points[i].y();
+                out.z[i] = points[i].z();
+                out.indices[i] = std::uint32_t(i);
+                count += points[i].allFinite();
+            }
+            return count;
+        },
+        std::plus<>());
+    if (finite == n) return out;
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        if (!points[i].allFinite()) continue;
+        out.x[kept] = out.x[i];
+        out.y[kept] = out.y[i];
+        out.z[kept] = out.z[i];
+        out.indices[kept++] = out.indices[i];
     }
+    for (std::vector<float>* v : {&out.x, &out.y, &out.z}) v->resize(kept);
+    out.indices.resize(kept);
     return out;
 }
 
@@ -137,12 +164,21 @@ double sampled_knn_radius(const Candidates& finite, std::size_t k) {
 // at least 2^-20 of the extent so that cell keys fit in 63 bits.
 void size_cells(const Candidates& finite, const NeighborGraphConfig& config, std::size_t k,
                 CellGrid& grid) {
-    Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = -lo;
-    for (std::size_t s = 0; s < finite.size(); ++s) {
-        const Eigen::Vector3d p(finite.x[s], finite.y[s], finite.z[s]);
-        lo = lo.cwiseMin(p);
-        hi = hi.cwiseMax(p);
-    }
+    using Box = std::pair<Eigen::Vector3d, Eigen::Vector3d>;
+    const Box empty{Eigen::Vector3d::Constant(INFINITY), Eigen::Vector3d::Constant(-INFINITY)};
+    const auto [lo, hi] = tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, finite.size(), 8192), empty,
+        [&](const auto& r, Box box) {
+            for (std::size_t s = r.begin(); s < r.end(); ++s) {
+                const Eigen::Vector3d p(finite.x[s], finite.y[s], finite.z[s]);
+                box.first = box.first.cwiseMin(p);
+                box.second = box.second.cwiseMax(p);
+            }
+            return box;
+        },
+        [](const Box& a, const Box& b) {
+            return Box{a.first.cwiseMin(b.first), a.second.cwiseMax(b.second)};
+        });
     const double extent = (hi - lo).maxCoeff();
     double cell = kCellPerRadius * sampled_knn_radius(finite, k);
     if (config.max_radius_m > 0.0f) cell = std::min(cell, double(config.max_radius_m));

@@ -136,8 +136,8 @@ NormalEstimationResult estimate_normals(PointCloud& cloud, const NormalEstimatio
     }
     std::vector<Eigen::Vector3f> old;
     if (cloud.normals.size() == n) old = std::move(cloud.normals);
-    cloud.normals.assign(n, Eigen::Vector3f::Zero());
-    result.curvature.assign(n, 0.0f);
+    cloud.normals.resize(n);  // Every entry is written below.
+    result.curvature.resize(n);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024), [&](const auto& r) {
         const std::size_t m = r.size();
         std::vector<float> x(m), y(m), z(m), lambda(m);
@@ -145,7 +145,11 @@ NormalEstimationResult estimate_normals(PointCloud& cloud, const NormalEstimatio
         solve_smallest(covariances, r.begin(), r.end(),
                        {x.data(), y.data(), z.data(), lambda.data(), settled.data()});
         for (std::size_t i = r.begin(); i < r.end(); ++i) {
-            if (fits[i] != Fit::kOk) continue;
+            if (fits[i] != Fit::kOk) {
+                cloud.normals[i].setZero();
+                result.curvature[i] = 0.0f;
+                continue;
+            }
             const std::size_t j = i - r.begin();
             const LocalFit local =
                 finish_point(covariances, i, {x[j], y[j], z[j]}, lambda[j], settled[j] != 0);

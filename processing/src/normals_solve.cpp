@@ -102,7 +102,9 @@ bool have_avx2() {
 
 }  // namespace
 
-void CovarianceArrays::resize(std::size_t n) { entries.assign(n, {}); }
+void CovarianceArrays::resize(std::size_t n) {
+    entries.reset(new std::array<float, 6>[n]);  // Not zeroed: set() writes before get().
+}
 
 void CovarianceArrays::set(std::size_t i, const Eigen::Matrix3d& unit) {
     entries[i] = {float(unit(0, 0)), float(unit(1, 1)), float(unit(2, 2)),

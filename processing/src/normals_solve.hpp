@@ -9,6 +9,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace anascan::normals_detail {
@@ -17,7 +18,7 @@ namespace anascan::normals_detail {
 /// (xx, yy, zz, xy, xz, yz): points are filled in neighbour-search order, so one record
 /// is one cache line touched, not six.
 struct CovarianceArrays {
-    std::vector<std::array<float, 6>> entries;
+    std::unique_ptr<std::array<float, 6>[]> entries;
 
     void resize(std::size_t n);
     void set(std::size_t i, const Eigen::Matrix3d& unit);
