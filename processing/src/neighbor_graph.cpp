@@ -371,6 +371,12 @@ void emit_row(const TopK& top, std::size_t row, const NeighborRowVisitor& visit,
     visit(row, indices, d2);
 }
 
+// Parts [begin, end) of a block to scan: at most one per row of a 3x3x3 block.
+struct BlockRanges {
+    std::array<std::pair<std::uint32_t, std::uint32_t>, 9> at{};
+    std::size_t count = 0;
+};
+
 // One worker's scratch: the 3x3x3 block of the current cell and, loaded only for rows it
 // cannot prove (borders, sparse spots), the 5x5x5 block.
 struct Scratch {
@@ -379,8 +385,8 @@ struct Scratch {
     int wide_ring = 0;
     float hint_d2 = std::numeric_limits<float>::infinity();
     std::vector<float> d2;
-    std::vector<std::pair<std::size_t, std::size_t>> ranges;  // Parts of the block scanned.
-    std::vector<std::uint32_t> picked;                        // Block positions within the bound.
+    BlockRanges ranges;                 // Parts of the block scanned.
+    std::vector<std::uint32_t> picked;  // Block positions within the bound.
     std::vector<float> picked_d2;
     std::vector<std::uint32_t> picked_index;
     std::vector<std::int32_t> picked_rank;
@@ -394,11 +400,10 @@ struct Scratch {
 // recorded (3x3x3 blocks), the neighbouring cells on a side are skipped when the ball
 // around q does not cross the centre cell's face on that side.
 void reachable_ranges(const CellGrid& grid, std::size_t cell, const Candidates& block,
-                      const Eigen::Vector3f& q, float bound_d2,
-                      std::vector<std::pair<std::size_t, std::size_t>>& ranges) {
-    ranges.clear();
+                      const Eigen::Vector3f& q, float bound_d2, BlockRanges& ranges) {
     if (block.rows.empty() || !(bound_d2 < std::numeric_limits<float>::infinity())) {
-        ranges.emplace_back(0, block.size());
+        ranges.at[0] = {0, std::uint32_t(block.size())};
+        ranges.count = 1;
         return;
     }
     // Slightly wide, so that no point the float distances would accept is skipped.
@@ -407,11 +412,14 @@ void reachable_ranges(const CellGrid& grid, std::size_t cell, const Candidates& 
     const Eigen::Array3d u = q.cast<double>().array();
     const Eigen::Array3<bool> below = u - reach<lo, above = u + reach> lo + grid.cell_m;
     const std::size_t t0 = below.x() ? 0 : 1, t1 = above.x() ? 3 : 2;
-    for (const Candidates::Row& row : block.rows) {
-        if ((row.dy < 0 && !below.y()) || (row.dy > 0 && !above.y())) continue;
-        if ((row.dz < 0 && !below.z()) || (row.dz > 0 && !above.z())) continue;
-        if (row.at[t0] < row.at[t1]) ranges.emplace_back(row.at[t0], row.at[t1]);
+    std::size_t count = 0;
+    for (const Candidates::Row& row : block.rows) {  // Appended always, counted when kept.
+        const bool y_ok = row.dy == 0 || (row.dy < 0 ? below.y() : above.y());
+        const bool z_ok = row.dz == 0 || (row.dz < 0 ? below.z() : above.z());
+        ranges.at[count] = {row.at[t0], row.at[t1]};
+        count += y_ok & z_ok & (row.at[t0] < row.at[t1]);
     }
+    ranges.count = count;
 }
 
 // Rank of each of the n picked candidates among them (distance, then index), found by
@@ -465,7 +473,8 @@ std::size_t pick_within(const CellGrid& grid, std::size_t cell, std::size_t s, f
     std::size_t picked = 0;
     float* d2 = scratch.d2.data();
     std::uint32_t* picks = scratch.picked.data();
-    for (const auto& [begin, end] : scratch.ranges) {
+    for (std::size_t r = 0; r < scratch.ranges.count; ++r) {
+        const auto [begin, end] = scratch.ranges.at[r];
         picked = pick_range(block, begin, end, q, bound_d2, d2, picks, picked);
     }
     block.x[self_pos] = self_x;

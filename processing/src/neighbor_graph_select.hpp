@@ -71,9 +71,8 @@ public:
                       std::size_t n) {
         std::uint64_t* const keys = keys_.data();
         const std::size_t k = k_;  // A copy: a key store could be taken to change k_.
-        for (std::size_t c = 0; c < n; ++c) {
-            const auto r = std::size_t(rank[c]);
-            if (r < k) keys[r] = pack(d2[c], index[c]);
+        for (std::size_t c = 0; c < n; ++c) {  // Ranks from k on land in the spare slot k:
+            keys[std::min(std::size_t(rank[c]), k)] = pack(d2[c], index[c]);  // no branch.
         }
         clear(max_d2_);
         size_ = std::min(n, k_);
