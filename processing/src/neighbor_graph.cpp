@@ -426,22 +426,10 @@ void reachable_ranges(const CellGrid& grid, std::size_t cell, const Candidates& 
 // comparing all pairs (no branch depends on the data): with AVX2 each against all by
 // distance alone, eight at a time, and by packed keys only when two distances are equal;
 // else rank_all. Ranks below k give the sorted top k directly.
-void select_ranked(const Candidates& block, const std::vector<float>& d2, std::size_t n,
-                   Scratch& scratch, TopK& top) {
-    if (scratch.picked_d2.size() < n + 2 * kGroup) {  // Grown only.
-        scratch.picked_d2.resize(n + 2 * kGroup);
-        scratch.picked_index.resize(n + 2 * kGroup);
-        scratch.picked_rank.resize(n + 2 * kGroup);
-    }
+void select_ranked(std::size_t n, Scratch& scratch, TopK& top) {
     // Raw pointers: the stores below cannot then be taken to move the vectors' buffers.
     float* const picked_d2 = scratch.picked_d2.data();
     std::uint32_t* const picked_index = scratch.picked_index.data();
-    const std::uint32_t* const picked = scratch.picked.data();
-    const std::uint32_t* const indices = block.indices.data();
-    for (std::size_t c = 0; c < n; ++c) {
-        picked_d2[c] = d2[picked[c]];
-        picked_index[c] = indices[picked[c]];
-    }
     for (std::size_t c = n; c < n + 2 * kGroup; ++c) {  // Padding: ranks last.
         picked_d2[c] = std::numeric_limits<float>::infinity();
         picked_index[c] = std::numeric_limits<std::uint32_t>::max();
@@ -461,8 +449,8 @@ void select_ranked(const Candidates& block, const std::vector<float>& d2, std::s
     top.place_ranked(picked_d2, picked_index, rank, n);
 }
 
-// Squared distances from q (sorted point s) to the block's points that may lie within
-// `bound_d2` into scratch.d2; those within it listed in scratch.picked. Returns their count.
+// The squared distances and point indices of the block's points within `bound_d2` of q
+// (sorted point s), in scratch.picked_d2 and scratch.picked_index. Returns their count.
 std::size_t pick_within(const CellGrid& grid, std::size_t cell, std::size_t s, float bound_d2,
                         Candidates& block, Scratch& scratch) {
     const Eigen::Vector3f q = grid.position(s);
@@ -470,15 +458,29 @@ std::size_t pick_within(const CellGrid& grid, std::size_t cell, std::size_t s, f
     const std::size_t self_pos = block.origin + (s - grid.cell_begin[cell]);
     const float self_x = block.x[self_pos];
     block.x[self_pos] = std::numeric_limits<float>::quiet_NaN();  // Never within any bound.
-    std::size_t picked = 0;
-    float* d2 = scratch.d2.data();
-    std::uint32_t* picks = scratch.picked.data();
-    for (std::size_t r = 0; r < scratch.ranges.count; ++r) {
-        const auto [begin, end] = scratch.ranges.at[r];
-        picked = pick_range(block, begin, end, q, bound_d2, d2, picks, picked);
+    std::size_t n = 0;
+    float* const picked_d2 = scratch.picked_d2.data();
+    std::uint32_t* const picked_index = scratch.picked_index.data();
+    if (knn_detail::have_avx2()) {  // Compacted as picked.
+        for (std::size_t r = 0; r < scratch.ranges.count; ++r) {
+            const auto [begin, end] = scratch.ranges.at[r];
+            n = knn_detail::pick_compact_avx2(block, begin, end, q, bound_d2, picked_d2,
+                                              picked_index, n);
+        }
+    } else {  // Positions in the block first, then their distances and indices.
+        float* const d2 = scratch.d2.data();
+        std::uint32_t* const picks = scratch.picked.data();
+        for (std::size_t r = 0; r < scratch.ranges.count; ++r) {
+            const auto [begin, end] = scratch.ranges.at[r];
+            n = pick_range(block, begin, end, q, bound_d2, d2, picks, n);
+        }
+        for (std::size_t c = 0; c < n; ++c) {
+            picked_d2[c] = d2[picks[c]];
+            picked_index[c] = block.indices[picks[c]];
+        }
     }
     block.x[self_pos] = self_x;
-    return picked;
+    return n;
 }
 
 // The bound to try next when only `picked` of k lay within the last one: on a surface the
@@ -494,9 +496,11 @@ float widened(float bound_d2, std::size_t picked, std::size_t k) {
 // is scanned without a bound, so the answer is the same either way.
 void scan_block(const CellGrid& grid, std::size_t cell, std::size_t s, float hint_d2,
                 Candidates& block, Scratch& scratch, TopK& top) {
-    if (scratch.d2.size() < block.size() + kGroup) {  // Grown only: no refill per query.
-        scratch.d2.resize(block.size() + kGroup);
-        scratch.picked.resize(block.size() + kGroup);
+    const std::size_t room = block.size() + knn_detail::kWideGroup + 2 * kGroup;
+    if (scratch.d2.size() < room) {  // Grown only: no refill per query.
+        for (auto* v : {&scratch.d2, &scratch.picked_d2}) v->resize(room);
+        for (auto* v : {&scratch.picked, &scratch.picked_index}) v->resize(room);
+        scratch.picked_rank.resize(room);
     }
     const std::size_t k = top.capacity();
     float bound = std::min(hint_d2, top.max_d2());
@@ -504,7 +508,7 @@ void scan_block(const CellGrid& grid, std::size_t cell, std::size_t s, float hin
         const std::size_t picked = pick_within(grid, cell, s, bound, block, scratch);
         const bool enough = picked >= k || bound >= top.max_d2();
         if (enough && picked <= kMaxRanked * k) {
-            select_ranked(block, scratch.d2, picked, scratch, top);
+            select_ranked(picked, scratch, top);
             return;
         }
         if (enough) {  // Too many to rank: one by one, within the bound.

@@ -130,7 +130,48 @@ __attribute__((target("avx2"))) std::size_t rank_distances_avx2(const float* d2,
     }
     return sum;
 }
+// Lane numbers of the set bits of each 8-bit mask, in order, one byte each.
+alignas(64) constexpr std::array<std::uint64_t, 256> kWideMaskLanes = [] {
+    std::array<std::uint64_t, 256> lanes{};
+    for (unsigned mask = 0; mask < 256; ++mask) {
+        unsigned n = 0;
+        for (unsigned lane = 0; lane < 8; ++lane) {
+            if (mask & (1u << lane)) lanes[mask] |= std::uint64_t(lane) << (8 * n++);
+        }
+    }
+    return lanes;
+}();
+
+__attribute__((target("avx2,popcnt"))) std::size_t pick_compact_avx2(
+    const Candidates& block, std::size_t begin, std::size_t end, const Eigen::Vector3f& q,
+    float bound, float* d2, std::uint32_t* index, std::size_t n) {
+    const float *x = block.x.data(), *y = block.y.data(), *z = block.z.data();
+    const std::uint32_t* indices = block.indices.data();
+    const __m256 qx = _mm256_set1_ps(q.x()), qy = _mm256_set1_ps(q.y()), qz = _mm256_set1_ps(q.z());
+    const __m256 limit = _mm256_set1_ps(bound);
+    for (std::size_t j = begin; j < end; j += kWideGroup) {  // The last group reads past end.
+        const __m256 dx = _mm256_sub_ps(_mm256_loadu_ps(x + j), qx);
+        const __m256 dy = _mm256_sub_ps(_mm256_loadu_ps(y + j), qy);
+        const __m256 dz = _mm256_sub_ps(_mm256_loadu_ps(z + j), qz);
+        const __m256 dist = _mm256_add_ps(
+            _mm256_add_ps(_mm256_mul_ps(dx, dx), _mm256_mul_ps(dy, dy)), _mm256_mul_ps(dz, dz));
+        unsigned mask = unsigned(_mm256_movemask_ps(_mm256_cmp_ps(dist, limit, _CMP_LE_OQ)));
+        if (end - j < kWideGroup) mask &= (1u << (end - j)) - 1;
+        const __m256i lanes =
+            _mm256_cvtepu8_epi32(_mm_cvtsi64_si128(std::int64_t(kWideMaskLanes[mask])));
+        _mm256_storeu_ps(d2 + n, _mm256_permutevar8x32_ps(dist, lanes));
+        const __m256i ids = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(indices + j));
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(index + n),
+                            _mm256_permutevar8x32_epi32(ids, lanes));
+        n += std::size_t(_mm_popcnt_u32(mask));
+    }
+    return n;
+}
 #else
+std::size_t pick_compact_avx2(const Candidates&, std::size_t, std::size_t, const Eigen::Vector3f&,
+                              float, float*, std::uint32_t*, std::size_t n) {
+    return n;
+}
 std::size_t rank_distances_avx2(const float*, std::size_t, std::int32_t*) { return 0; }
 void rank_keys_avx2(const std::uint64_t*, std::size_t, std::int32_t*) {}
 #endif

@@ -20,7 +20,9 @@
 
 namespace anascan::knn_detail {
 
-constexpr std::size_t kGroup = 4;  // Candidates compared at once (one SSE register).
+constexpr std::size_t kGroup = 4;             // Candidates compared at once (one SSE register).
+constexpr std::size_t kWideGroup = 8;         // With AVX2 (one AVX register).
+constexpr std::size_t kPadding = kWideGroup;  // Readable entries past a block's end, + 1.
 
 // Bit j set when d2[j] <= bound, for the kGroup values at d2.
 inline unsigned within_mask(const float* d2, float bound) {
@@ -70,7 +72,7 @@ public:
     void place_ranked(const float* d2, const std::uint32_t* index, const std::int32_t* rank,
                       std::size_t n) {
         std::uint64_t* const keys = keys_.data();
-        const std::size_t k = k_;  // A copy: a key store could be taken to change k_.
+        const std::size_t k = k_;              // A copy: a key store could be taken to change k_.
         for (std::size_t c = 0; c < n; ++c) {  // Ranks from k on land in the spare slot k:
             keys[std::min(std::size_t(rank[c]), k)] = pack(d2[c], index[c]);  // no branch.
         }
@@ -111,13 +113,15 @@ struct Candidates {
         std::array<std::uint32_t, 4> at{};
     };
     std::vector<Row> rows;
-    std::size_t size() const { return indices.size(); }
+    std::size_t padding = 0;  // Entries past the last point (pad).
+    std::size_t size() const { return indices.size() - padding; }
     void clear() {
         x.clear();
         y.clear();
         z.clear();
         indices.clear();
         rows.clear();
+        padding = 0;
     }
     void push_back(float px, float py, float pz, std::uint32_t index) {
         x.push_back(px);
@@ -125,14 +129,16 @@ struct Candidates {
         z.push_back(pz);
         indices.push_back(index);
     }
-    // Readable (NaN) entries past the last point, so that a group of four starting at
-    // any point can be loaded whole.
+    // Readable entries (NaN coordinates) past the last point, so that a group of four or
+    // eight starting at any point can be loaded whole. Nothing may be appended after.
     void pad() {
-        for (std::size_t j = 1; j < kGroup; ++j) {
+        for (std::size_t j = 1; j < kPadding; ++j) {
             x.push_back(std::numeric_limits<float>::quiet_NaN());
             y.push_back(std::numeric_limits<float>::quiet_NaN());
             z.push_back(std::numeric_limits<float>::quiet_NaN());
+            indices.push_back(0);
         }
+        padding += kPadding - 1;
     }
     void append(const Candidates& from, std::size_t begin, std::size_t end) {
         const auto b = std::ptrdiff_t(begin), e = std::ptrdiff_t(end);
@@ -160,6 +166,15 @@ void rank_all(const float* d2, const std::uint32_t* index, std::size_t n, std::i
 
 // Whether this CPU runs the AVX2 ranking below (checked once).
 bool have_avx2();
+
+// pick_range with AVX2, eight candidates at a time, compacted at once: appends the squared
+// distances and point indices of the block's points [begin, end) within `bound` to d2 and
+// index from slot n (room for n + end - begin + kWideGroup). Returns the new count. The
+// block has kPadding - 1 readable entries past its end; the caller hides the query's own
+// entry (a NaN coordinate). Needs have_avx2().
+std::size_t pick_compact_avx2(const Candidates& block, std::size_t begin, std::size_t end,
+                              const Eigen::Vector3f& q, float bound, float* d2,
+                              std::uint32_t* index, std::size_t n);
 
 // Rank of each of the n distances by distance alone (the number of smaller ones), each
 // against all, eight at a time; returns the sum of the ranks, which is n (n - 1) / 2
