@@ -44,21 +44,22 @@ constexpr std::size_t kMaxRanked = 3;
 // block is picked again, at most kMaxWidenings times before a scan without a bound.
 constexpr float kMinWidening = 1.5f, kMaxWidening = 8.0f;
 constexpr int kMaxWidenings = 2;
-// Open addressing from cell key to cell number (keys < 2^63; the empty slot is ~0).
+// Open addressing from a key to a number (keys < 2^63; the empty slot is ~0).
 class CellTable {
 public:
-    void build(const std::vector<std::uint64_t>& keys) {
-        const std::size_t capacity = std::bit_ceil(std::max<std::size_t>(2 * keys.size(), 16));
+    // Unique keys, each with its number.
+    void build(const std::vector<std::pair<std::uint64_t, std::uint32_t>>& entries) {
+        const std::size_t capacity = std::bit_ceil(std::max<std::size_t>(2 * entries.size(), 16));
         shift_ = 64 - std::countr_zero(capacity);
         mask_ = capacity - 1;
         slots_.assign(capacity, {kEmpty, 0});
-        for (std::size_t c = 0; c < keys.size(); ++c) {
-            std::size_t h = hash(keys[c]);
+        for (const auto& entry : entries) {
+            std::size_t h = hash(entry.first);
             while (slots_[h].first != kEmpty) h = (h + 1) & mask_;
-            slots_[h] = {keys[c], std::uint32_t(c)};
+            slots_[h] = entry;
         }
     }
-    // The cell number of `key`, or -1.
+    // The number of `key`, or -1.
     std::ptrdiff_t find(std::uint64_t key) const {
         for (std::size_t h = hash(key);; h = (h + 1) & mask_) {
             if (slots_[h].first == key) return slots_[h].second;
@@ -86,7 +87,7 @@ struct CellGrid {
     std::vector<std::uint64_t> cell_keys;   // Sorted, unique.
     std::vector<std::uint32_t> cell_begin;  // cell_keys.size() + 1 offsets into `sorted`.
     std::vector<Eigen::Array3d> cell_lo_m;  // Lower corner of each cell (no division per query).
-    CellTable table;
+    CellTable row_table;  // Row key (z * dims.y + y) to the first cell of that row.
 
     std::uint64_t key(const Eigen::Array3<std::int64_t>& c) const {
         return std::uint64_t((c.z() * dims.y() + c.y()) * dims.x() + c.x());
@@ -241,7 +242,12 @@ void sort_into_cells(const Candidates& finite, CellGrid& grid) {
         }
     }
     grid.cell_begin.push_back(std::uint32_t(n));
-    grid.table.build(grid.cell_keys);
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> rows;  // Row key, first cell.
+    for (std::size_t c = 0; c < grid.cell_keys.size(); ++c) {
+        const std::uint64_t row = grid.cell_keys[c] / std::uint64_t(grid.dims.x());
+        if (rows.empty() || rows.back().first != row) rows.emplace_back(row, std::uint32_t(c));
+    }
+    grid.row_table.build(rows);
     grid.cell_lo_m.resize(grid.cell_keys.size());
     for (std::size_t c = 0; c < grid.cell_keys.size(); ++c) {
         grid.cell_lo_m[c] =
@@ -273,6 +279,16 @@ struct RowCursors {
     std::array<bool, 9> started{};
 };
 
+// The first cell with a key in [lo, hi] (a run of one row), or -1, searched from the
+// row's first cell (-1: the row is empty).
+std::ptrdiff_t first_in_row(const CellGrid& grid, std::uint64_t lo, std::uint64_t hi,
+                            std::ptrdiff_t row_start) {
+    if (row_start < 0) return -1;
+    const std::vector<std::uint64_t>& keys = grid.cell_keys;
+    const auto at = std::lower_bound(keys.begin() + row_start, keys.end(), lo);
+    return at != keys.end() && *at <= hi ? at - keys.begin() : -1;
+}
+
 // The first cell with a key in [lo, hi] (a run of one row), or -1; row o of the block.
 std::ptrdiff_t first_in_row(const CellGrid& grid, std::uint64_t lo, std::uint64_t hi,
                             RowCursors& cursors, std::size_t o) {
@@ -298,6 +314,7 @@ void gather_block(const CellGrid& grid, std::size_t cell, int r, Candidates& blo
     const std::int64_t x0 = std::max<std::int64_t>(c.x() - r, 0);
     const std::int64_t x1 = std::min<std::int64_t>(c.x() + r, grid.dims.x() - 1);
     const std::vector<Eigen::Array2<std::int64_t>>& offsets = kRows[std::size_t(r)];
+    std::uint32_t size = 0;  // Of the block so far: the runs are copied at the end, at once.
     for (std::size_t o = 0; o < offsets.size(); ++o) {
         const Eigen::Array2<std::int64_t>& offset = offsets[o];
         const std::int64_t y = c.y() + offset.x(), z = c.z() + offset.y();
@@ -307,29 +324,30 @@ void gather_block(const CellGrid& grid, std::size_t cell, int r, Candidates& blo
         if (cursors) {
             first = first_in_row(grid, grid.key({x0, y, z}), last_key, *cursors, o);
         } else {
-            for (std::int64_t x = x0; x <= x1 && first < 0; ++x)
-                first = grid.table.find(grid.key({x, y, z}));
+            first = first_in_row(grid, grid.key({x0, y, z}), last_key,
+                                 grid.row_table.find(std::uint64_t(z * grid.dims.y() + y)));
         }
         if (first < 0) continue;
         auto last = std::size_t(first);
         while (last + 1 < grid.cell_keys.size() && grid.cell_keys[last + 1] <= last_key) ++last;
         const std::uint32_t base = grid.cell_begin[std::size_t(first)];
-        if (offset.isZero()) block.origin = block.size() + grid.cell_begin[cell] - base;
+        if (offset.isZero()) block.origin = size + grid.cell_begin[cell] - base;
         if (r == 1) {
             Candidates::Row row{offset.x(), offset.y(), {}};
             auto at = std::size_t(first);
             for (std::size_t t = 1; t < 3; ++t) {  // First cell at x - 1 + t or beyond.
                 const std::uint64_t from = grid.key({c.x() - 1 + std::int64_t(t), y, z});
                 while (at <= last && grid.cell_keys[at] < from) ++at;
-                row.at[t] = std::uint32_t(block.size() + grid.cell_begin[at] - base);
+                row.at[t] = size + grid.cell_begin[at] - base;
             }
-            row.at[0] = std::uint32_t(block.size());
-            row.at[3] = std::uint32_t(block.size() + grid.cell_begin[last + 1] - base);
+            row.at[0] = size;
+            row.at[3] = size + grid.cell_begin[last + 1] - base;
             block.rows.push_back(row);
         }
-        block.append(grid.sorted, base, grid.cell_begin[last + 1]);
+        block.runs.emplace_back(base, grid.cell_begin[last + 1]);
+        size += grid.cell_begin[last + 1] - base;
     }
-    block.pad();
+    block.copy_runs(grid.sorted, size);
 }
 
 // Distance (metres) from sorted point s to the outside of the (2r+1)^3 block of cells

@@ -12,6 +12,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #if defined(__SSE2__)
@@ -113,6 +114,7 @@ struct Candidates {
         std::array<std::uint32_t, 4> at{};
     };
     std::vector<Row> rows;
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> runs;  // Of a block: copied from.
     std::size_t padding = 0;  // Entries past the last point (pad).
     std::size_t size() const { return indices.size() - padding; }
     void clear() {
@@ -121,31 +123,39 @@ struct Candidates {
         z.clear();
         indices.clear();
         rows.clear();
+        runs.clear();
         padding = 0;
+    }
+    // Sets the points to the runs of `from` (`size` points in all), then pads: one pass
+    // over all four arrays per run, no reallocation once the arrays have grown.
+    void copy_runs(const Candidates& from, std::size_t size) {
+        const std::size_t total = size + kPadding - 1;
+        for (std::vector<float>* v : {&x, &y, &z}) v->resize(total);
+        indices.resize(total);
+        float *px = x.data(), *py = y.data(), *pz = z.data();
+        std::uint32_t* pi = indices.data();
+        const float *fx = from.x.data(), *fy = from.y.data(), *fz = from.z.data();
+        const std::uint32_t* fi = from.indices.data();
+        for (const auto& [begin, end] : runs) {
+            px = std::copy(fx + begin, fx + end, px);
+            py = std::copy(fy + begin, fy + end, py);
+            pz = std::copy(fz + begin, fz + end, pz);
+            pi = std::copy(fi + begin, fi + end, pi);
+        }
+        std::fill(x.begin() + std::ptrdiff_t(size), x.end(),
+                  std::numeric_limits<float>::quiet_NaN());
+        std::fill(y.begin() + std::ptrdiff_t(size), y.end(),
+                  std::numeric_limits<float>::quiet_NaN());
+        std::fill(z.begin() + std::ptrdiff_t(size), z.end(),
+                  std::numeric_limits<float>::quiet_NaN());
+        std::fill(indices.begin() + std::ptrdiff_t(size), indices.end(), 0u);
+        padding = kPadding - 1;
     }
     void push_back(float px, float py, float pz, std::uint32_t index) {
         x.push_back(px);
         y.push_back(py);
         z.push_back(pz);
         indices.push_back(index);
-    }
-    // Readable entries (NaN coordinates) past the last point, so that a group of four or
-    // eight starting at any point can be loaded whole. Nothing may be appended after.
-    void pad() {
-        for (std::size_t j = 1; j < kPadding; ++j) {
-            x.push_back(std::numeric_limits<float>::quiet_NaN());
-            y.push_back(std::numeric_limits<float>::quiet_NaN());
-            z.push_back(std::numeric_limits<float>::quiet_NaN());
-            indices.push_back(0);
-        }
-        padding += kPadding - 1;
-    }
-    void append(const Candidates& from, std::size_t begin, std::size_t end) {
-        const auto b = std::ptrdiff_t(begin), e = std::ptrdiff_t(end);
-        x.insert(x.end(), from.x.begin() + b, from.x.begin() + e);
-        y.insert(y.end(), from.y.begin() + b, from.y.begin() + e);
-        z.insert(z.end(), from.z.begin() + b, from.z.begin() + e);
-        indices.insert(indices.end(), from.indices.begin() + b, from.indices.begin() + e);
     }
 };
 
