@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 
+#include "cpu_features.hpp"
+
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
@@ -84,8 +86,7 @@ void rank_all(const float* d2, const std::uint32_t* index, std::size_t n, std::i
 
 bool have_avx2() {
 #if defined(ANASCAN_KNN_AVX2)
-    static const bool avx2 = __builtin_cpu_supports("avx2");
-    return avx2;
+    return detail::cpu_has_avx2();
 #else
     return false;
 #endif

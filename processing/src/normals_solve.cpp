@@ -5,6 +5,8 @@
 #include <array>
 #include <cmath>
 
+#include "cpu_features.hpp"
+
 namespace anascan::normals_detail {
 namespace {
 
@@ -94,10 +96,6 @@ __attribute__((target("avx2"))) void solve_avx2(const CovarianceView a, std::siz
     for (std::size_t o = 0; o < m; ++o) solve_one(a, o, out);
 }
 
-bool have_avx2() {
-    static const bool avx2 = __builtin_cpu_supports("avx2");
-    return avx2;
-}
 #endif
 
 }  // namespace
@@ -122,7 +120,7 @@ void solve_smallest(const CovarianceArrays& a, std::size_t begin, std::size_t en
                     const EigenpairArrays& out) {
     const CovarianceBatch batch(a, begin, end);
 #if defined(__x86_64__) && defined(__GNUC__)
-    if (have_avx2()) return solve_avx2(batch.view(), end - begin, out);
+    if (detail::cpu_has_avx2()) return solve_avx2(batch.view(), end - begin, out);
 #endif
     solve_plain(batch.view(), end - begin, out);
 }
