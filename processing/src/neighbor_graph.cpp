@@ -136,7 +136,7 @@ Candidates finite_points(std::span<const Eigen::Vector3f> points) {
         out.z[kept] = out.z[i];
         out.indices[kept++] = out.indices[i];
     }
-    for (std::vector<float>* v : {&out.x, &out.y, &out.z}) v->resize(kept);
+    for (knn_detail::Array<float>* v : {&out.x, &out.y, &out.z}) v->resize(kept);
     out.indices.resize(kept);
     return out;
 }

@@ -110,27 +110,50 @@ __attribute__((target("avx2"))) void rank_keys_avx2(const std::uint64_t* keys, s
     }
 }
 
+// sum + (lanes of dj below dc): a true comparison lane is -1.
+__attribute__((target("avx2"), always_inline)) inline __m256i count_smaller(__m256i sum, __m256 dj,
+                                                                            __m256 dc) {
+    return _mm256_sub_epi32(sum, _mm256_castps_si256(_mm256_cmp_ps(dj, dc, _CMP_LT_OQ)));
+}
+
 __attribute__((target("avx2"))) std::size_t rank_distances_avx2(const float* d2, std::size_t n,
                                                                 std::int32_t* rank) {
     constexpr std::size_t kWide = 2 * kGroup;
-    std::size_t sum = 0;
-    for (std::size_t c = 0; c < n; ++c) {
-        const __m256 dc = _mm256_set1_ps(d2[c]);
-        __m256i smaller = _mm256_setzero_si256();
-        for (std::size_t j = 0; j < n; j += kWide) {  // A true lane is -1.
+    const __m256i lanes = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+    __m256i total = _mm256_setzero_si256();
+    for (std::size_t c = 0; c < n; c += kWide) {  // Eight entries at a time (padding: +inf).
+        __m256i s0 = _mm256_setzero_si256(), s1 = s0, s2 = s0, s3 = s0, s4 = s0, s5 = s0, s6 = s0,
+                s7 = s0;
+        const __m256 c0 = _mm256_set1_ps(d2[c]), c1 = _mm256_set1_ps(d2[c + 1]),
+                     c2 = _mm256_set1_ps(d2[c + 2]), c3 = _mm256_set1_ps(d2[c + 3]),
+                     c4 = _mm256_set1_ps(d2[c + 4]), c5 = _mm256_set1_ps(d2[c + 5]),
+                     c6 = _mm256_set1_ps(d2[c + 6]), c7 = _mm256_set1_ps(d2[c + 7]);
+        for (std::size_t j = 0; j < n; j += kWide) {
             const __m256 dj = _mm256_loadu_ps(d2 + j);
-            smaller =
-                _mm256_sub_epi32(smaller, _mm256_castps_si256(_mm256_cmp_ps(dj, dc, _CMP_LT_OQ)));
+            s0 = count_smaller(s0, dj, c0);
+            s1 = count_smaller(s1, dj, c1);
+            s2 = count_smaller(s2, dj, c2);
+            s3 = count_smaller(s3, dj, c3);
+            s4 = count_smaller(s4, dj, c4);
+            s5 = count_smaller(s5, dj, c5);
+            s6 = count_smaller(s6, dj, c6);
+            s7 = count_smaller(s7, dj, c7);
         }
-        __m128i half =
-            _mm_add_epi32(_mm256_castsi256_si128(smaller), _mm256_extracti128_si256(smaller, 1));
-        half = _mm_add_epi32(half, _mm_shuffle_epi32(half, 0x4e));
-        half = _mm_add_epi32(half, _mm_shuffle_epi32(half, 0xb1));
-        rank[c] = _mm_cvtsi128_si32(half);
-        sum += std::size_t(rank[c]);
+        // The lane sums of s0 .. s7 as the eight lanes of one vector.
+        const __m256i a = _mm256_hadd_epi32(_mm256_hadd_epi32(s0, s1), _mm256_hadd_epi32(s2, s3));
+        const __m256i b = _mm256_hadd_epi32(_mm256_hadd_epi32(s4, s5), _mm256_hadd_epi32(s6, s7));
+        const __m256i ranks = _mm256_add_epi32(_mm256_permute2x128_si256(a, b, 0x20),
+                                               _mm256_permute2x128_si256(a, b, 0x31));
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(rank + c), ranks);
+        const __m256i real = _mm256_cmpgt_epi32(_mm256_set1_epi32(std::int32_t(n - c)), lanes);
+        total = _mm256_add_epi32(total, _mm256_and_si256(ranks, real));  // Not the padding.
     }
-    return sum;
+    __m128i half = _mm_add_epi32(_mm256_castsi256_si128(total), _mm256_extracti128_si256(total, 1));
+    half = _mm_add_epi32(half, _mm_shuffle_epi32(half, 0x4e));
+    half = _mm_add_epi32(half, _mm_shuffle_epi32(half, 0xb1));
+    return std::size_t(_mm_cvtsi128_si32(half));
 }
+
 // Lane numbers of the set bits of each 8-bit mask, in order, one byte each.
 alignas(64) constexpr std::array<std::uint64_t, 256> kWideMaskLanes = [] {
     std::array<std::uint64_t, 256> lanes{};

@@ -12,6 +12,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <memory>
+#include <new>
 #include <utility>
 #include <vector>
 
@@ -102,10 +104,33 @@ private:
     std::uint64_t worst_key_ = 0;
 };
 
+// Leaves new elements of trivial type uninitialised (resize then writes nothing): the
+// arrays below are filled right after they grow.
+template <class T>
+struct UninitialisedAllocator : std::allocator<T> {
+    template <class U>
+    struct rebind {
+        using other = UninitialisedAllocator<U>;
+    };
+    UninitialisedAllocator() = default;
+    template <class U>
+    UninitialisedAllocator(const UninitialisedAllocator<U>&) noexcept {}
+    template <class U>
+    void construct(U* p) noexcept {
+        ::new (static_cast<void*>(p)) U;
+    }
+    template <class U, class... Args>
+    void construct(U* p, Args&&... args) {
+        ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+    }
+};
+template <class T>
+using Array = std::vector<T, UninitialisedAllocator<T>>;
+
 // Candidate positions as arrays (the distance loop vectorises) with their point indices.
 struct Candidates {
-    std::vector<float> x, y, z;
-    std::vector<std::uint32_t> indices;
+    Array<float> x, y, z;
+    Array<std::uint32_t> indices;
     std::size_t origin = 0;  // Of a block: where the first point of its centre cell is.
     // Of a 3x3x3 block: per row of cells, its (dy, dz) and where its cells x - 1, x, x + 1
     // begin and the last ends, so that a query can skip the cells it cannot reach.
@@ -130,7 +155,7 @@ struct Candidates {
     // over all four arrays per run, no reallocation once the arrays have grown.
     void copy_runs(const Candidates& from, std::size_t size) {
         const std::size_t total = size + kPadding - 1;
-        for (std::vector<float>* v : {&x, &y, &z}) v->resize(total);
+        for (Array<float>* v : {&x, &y, &z}) v->resize(total);
         indices.resize(total);
         float *px = x.data(), *py = y.data(), *pz = z.data();
         std::uint32_t* pi = indices.data();
@@ -187,9 +212,10 @@ std::size_t pick_compact_avx2(const Candidates& block, std::size_t begin, std::s
                               std::uint32_t* index, std::size_t n);
 
 // Rank of each of the n distances by distance alone (the number of smaller ones), each
-// against all, eight at a time; returns the sum of the ranks, which is n (n - 1) / 2
-// exactly when no two distances are equal (then these are the ranks of rank_all). Needs
-// have_avx2(); d2 holds n + 2 kGroup entries, the padding +inf.
+// against all, eight against eight at a time (the counts of eight entries summed across
+// lanes together); returns the sum of the ranks, which is n (n - 1) / 2 exactly when no
+// two distances are equal (then these are the ranks of rank_all). Needs have_avx2(); d2
+// holds n + 2 kGroup entries, the padding +inf; rank has room for n + 2 kGroup.
 std::size_t rank_distances_avx2(const float* d2, std::size_t n, std::int32_t* rank);
 
 // Same ranks for packed (distance bits << 32 | index) keys, each entry against all n (four
