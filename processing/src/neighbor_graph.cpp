@@ -380,13 +380,19 @@ bool too_dense(const Candidates& block, std::size_t k) {  // Piles of duplicates
 // Hands a finished row to the visitor, unpacked into the caller's scratch arrays.
 void emit_row(const TopK& top, std::size_t row, const NeighborRowVisitor& visit,
               std::vector<std::uint32_t>& indices, std::vector<float>& d2) {
-    indices.resize(top.size());
-    d2.resize(top.size());
-    for (std::size_t j = 0; j < top.size(); ++j) {
-        d2[j] = top.d2(j);
-        indices[j] = top.index(j);
+    const std::size_t n = top.size();
+    if (indices.size() < n) {  // Grown only.
+        indices.resize(n);
+        d2.resize(n);
     }
-    visit(row, indices, d2);
+    std::uint32_t* const pi = indices.data();
+    float* const pd = d2.data();
+    const std::uint64_t* const keys = top.keys();
+    for (std::size_t j = 0; j < n; ++j) {
+        pd[j] = std::bit_cast<float>(std::uint32_t(keys[j] >> 32));
+        pi[j] = std::uint32_t(keys[j]);
+    }
+    visit(row, {pi, n}, {pd, n});
 }
 
 // Parts [begin, end) of a block to scan: at most one per row of a 3x3x3 block.

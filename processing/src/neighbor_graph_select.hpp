@@ -87,6 +87,7 @@ public:
         }
     }
     float d2(std::size_t j) const { return d2_of(keys_[j]); }
+    const std::uint64_t* keys() const { return keys_.data(); }  // size() packed pairs.
     std::uint32_t index(std::size_t j) const { return std::uint32_t(keys_[j]); }
 
     static std::uint64_t pack(float d2, std::uint32_t index) {

@@ -9,6 +9,10 @@
 #include <cmath>
 #include <cstdint>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include "normals_solve.hpp"
 
 namespace anascan {
@@ -27,6 +31,14 @@ struct LocalFit {  // One point's result.
     Fit fit = Fit::kTooFew;
 };
 
+#if defined(__SSE2__)
+// (x, y, z, 0), reading only the point's three floats.
+inline __m128 load_xyz(const Eigen::Vector3f& p) {
+    const __m128 xy = _mm_castpd_ps(_mm_load_sd(reinterpret_cast<const double*>(p.data())));
+    return _mm_movelh_ps(xy, _mm_load_ss(p.data() + 2));
+}
+#endif
+
 // Covariance of the point and its neighbours about their centroid. Coordinates are taken
 // relative to the point itself first, so that large offsets from the origin cost no bits
 // and float sums suffice (a neighbourhood spans millimetres: its products are far above
@@ -35,6 +47,26 @@ Eigen::Matrix3d neighbourhood_covariance(std::span<const Eigen::Vector3f> positi
                                          std::span<const std::uint32_t> nbrs) {
     const Eigen::Vector3f p0 = positions[i];
     float sx = 0, sy = 0, sz = 0, sxx = 0, sxy = 0, sxz = 0, syy = 0, syz = 0, szz = 0;
+#if defined(__SSE2__)
+    // The same sums, in the same order, a point per step: (x, y, z), their squares and
+    // (xy, yz, zx) in three registers.
+    const __m128 origin = load_xyz(p0);
+    __m128 sum = _mm_setzero_ps(), squares = sum, products = sum;
+    for (const std::uint32_t j : nbrs) {
+        const __m128 d = _mm_sub_ps(load_xyz(positions[j]), origin);
+        sum = _mm_add_ps(sum, d);
+        squares = _mm_add_ps(squares, _mm_mul_ps(d, d));
+        products =
+            _mm_add_ps(products, _mm_mul_ps(d, _mm_shuffle_ps(d, d, _MM_SHUFFLE(3, 0, 2, 1))));
+    }
+    alignas(16) float out[3][4];
+    _mm_store_ps(out[0], sum);
+    _mm_store_ps(out[1], squares);
+    _mm_store_ps(out[2], products);
+    sx = out[0][0], sy = out[0][1], sz = out[0][2];
+    sxx = out[1][0], syy = out[1][1], szz = out[1][2];
+    sxy = out[2][0], syz = out[2][1], sxz = out[2][2];
+#else
     for (const std::uint32_t j : nbrs) {  // The six distinct products only.
         const float x = positions[j].x() - p0.x(), y = positions[j].y() - p0.y(),
                     z = positions[j].z() - p0.z();
@@ -48,6 +80,7 @@ Eigen::Matrix3d neighbourhood_covariance(std::span<const Eigen::Vector3f> positi
         syz += y * z;
         szz += z * z;
     }
+#endif
     const double n = double(nbrs.size() + 1);  // The point itself adds d = 0.
     const double mx = sx / n, my = sy / n, mz = sz / n;
     Eigen::Matrix3d cov;
