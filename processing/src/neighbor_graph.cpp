@@ -414,7 +414,7 @@ struct Scratch {
     std::vector<float> picked_d2;
     std::vector<std::uint32_t> picked_index;
     std::vector<std::int32_t> picked_rank;
-    std::vector<std::uint64_t> picked_key;
+    std::vector<std::int32_t> rank_count;    // Entries per rank, for ties.
     std::vector<std::uint32_t> row_indices;  // The row handed to the visitor.
     std::vector<float> row_d2;
     RowCursors cursors;  // Of the 3x3x3 blocks, for cells in increasing order.
@@ -446,10 +446,28 @@ void reachable_ranges(const CellGrid& grid, std::size_t cell, const Candidates& 
     ranges.count = count;
 }
 
+// Ranks by distance alone give equal distances the same rank, that of the first of them
+// (equal ranks mean equal distances): those entries get consecutive ranks in index order,
+// so that the ranks are those of the (distance, index) keys. Ties are few: only their
+// entries are compared with the others.
+void break_ties_by_index(const std::uint32_t* index, std::size_t n, std::int32_t* rank,
+                         std::vector<std::int32_t>& count) {
+    count.assign(2 * n, 0);  // Entries per rank, then each entry's tied entries before it.
+    std::int32_t* const before = count.data() + n;
+    for (std::size_t c = 0; c < n; ++c) ++count[std::size_t(rank[c])];
+    for (std::size_t c = 0; c < n; ++c) {
+        if (count[std::size_t(rank[c])] < 2) continue;
+        for (std::size_t j = 0; j < n; ++j) {
+            before[c] += std::int32_t(rank[j] == rank[c] && index[j] < index[c]);
+        }
+    }
+    for (std::size_t c = 0; c < n; ++c) rank[c] += before[c];
+}
+
 // Rank of each of the n picked candidates among them (distance, then index), found by
-// comparing all pairs (no branch depends on the data): with AVX2 each against all by
-// distance alone, eight at a time, and by packed keys only when two distances are equal;
-// else rank_all. Ranks below k give the sorted top k directly.
+// comparing all pairs (no branch depends on the data): with AVX2 by distance alone, eight
+// against eight at a time, ties then broken by index; else rank_all. Ranks below k give
+// the sorted top k directly.
 void select_ranked(std::size_t n, Scratch& scratch, TopK& top) {
     // Raw pointers: the stores below cannot then be taken to move the vectors' buffers.
     float* const picked_d2 = scratch.picked_d2.data();
@@ -461,14 +479,8 @@ void select_ranked(std::size_t n, Scratch& scratch, TopK& top) {
     std::int32_t* rank = scratch.picked_rank.data();
     if (!knn_detail::have_avx2()) {
         rank_all(picked_d2, picked_index, n, rank);
-    } else if (knn_detail::rank_distances_avx2(picked_d2, n, rank) !=
-               n * (n - 1) / 2) {  // Equal distances: rank by (distance, index) keys.
-        scratch.picked_key.assign(n + kGroup,
-                                  std::uint64_t(std::numeric_limits<std::int64_t>::max()));
-        for (std::size_t c = 0; c < n; ++c) {
-            scratch.picked_key[c] = TopK::pack(picked_d2[c], picked_index[c]);
-        }
-        knn_detail::rank_keys_avx2(scratch.picked_key.data(), n, rank);
+    } else if (knn_detail::rank_distances_avx2(picked_d2, n, rank) != n * (n - 1) / 2) {
+        break_ties_by_index(picked_index, n, rank, scratch.rank_count);
     }
     top.place_ranked(picked_d2, picked_index, rank, n);
 }

@@ -93,23 +93,6 @@ bool have_avx2() {
 }
 
 #if defined(ANASCAN_KNN_AVX2)
-__attribute__((target("avx2"))) void rank_keys_avx2(const std::uint64_t* keys, std::size_t n,
-                                                    std::int32_t* rank) {
-    const auto* k = reinterpret_cast<const __m256i*>(keys);
-    for (std::size_t c = 0; c < n; ++c) {
-        // Keys are below 2^63 (distance bits of a non-negative float): signed compares.
-        const __m256i kc = _mm256_set1_epi64x(std::int64_t(keys[c]));
-        __m256i smaller = _mm256_setzero_si256();
-        for (std::size_t j = 0; j < n; j += kGroup) {  // A true lane is -1.
-            smaller = _mm256_sub_epi64(smaller,
-                                       _mm256_cmpgt_epi64(kc, _mm256_loadu_si256(k + j / kGroup)));
-        }
-        const __m128i half =
-            _mm_add_epi64(_mm256_castsi256_si128(smaller), _mm256_extracti128_si256(smaller, 1));
-        rank[c] = std::int32_t(_mm_cvtsi128_si64(half) + _mm_extract_epi64(half, 1));
-    }
-}
-
 // sum + (lanes of dj below dc): a true comparison lane is -1.
 __attribute__((target("avx2"), always_inline)) inline __m256i count_smaller(__m256i sum, __m256 dj,
                                                                             __m256 dc) {
@@ -197,7 +180,6 @@ std::size_t pick_compact_avx2(const Candidates&, std::size_t, std::size_t, const
     return n;
 }
 std::size_t rank_distances_avx2(const float*, std::size_t, std::int32_t*) { return 0; }
-void rank_keys_avx2(const std::uint64_t*, std::size_t, std::int32_t*) {}
 #endif
 
 }  // namespace anascan::knn_detail

@@ -219,12 +219,6 @@ std::size_t pick_compact_avx2(const Candidates& block, std::size_t begin, std::s
 // holds n + 2 kGroup entries, the padding +inf; rank has room for n + 2 kGroup.
 std::size_t rank_distances_avx2(const float* d2, std::size_t n, std::int32_t* rank);
 
-// Same ranks for packed (distance bits << 32 | index) keys, each entry against all n (four
-// 64-bit compares at once, nothing scattered): the keys are unique, so the rank of an
-// entry is the number of smaller keys. Needs have_avx2(); keys hold n + kGroup entries,
-// the padding 2^63 - 1.
-void rank_keys_avx2(const std::uint64_t* keys, std::size_t n, std::int32_t* rank);
-
 // Hot, inlined into the query loop.
 // The lanes of the set bits of each 4-bit mask, in order (unused lanes: 0).
 alignas(16) inline constexpr std::array<std::array<std::int32_t, kGroup>, 16> kMaskLanes = [] {
