@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <string>
 
+#include "anascan/processing/free_space.hpp"
 #include "anascan/processing/global_registration.hpp"
 #include "anascan/processing/scan_registration.hpp"
 #include "live_session_sim.hpp"
@@ -112,8 +113,10 @@ TEST(RegisterLookAlikes, DISABLED_FreeSpaceFractionsOfEveryPair) {
     config.free_space.max_violation_fraction = 1.0;
     const Viewpoints at_origin{.source_m = Eigen::Vector3d::Zero(),
                                .target_m = Eigen::Vector3d::Zero()};
+    const char* only = std::getenv("ANASCAN_LOOK_ALIKE_PAIR");  // e.g. "4-2"
     for (std::size_t s = 1; s < scans.size(); ++s) {
         for (std::size_t t = 0; t < s; ++t) {
+            if (only && std::to_string(s + 1) + "-" + std::to_string(t + 1) != only) continue;
             const GlobalRegistrationResult g =
                 register_global(scans[s].cloud, scans[t].cloud, config, at_origin);
             const Pose T_true = scans[t].T_true.inverse() * scans[s].T_true;
@@ -121,11 +124,85 @@ TEST(RegisterLookAlikes, DISABLED_FreeSpaceFractionsOfEveryPair) {
                 const PoseDifference d = pose_difference(h.fine.T_target_source, T_true);
                 std::printf(
                     "pair %zu-%zu: %6.1f deg %7.1f mm, rms %.3f mm, overlap %.2f, "
-                    "free space %.3f, %s\n",
+                    "free space %.3f, ratio %.1e, %d it %s, %s%s\n",
                     s + 1, t + 1, d.rotation_deg, d.translation_m * 1e3, h.fine.rms_m * 1e3,
                     h.fine.overlap_fraction, h.free_space_violation_fraction.value_or(-1.0),
-                    h.verified ? "verified" : h.rejection.c_str());
+                    h.fine.degeneracy.eigenvalue_ratio, h.fine.iterations,
+                    std::string(to_string(h.fine.status)).c_str(),
+                    h.verified ? "verified" : h.rejection.c_str(),
+                    h.slide_start_mm
+                        ? (", slide probe " + std::to_string(*h.slide_start_mm) + " mm").c_str()
+                        : "");
             }
+        }
+    }
+}
+
+// Diagnosis of the scans placed wrongly (not run by default): for each pair of such a scan
+// that gave a link or a tree edge, the fine registration from its final relative pose and
+// from the true one: RMS, overlap, normal deviation, degeneracy (eigenvalue ratio of the
+// 6x6 system, weakest direction) and free-space fraction, and how much of the pose error
+// lies along the weakest direction.
+void print_fine(const char* what, const FineRegistrationResult& f, const TrueScan& s,
+                const TrueScan& t, const Eigen::Vector3d& viewpoint_m) {
+    const FreeSpaceConfig fs{};
+    const FreeSpaceResult a =
+        check_free_space(t.cloud, viewpoint_m, 0.0, s.cloud, f.T_target_source, fs);
+    const FreeSpaceResult b =
+        check_free_space(s.cloud, viewpoint_m, 0.0, t.cloud, f.T_target_source.inverse(), fs);
+    const Eigen::Matrix<double, 6, 1>& w = f.degeneracy.weakest_direction;
+    std::printf(
+        "  %s: %s, %d it, rms %.3f mm, overlap %.2f, normals %.1f deg, ratio %.2e, weakest "
+        "(rot %.2f %.2f %.2f, tr %.2f %.2f %.2f), free space %.3f / %.3f\n",
+        what, std::string(to_string(f.status)).c_str(), f.iterations, f.rms_m * 1e3,
+        f.overlap_fraction, f.normal_deviation_deg.value_or(-1.0), f.degeneracy.eigenvalue_ratio,
+        w(0), w(1), w(2), w(3), w(4), w(5), a.violation_fraction, b.violation_fraction);
+}
+
+TEST(RegisterLookAlikes, DISABLED_DiagnoseWronglyPlacedScans) {
+    std::vector<TrueScan> scans = capture_session();
+    std::vector<ScanInput> inputs;
+    for (std::size_t i = 0; i < scans.size(); ++i) {
+        inputs.push_back({.name = "scan " + std::to_string(i + 1),
+                          .load = [&scans, i]() -> Expected<PointCloud> { return scans[i].cloud; },
+                          .sensor_origin_scan_m = Eigen::Vector3d::Zero(),
+                          .sensor_origin_known = true});
+    }
+    const ScanRegistrationConfig config;
+    const ScanRegistrationResult result = register_scans(inputs, config, {});
+    for (TrueScan& scan : scans) prepare_scan(scan.cloud, Eigen::Vector3d::Zero(), config);
+    const std::size_t ref = result.reference_scan;
+    for (std::size_t i = 0; i < scans.size(); ++i) {
+        const ScanOutcome& si = result.scans[i];
+        if (!si.placed) continue;
+        const auto e =
+            anascan::testing::pose_error(si.T_world_scan, scans[ref].T_true, scans[i].T_true,
+                                         anascan::testing::centroid_of(scans[i].cloud));
+        std::printf("scan %zu: %.3f deg, %.3f mm%s\n", i + 1, e.rotation_deg, e.translation_m * 1e3,
+                    si.warning.empty() ? "" : " (warning)");
+        for (const PairOutcome& p : result.pairs) {
+            if ((p.source != i && p.target != i) || !(p.linked || p.in_tree)) continue;
+            const TrueScan& s = scans[p.source];
+            const TrueScan& t = scans[p.target];
+            const Pose T_final =
+                result.scans[p.target].T_world_scan.inverse() * result.scans[p.source].T_world_scan;
+            const Pose T_true = t.T_true.inverse() * s.T_true;
+            const PoseDifference d = pose_difference(T_final, T_true);
+            // The error's translation at the source centroid, in the target frame.
+            const Eigen::Vector3d c = anascan::testing::centroid_of(s.cloud);
+            const Eigen::Vector3d slide = T_final * c - T_true * c;
+            std::printf(
+                " pair %zu-%zu (%s%s%s): final %.3f deg %.1f mm from the truth, slide (%.1f %.1f "
+                "%.1f) mm\n",
+                p.source + 1, p.target + 1, p.in_tree ? "tree " : "", p.linked ? "link" : "",
+                p.link_dropped ? " dropped" : "", d.rotation_deg, d.translation_m * 1e3,
+                slide.x() * 1e3, slide.y() * 1e3, slide.z() * 1e3);
+            print_fine("from final", register_fine(s.cloud, t.cloud, T_final, config.fine), s, t,
+                       Eigen::Vector3d::Zero());
+            print_fine("from truth", register_fine(s.cloud, t.cloud, T_true, config.fine), s, t,
+                       Eigen::Vector3d::Zero());
+            print_fine("global cfg", register_fine(s.cloud, t.cloud, T_final, config.global.fine),
+                       s, t, Eigen::Vector3d::Zero());
         }
     }
 }

@@ -187,6 +187,12 @@ struct PairOutcome {
     /// Refined hypotheses that passed the other tests but were rejected by the free-space
     /// check (look-alike poses).
     std::size_t free_space_rejections = 0;
+    /// Slide probes refined (GlobalRegistrationConfig::slide_probe_max_eigenvalue_ratio) and
+    /// whether a slid pose fitted alike (ambiguous: the overlap does not fix the pose along
+    /// a direction, by up to slide_m metres).
+    std::size_t slide_probes = 0;
+    bool slide_ambiguous = false;
+    double slide_m = 0.0;
     bool in_tree = false;  ///< An edge of the maximum spanning tree.
     double weight = 0.0;   ///< Tree weight: overlap / (1 + rms / target spacing).
     Pose T_target_source = Pose::Identity();  ///< Global result (when verified).
