@@ -309,6 +309,7 @@ ScanRegistrationResult register_scans(const std::vector<ScanInput>& scans,
 
     place_scans(graph, result);
     detail::warn_identical_scans(prepared, result);
+    detail::warn_sliding_scans(config, result);
     result.cloud_reloads = prepared.store.reload_count();
     result.spill_error = prepared.spill_error;
     result.timings.total_s = seconds_since(start);

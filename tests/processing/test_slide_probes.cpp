@@ -14,7 +14,9 @@
 
 #include "anascan/processing/global_registration.hpp"
 #include "anascan/processing/point_cloud.hpp"
+#include "anascan/processing/scan_registration.hpp"
 #include "global_registration_steps.hpp"
+#include "scan_registration_steps.hpp"
 
 namespace anascan {
 namespace {
@@ -128,6 +130,49 @@ TEST(SlideProbes, APoseSlidAlongAWeakDirectionIsNeverASilentSuccess) {
         EXPECT_NE(probed.message.find("slid by up to"), std::string::npos);
         EXPECT_GT(std::abs(probed.slide_direction.x()), 0.9);  // Along the bar.
     }
+}
+
+PairOutcome link(std::size_t source, std::size_t target, FineRegistrationStatus status,
+                 double ratio) {
+    return {.source = source,
+            .target = target,
+            .fine_status = status,
+            .fine_eigenvalue_ratio = ratio,
+            .fine_weakest_translation = Eigen::Vector3d::UnitX(),
+            .linked = true};
+}
+
+// A placed scan all of whose links ended still moving along a weak direction is warned
+// about (ScanRegistrationConfig::sliding_link_max_eigenvalue_ratio); one converged link, a
+// well constrained link or the rule off give no warning.
+TEST(SlideProbes, AScanWhoseLinksAllEndStillSlidingGetsAWarning) {
+    using enum FineRegistrationStatus;
+    ScanRegistrationResult result;
+    for (int i = 0; i < 4; ++i) {
+        result.scans.push_back({.name = "scan " + std::to_string(i), .placed = true});
+    }
+    result.scans[2].T_world_scan =
+        Pose(Eigen::AngleAxisd(std::numbers::pi / 2, Eigen::Vector3d::UnitZ()));
+    result.pairs = {link(1, 0, kConverged, 0.01),       // Settled.
+                    link(2, 0, kMaxIterations, 0.004),  // Scan 2's two links: still sliding.
+                    link(3, 2, kMaxIterations, 0.002),
+                    link(3, 1, kMaxIterations, 0.5)};  // Scan 3's other link is well fixed.
+    ScanRegistrationConfig config;
+    detail::warn_sliding_scans(config, result);
+    EXPECT_EQ(result.scans[0].warning, "");  // 1-0 converged, 2-0 sliding.
+    EXPECT_EQ(result.scans[1].warning, "");
+    EXPECT_EQ(result.scans[3].warning, "");
+    const std::string& w = result.scans[2].warning;
+    EXPECT_NE(w.find("not fixed by its overlaps"), std::string::npos) << w;
+    EXPECT_NE(w.find("2 links"), std::string::npos) << w;
+    EXPECT_NE(w.find("0.0020"), std::string::npos) << w;
+    // The weakest link (3-2) slides along x of scan 2, which is turned by 90°: world y.
+    EXPECT_NE(w.find("(0.00, 1.00, 0.00)"), std::string::npos) << w;
+
+    result.scans[2].warning.clear();
+    config.sliding_link_max_eigenvalue_ratio = 0.0;
+    detail::warn_sliding_scans(config, result);
+    EXPECT_EQ(result.scans[2].warning, "");
 }
 
 }  // namespace
