@@ -123,6 +123,7 @@ nlohmann::json pair_json(const ScanRegistrationResult& r, const PairOutcome& p) 
             {"fine_iterations", p.fine_iterations},
             {"fine_rms_m", p.fine_rms_m},
             {"fine_overlap", p.fine_overlap_fraction},
+            {"fine_eigenvalue_ratio", p.fine_eigenvalue_ratio},
             {"fine_time_s", p.fine_time_s},
             {"linked", p.linked},
             {"link_dropped", p.link_dropped}};
