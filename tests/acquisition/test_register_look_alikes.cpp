@@ -43,19 +43,25 @@ std::vector<TrueScan> capture_session() {
         session_plan(sim::named_scene("small-block").value().placement));
 }
 
+// The session's scans as inputs of register_scans (sensor at each scan frame's origin).
+std::vector<ScanInput> session_inputs(const std::vector<TrueScan>& scans, bool origin_known) {
+    std::vector<ScanInput> inputs;
+    for (std::size_t i = 0; i < scans.size(); ++i) {
+        inputs.push_back({.name = "scan " + std::to_string(i + 1),
+                          .load = [&scans, i]() -> Expected<PointCloud> { return scans[i].cloud; },
+                          .sensor_origin_scan_m = Eigen::Vector3d::Zero(),
+                          .sensor_origin_known = origin_known});
+    }
+    return inputs;
+}
+
 // Registers the session (sensor origins known unless ANASCAN_LOOK_ALIKE_NO_FREE_SPACE is
 // set; slide probes off when ANASCAN_LOOK_ALIKE_NO_SLIDE_PROBES is set), prints what each
 // refined pair and each scan gave and flags every scan placed wrongly without a warning.
 // Returns the number of scans placed near the truth.
 std::size_t register_and_check(const std::vector<TrueScan>& scans) {
     const bool known = std::getenv("ANASCAN_LOOK_ALIKE_NO_FREE_SPACE") == nullptr;
-    std::vector<ScanInput> inputs;
-    for (std::size_t i = 0; i < scans.size(); ++i) {
-        inputs.push_back({.name = "scan " + std::to_string(i + 1),
-                          .load = [&scans, i]() -> Expected<PointCloud> { return scans[i].cloud; },
-                          .sensor_origin_scan_m = Eigen::Vector3d::Zero(),
-                          .sensor_origin_known = known});
-    }
+    const std::vector<ScanInput> inputs = session_inputs(scans, known);
     ScanRegistrationConfig config;
     if (std::getenv("ANASCAN_LOOK_ALIKE_NO_SLIDE_PROBES")) {
         config.global.slide_probe_max_eigenvalue_ratio = 0.0;
@@ -180,13 +186,7 @@ void print_fine(const char* what, const FineRegistrationResult& f, const TrueSca
 
 TEST(RegisterLookAlikes, DISABLED_DiagnoseWronglyPlacedScans) {
     std::vector<TrueScan> scans = capture_session();
-    std::vector<ScanInput> inputs;
-    for (std::size_t i = 0; i < scans.size(); ++i) {
-        inputs.push_back({.name = "scan " + std::to_string(i + 1),
-                          .load = [&scans, i]() -> Expected<PointCloud> { return scans[i].cloud; },
-                          .sensor_origin_scan_m = Eigen::Vector3d::Zero(),
-                          .sensor_origin_known = true});
-    }
+    const std::vector<ScanInput> inputs = session_inputs(scans, true);
     const ScanRegistrationConfig config;
     const ScanRegistrationResult result = register_scans(inputs, config, {});
     for (TrueScan& scan : scans) prepare_scan(scan.cloud, Eigen::Vector3d::Zero(), config);
