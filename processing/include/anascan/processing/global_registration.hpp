@@ -207,11 +207,12 @@ struct GlobalRegistrationResult {
     std::vector<HypothesisOutcome> hypotheses;
     std::size_t free_space_rejections = 0;  ///< Hypotheses rejected by the free-space check.
     std::size_t slide_probes = 0;  ///< Slide probes refined (see slide_probe_max_eigenvalue_ratio).
-    /// Ambiguous because a slid pose fits alike: the overlap does not fix the pose along
-    /// `slide_direction` (target frame, unit) by up to `slide_m` (the largest distance between
-    /// the contenders, metres).
-    bool slide_ambiguous = false;
+    /// The probed direction: translation of the chosen pose's weakest direction (target
+    /// frame, unit; zero when not probed).
     Eigen::Vector3d slide_direction = Eigen::Vector3d::Zero();
+    /// Ambiguous because a slid pose fits alike: the overlap does not fix the pose along
+    /// slide_direction, by up to slide_m (the largest distance between such contenders, metres).
+    bool slide_ambiguous = false;
     double slide_m = 0.0;
     GlobalRegistrationTiming timing;
 };
