@@ -110,6 +110,9 @@ nlohmann::json pair_json(const ScanRegistrationResult& r, const PairOutcome& p) 
             {"verified", p.verified},
             {"above_rms_gate", p.above_rms_gate},
             {"free_space_rejections", p.free_space_rejections},
+            {"slide_probes", p.slide_probes},
+            {"slide_ambiguous", p.slide_ambiguous},
+            {"slide_m", p.slide_m},
             {"in_tree", p.in_tree},
             {"weight", p.weight},
             {"T_target_source", matrix_json(p.T_target_source)},
@@ -120,6 +123,7 @@ nlohmann::json pair_json(const ScanRegistrationResult& r, const PairOutcome& p) 
             {"fine_iterations", p.fine_iterations},
             {"fine_rms_m", p.fine_rms_m},
             {"fine_overlap", p.fine_overlap_fraction},
+            {"fine_eigenvalue_ratio", p.fine_eigenvalue_ratio},
             {"fine_time_s", p.fine_time_s},
             {"linked", p.linked},
             {"link_dropped", p.link_dropped}};

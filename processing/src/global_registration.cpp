@@ -135,28 +135,64 @@ void verify_free_space(const detail::DescribedScan& source, const detail::Descri
                         "% of the points seen by the other sensor lie where it saw empty space";
 }
 
+/// Refines `outcome` from `T_initial` and verifies it (the tests, then free space).
+void refine_one(const detail::DescribedScan& source, const detail::DescribedScan& target,
+                const KdTree* tree, const Pose& T_initial, const GlobalRegistrationConfig& config,
+                HypothesisOutcome& outcome, GlobalRegistrationResult& result) {
+    outcome.fine = tree ? register_fine(source.cloud, target.cloud, *tree, T_initial, config.fine)
+                        : register_fine(source.cloud, target.cloud, T_initial, config.fine);
+    outcome.rejection = rejection(outcome.fine, result.target_spacing_m, config);
+    verify_free_space(source, target, config.free_space, outcome);
+    result.free_space_rejections += outcome.free_space_rejected;
+    outcome.verified = outcome.rejection.empty();
+}
+
 void refine_hypotheses(const detail::DescribedScan& source, const detail::DescribedScan& target,
-                       std::vector<HypothesisOutcome> ranked,
+                       const KdTree* tree, std::vector<HypothesisOutcome> ranked,
                        const GlobalRegistrationConfig& config, GlobalRegistrationResult& result) {
-    std::unique_ptr<KdTree> tree;
-    if (all_finite(target.cloud)) tree = std::make_unique<KdTree>(target.cloud.positions);
     double verified_key = 0.0;  // Ranking key of the first verified hypothesis.
     for (HypothesisOutcome& outcome : ranked) {
         if (result.hypotheses.size() >= config.max_refined) break;
         const double key = outcome.site_overlap * outcome.hypothesis.score;
         if (key < config.min_rank_ratio_after_verified * verified_key) break;
-        const Pose& T_initial = outcome.hypothesis.T_target_source;
+        const Pose T_initial = outcome.hypothesis.T_target_source;
         if (near_verified(result.hypotheses, T_initial, config.matching)) continue;
-        outcome.fine =
-            tree ? register_fine(source.cloud, target.cloud, *tree, T_initial, config.fine)
-                 : register_fine(source.cloud, target.cloud, T_initial, config.fine);
-        outcome.rejection = rejection(outcome.fine, result.target_spacing_m, config);
-        verify_free_space(source, target, config.free_space, outcome);
-        result.free_space_rejections += outcome.free_space_rejected;
-        outcome.verified = outcome.rejection.empty();
+        refine_one(source, target, tree, T_initial, config, outcome, result);
         if (outcome.verified && verified_key == 0.0) verified_key = key;
         result.hypotheses.push_back(std::move(outcome));
     }
+}
+
+/// Slide probes of the chosen pose (see slide_probe_max_eigenvalue_ratio): refines it again
+/// from starts slid along the translation of its weakest direction. Returns whether any
+/// probe was refined.
+bool probe_slides(const detail::DescribedScan& source, const detail::DescribedScan& target,
+                  const KdTree* tree, const GlobalRegistrationConfig& config,
+                  GlobalRegistrationResult& result) {
+    if (result.status != GlobalRegistrationStatus::kSuccess) return false;
+    const HypothesisOutcome chosen = result.hypotheses[result.best_hypothesis];
+    const DegeneracyFigure& weak = chosen.fine.degeneracy;
+    const Eigen::Vector3d translation = weak.weakest_direction.tail<3>();
+    // A weak direction that is mostly a rotation (a cylinder's axis) is not a slide.
+    if (weak.eigenvalue_ratio >= config.slide_probe_max_eigenvalue_ratio ||
+        translation.norm() < 0.5)
+        return false;
+    result.slide_direction = translation.normalized();
+    const double step_m = config.fine.max_correspondence_distance_m;
+    // Each probe runs even when it starts near a verified pose: a refinement still creeping
+    // along the slide ends short of the minimum (max_iterations).
+    for (int k = -config.slide_probe_steps; k <= config.slide_probe_steps; ++k) {
+        if (k == 0) continue;
+        const Eigen::Vector3d offset_m = k * step_m * result.slide_direction;
+        const Pose start = Eigen::Translation3d(offset_m) * chosen.fine.T_target_source;
+        HypothesisOutcome probe{.hypothesis = chosen.hypothesis,
+                                .site_overlap = chosen.site_overlap,
+                                .slide_start_mm = k * step_m * 1e3};
+        refine_one(source, target, tree, start, config, probe, result);
+        result.hypotheses.push_back(std::move(probe));
+        ++result.slide_probes;
+    }
+    return result.slide_probes > 0;
 }
 
 /// Verified poses whose overlap reaches ambiguity_overlap_ratio of the largest verified one.
@@ -200,11 +236,27 @@ void decide(const GlobalRegistrationConfig& config, GlobalRegistrationResult& re
         const HypothesisOutcome& h = result.hypotheses[i];
         const bool clearly_worse = config.ambiguity_rms_ratio > 0.0 &&
                                    h.fine.rms_m >= config.ambiguity_rms_ratio * fine.rms_m;
-        if (contender[i] && !clearly_worse &&
+        // A slide probe still moving when its iterations ran out is on its way along the
+        // slide, not at a second minimum.
+        const bool moving =
+            h.slide_start_mm && h.fine.status == FineRegistrationStatus::kMaxIterations;
+        if (contender[i] && !clearly_worse && !moving &&
             distinct(h.fine.T_target_source, fine.T_target_source, config.matching)) {
             result.status = GlobalRegistrationStatus::kAmbiguous;
             result.message = "several distinct verified poses";
+            if (h.slide_start_mm || result.hypotheses[*best].slide_start_mm) {
+                result.slide_ambiguous = true;
+                result.slide_m = std::max(
+                    result.slide_m,
+                    pose_difference(h.fine.T_target_source, fine.T_target_source).translation_m);
+            }
         }
+    }
+    if (result.slide_ambiguous) {
+        result.message = "poses slid by up to " +
+                         std::to_string(static_cast<int>(result.slide_m * 1e3 + 0.5)) +
+                         " mm along the weakest direction fit alike: the overlap does not fix "
+                         "the pose along it";
     }
 }
 
@@ -259,11 +311,14 @@ GlobalRegistrationResult refine_and_verify(const DescribedScan& source, const De
         result.status = GlobalRegistrationStatus::kNoConsensus;
         result.message = "no consistent set of feature correspondences";
     } else {
-        refine_hypotheses(source, target,
+        std::unique_ptr<KdTree> tree;
+        if (all_finite(target.cloud)) tree = std::make_unique<KdTree>(target.cloud.positions);
+        refine_hypotheses(source, target, tree.get(),
                           rank_by_site_overlap(source.features.invariants,
                                                target.features.invariants, config, result.matching),
                           config, result);
         decide(config, result);
+        if (probe_slides(source, target, tree.get(), config, result)) decide(config, result);
     }
     result.timing.refinement_s = seconds_since(start);
     result.timing.total_s = result.timing.refinement_s;

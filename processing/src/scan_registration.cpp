@@ -78,6 +78,9 @@ void copy_global_figures(const GlobalRegistrationResult& g, PairOutcome& pair) {
     pair.global_overlap_fraction = g.overlap_fraction;
     pair.global_time_s = g.timing.total_s;
     pair.free_space_rejections = g.free_space_rejections;
+    pair.slide_probes = g.slide_probes;
+    pair.slide_ambiguous = g.slide_ambiguous;
+    pair.slide_m = g.slide_m;
 }
 
 /// Refines and verifies the matched pairs from `first` on (record p of `matchings`) not
@@ -193,7 +196,8 @@ std::size_t bridge_groups(detail::PreparedScans& prepared, const detail::Candida
 
 /// Why scan i is not in the largest group: what its pairs gave.
 std::string not_connected_reason(const ScanRegistrationResult& result, std::size_t i) {
-    std::size_t matched = 0, refined = 0, verified = 0, gated = 0, free_space = 0;
+    std::size_t matched = 0, refined = 0, verified = 0, gated = 0, free_space = 0, slid = 0;
+    double slide_m = 0.0;
     for (const PairOutcome& p : result.pairs) {
         if (p.source != i && p.target != i) continue;
         matched += p.hypotheses > 0;
@@ -201,6 +205,8 @@ std::string not_connected_reason(const ScanRegistrationResult& result, std::size
         verified += p.verified;
         gated += p.above_rms_gate;
         free_space += p.free_space_rejections > 0;
+        slid += p.slide_ambiguous;
+        if (p.slide_ambiguous) slide_m = std::max(slide_m, p.slide_m);
     }
     std::string reason = "no verified chain of pairs to the largest group (in group " +
                          std::to_string(result.scans[i].group) + "): ";
@@ -213,7 +219,11 @@ std::string not_connected_reason(const ScanRegistrationResult& result, std::size
            (free_space > 0 ? ", " + std::to_string(free_space) +
                                  " with poses rejected by the free-space check (look-alike poses "
                                  "putting points where the other sensor saw empty space)"
-                           : "");
+                           : "") +
+           (slid > 0 ? ", " + std::to_string(slid) + " ambiguous along a slide of up to " +
+                           std::to_string(static_cast<int>(slide_m * 1e3 + 0.5)) +
+                           " mm (the overlap does not fix the pose along it)"
+                     : "");
 }
 
 /// Copies the graph's groups and poses into the outcomes and counts.
@@ -299,6 +309,7 @@ ScanRegistrationResult register_scans(const std::vector<ScanInput>& scans,
 
     place_scans(graph, result);
     detail::warn_identical_scans(prepared, result);
+    detail::warn_sliding_scans(config, result);
     result.cloud_reloads = prepared.store.reload_count();
     result.spill_error = prepared.spill_error;
     result.timings.total_s = seconds_since(start);

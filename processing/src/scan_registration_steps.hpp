@@ -89,6 +89,10 @@ PreparedScans load_and_prepare(const std::vector<ScanInput>& inputs,
 /// Adds a warning to every placed scan whose prepared points equal an earlier scan's.
 void warn_identical_scans(PreparedScans& scans, ScanRegistrationResult& result);
 
+/// Adds a warning to every placed scan all of whose links ended still moving along a weak
+/// direction (ScanRegistrationConfig::sliding_link_max_eigenvalue_ratio).
+void warn_sliding_scans(const ScanRegistrationConfig& config, ScanRegistrationResult& result);
+
 /// Descriptors and patches of every usable scan (features stage). In memory: descriptors
 /// of all scans, saliency levels pooled over all sites. Spilling: two passes, descriptors
 /// on disk in between, levels pooled over at most `max_level_sites_per_scan` sites a scan.

@@ -130,6 +130,19 @@ struct GlobalRegistrationConfig {
     /// a sample spacing but put the block's faces and the ground where the other sensor saw
     /// empty space.
     FreeSpaceConfig free_space{};
+    /// Slide probes: when the chosen pose's fine registration leaves a weak direction (its
+    /// degeneracy eigenvalue ratio is below this, though above fine.degeneracy_threshold),
+    /// the pose is refined again from starts slid along that direction's translation by
+    /// ±1..slide_probe_steps × fine.max_correspondence_distance_m (the reach of one
+    /// refinement), and the results are decided as the other hypotheses: a slid pose that
+    /// fits clearly better wins, one that fits alike makes the pair ambiguous. A block on
+    /// the ground seen from two nearby views is fixed along its length only by an end face;
+    /// a hypothesis 28 mm off along it refined to a pose still 28 mm off (0.21 mm RMS,
+    /// eigenvalue ratio 0.004) because the end faces lay beyond the correspondence gate,
+    /// while the true pose fits at 0.10 mm (docs/scan-registration.md "Slides"). Well
+    /// constrained pairs (bunny: ~0.1) are not probed. 0: off.
+    double slide_probe_max_eigenvalue_ratio = 0.02;
+    int slide_probe_steps = 2;  ///< Probes on each side of the pose.
 };
 
 /// Sensor positions of the two scans of a pair, each in its own scan frame (metres), when
@@ -162,6 +175,9 @@ struct HypothesisOutcome {
     /// fraction of the two directions checked.
     std::optional<double> free_space_violation_fraction;
     bool free_space_rejected = false;  ///< Rejected by the free-space check alone.
+    /// Started from the chosen pose slid along its weakest direction (slide probe), by
+    /// this many millimetres (signed, along GlobalRegistrationResult::slide_direction).
+    std::optional<double> slide_start_mm;
 };
 
 /// Wall-clock seconds per stage.
@@ -190,6 +206,14 @@ struct GlobalRegistrationResult {
     /// within the distinct-pose tolerance of an already verified pose are skipped.
     std::vector<HypothesisOutcome> hypotheses;
     std::size_t free_space_rejections = 0;  ///< Hypotheses rejected by the free-space check.
+    std::size_t slide_probes = 0;  ///< Slide probes refined (see slide_probe_max_eigenvalue_ratio).
+    /// The probed direction: translation of the chosen pose's weakest direction (target
+    /// frame, unit; zero when not probed).
+    Eigen::Vector3d slide_direction = Eigen::Vector3d::Zero();
+    /// Ambiguous because a slid pose fits alike: the overlap does not fix the pose along
+    /// slide_direction, by up to slide_m (the largest distance between such contenders, metres).
+    bool slide_ambiguous = false;
+    double slide_m = 0.0;
     GlobalRegistrationTiming timing;
 };
 

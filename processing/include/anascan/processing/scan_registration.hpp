@@ -117,6 +117,14 @@ struct ScanRegistrationConfig {
     /// consensus scores), they connected the scans before any true pair (0.09-0.25 mm) was
     /// refined and set the gate to 2 mm. 0: never.
     std::size_t full_pairwise_max_scans = 40;
+    /// A placed scan all of whose multi-view links ended still moving (max_iterations) along
+    /// a weak direction (degeneracy eigenvalue ratio below this) gets a warning naming the
+    /// direction: its overlaps do not fix its pose along it. Before the slide probes
+    /// (GlobalRegistrationConfig::slide_probe_max_eigenvalue_ratio) a ray-cast block scan was
+    /// placed 28 mm slid along the block through two such links (ratios 0.002 and 0.004);
+    /// the true neighbour links of that session converge (docs/scan-registration.md
+    /// "Slides"). 0: off.
+    double sliding_link_max_eigenvalue_ratio = 0.02;
 
     // ---- Scale (thousands of scans; see docs/scan-registration.md "Scale") ----------------
     /// Pair pruning: 0 matches every pair (N(N-1)/2 matchings). Otherwise each scan is
@@ -187,6 +195,12 @@ struct PairOutcome {
     /// Refined hypotheses that passed the other tests but were rejected by the free-space
     /// check (look-alike poses).
     std::size_t free_space_rejections = 0;
+    /// Slide probes refined (GlobalRegistrationConfig::slide_probe_max_eigenvalue_ratio) and
+    /// whether a slid pose fitted alike (ambiguous: the overlap does not fix the pose along
+    /// a direction, by up to slide_m metres).
+    std::size_t slide_probes = 0;
+    bool slide_ambiguous = false;
+    double slide_m = 0.0;
     bool in_tree = false;  ///< An edge of the maximum spanning tree.
     double weight = 0.0;   ///< Tree weight: overlap / (1 + rms / target spacing).
     Pose T_target_source = Pose::Identity();  ///< Global result (when verified).
@@ -201,6 +215,9 @@ struct PairOutcome {
     double fine_rms_m = 0.0;
     double fine_overlap_fraction = 0.0;
     std::optional<double> fine_normal_deviation_deg;
+    double fine_eigenvalue_ratio = 0.0;  ///< Degeneracy figure of the final fine registration.
+    /// Translation part of its weakest direction (target frame, unit; zero when none).
+    Eigen::Vector3d fine_weakest_translation = Eigen::Vector3d::Zero();
     double fine_time_s = 0.0;
     bool linked = false;        ///< Gave a multi-view link.
     bool link_dropped = false;  ///< Dropped by the multi-view regression step.
