@@ -119,8 +119,10 @@ struct LiveRegistrationConfig {
     /// eight global attempts, ~6 s, decided nothing), and the whole-group merge joins the
     /// sides once the new one has a few scans. False: it tries global registration first.
     bool new_group_after_turn = true;
-    /// Global registration (features at radii fixed for the session, see `radii_m`).
-    GlobalRegistrationConfig global{};
+    /// Global registration (features at radii fixed for the session, see `radii_m`). Its
+    /// slide probes are off: the live registrar probes slides itself (`slide_probe_m`),
+    /// with the session's model, and stop 13's capture figures were measured so.
+    GlobalRegistrationConfig global{.slide_probe_max_eigenvalue_ratio = 0.0};
     /// Descriptor radii for the session; all zero = from the first usable scan's diagonal.
     InvariantRadii radii_m{};
     std::size_t max_global_targets = 8;
