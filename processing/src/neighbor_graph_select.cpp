@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <array>
 
-#include "cpu_features.hpp"
-
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
@@ -81,14 +79,6 @@ void rank_all(const float* d2, const std::uint32_t* index, std::size_t n, std::i
             rank[j_first ? c : j] += 1;
         }
     }
-#endif
-}
-
-bool have_avx2() {
-#if defined(ANASCAN_KNN_AVX2)
-    return detail::cpu_has_avx2();
-#else
-    return false;
 #endif
 }
 

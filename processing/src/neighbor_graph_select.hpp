@@ -3,7 +3,7 @@
 /// Private selection primitives of the k-NN graph (neighbor_graph.cpp): candidate arrays,
 /// a top k of packed (distance, index) keys, and branch-free compaction and ranking of
 /// the candidates within a bound, four at a time with SSE2 where available; the ranking
-/// also has AVX2 versions, chosen at run time (have_avx2), that give the same ranks.
+/// also has AVX2 versions, chosen at run time (detail::cpu_has_avx2), that give the same ranks.
 
 #include <Eigen/Core>
 #include <algorithm>
@@ -177,12 +177,6 @@ struct Candidates {
         std::fill(indices.begin() + std::ptrdiff_t(size), indices.end(), 0u);
         padding = kPadding - 1;
     }
-    void push_back(float px, float py, float pz, std::uint32_t index) {
-        x.push_back(px);
-        y.push_back(py);
-        z.push_back(pz);
-        indices.push_back(index);
-    }
 };
 
 // Offers candidates [begin, end) to `top` (which the caller cleared): groups of four are
@@ -200,14 +194,11 @@ void scan_all(const Candidates& all, const Eigen::Vector3f& q, std::uint32_t sel
 // data. The arrays hold n + kGroup entries; the padding (+inf, ~0) ranks last.
 void rank_all(const float* d2, const std::uint32_t* index, std::size_t n, std::int32_t* rank);
 
-// Whether this CPU runs the AVX2 ranking below (checked once).
-bool have_avx2();
-
 // pick_range with AVX2, eight candidates at a time, compacted at once: appends the squared
 // distances and point indices of the block's points [begin, end) within `bound` to d2 and
 // index from slot n (room for n + end - begin + kWideGroup). Returns the new count. The
 // block has kPadding - 1 readable entries past its end; the caller hides the query's own
-// entry (a NaN coordinate). Needs have_avx2().
+// entry (a NaN coordinate). Needs detail::cpu_has_avx2().
 std::size_t pick_compact_avx2(const Candidates& block, std::size_t begin, std::size_t end,
                               const Eigen::Vector3f& q, float bound, float* d2,
                               std::uint32_t* index, std::size_t n);
@@ -215,7 +206,7 @@ std::size_t pick_compact_avx2(const Candidates& block, std::size_t begin, std::s
 // Rank of each of the n distances by distance alone (the number of smaller ones), each
 // against all, eight against eight at a time (the counts of eight entries summed across
 // lanes together); returns the sum of the ranks, which is n (n - 1) / 2 exactly when no
-// two distances are equal (then these are the ranks of rank_all). Needs have_avx2(); d2
+// two distances are equal (then these are the ranks of rank_all). Needs detail::cpu_has_avx2(); d2
 // holds n + 2 kGroup entries, the padding +inf; rank has room for n + 2 kGroup.
 std::size_t rank_distances_avx2(const float* d2, std::size_t n, std::int32_t* rank);
 
