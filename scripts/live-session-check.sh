@@ -1,5 +1,5 @@
 #!/bin/sh
-# The issue 5 live-registration figure: a simulated structured-light session of the small
+# The live-registration figure: a simulated structured-light session of the small
 # block, VIEWS views (default 24) turned over halfway, registered by LiveRegistrar as they
 # come. Prints per-scan decisions, errors against the truth, add() median/p95 and the
 # per-method counts. Usage: scripts/live-session-check.sh [VIEWS] [BUILD_DIR]

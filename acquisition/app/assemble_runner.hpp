@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "anascan/acquisition/assembly.hpp"
+#include "anascan/acquisition/assembly/assembly.hpp"
 
 namespace anascan::cli {
 

@@ -11,8 +11,8 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
-#include "anascan/acquisition/session_coverage.hpp"
-#include "anascan/acquisition/session_truth.hpp"
+#include "anascan/acquisition/coverage/session_coverage.hpp"
+#include "anascan/acquisition/store/session_truth.hpp"
 
 namespace anascan::cli {
 namespace {

@@ -2,8 +2,8 @@
 // What `anascan capture` and `anascan session register` print and store at the end:
 // scans by state, groups, latency, coverage.
 
-#include "anascan/acquisition/capture_session.hpp"
-#include "anascan/acquisition/session_store.hpp"
+#include "anascan/acquisition/capture/capture_session.hpp"
+#include "anascan/acquisition/store/session_store.hpp"
 
 namespace anascan::cli {
 

@@ -6,10 +6,11 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
-#include "anascan/processing/global_registration.hpp"
+#include "anascan/processing/core/stopwatch.hpp"
 #include "anascan/processing/io/file_bytes.hpp"
 #include "anascan/processing/io/xf.hpp"
-#include "anascan/processing/scan_registration.hpp"
+#include "anascan/processing/registration/batch/scan_registration.hpp"
+#include "anascan/processing/registration/global/global_registration.hpp"
 #include "commands.hpp"
 #include "scan_preparation.hpp"
 
@@ -65,10 +66,6 @@ nlohmann::json global_figures(const GlobalRegistrationResult& g) {
             {"hypotheses_verified", verified},
             {"rms_m", g.rms_m},
             {"overlap", g.overlap_fraction}};
-}
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 PointCloud load_prepared(const std::string& path, const SensorOptions& sensor,

@@ -1,7 +1,7 @@
 // anascan assemble POSES.conf: place scans with known poses, check agreement, merge.
 #include <cstdio>
 
-#include "anascan/acquisition/assembly.hpp"
+#include "anascan/acquisition/assembly/assembly.hpp"
 #include "anascan/processing/io/file_bytes.hpp"
 #include "anascan/processing/io/ply.hpp"
 #include "assemble_runner.hpp"

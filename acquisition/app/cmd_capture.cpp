@@ -11,9 +11,9 @@
 #include <mutex>
 #include <thread>
 
-#include "anascan/acquisition/capture_session.hpp"
-#include "anascan/acquisition/session_coverage.hpp"
-#include "anascan/runtime/scanner_source.hpp"
+#include "anascan/acquisition/capture/capture_session.hpp"
+#include "anascan/acquisition/coverage/session_coverage.hpp"
+#include "anascan/scanner_sources/scanner_source.hpp"
 #include "capture_summary.hpp"
 #include "commands.hpp"
 
@@ -33,7 +33,7 @@ struct CaptureOptions {
     bool no_register = false;
     bool no_coverage = false;
     int sim_unplug_after = -1;
-    runtime::ScannerSettings settings;  ///< Only the fields given on the command line.
+    scanner_sources::ScannerSettings settings;  ///< Only the fields given on the command line.
     double reconnect_timeout_s = 10.0;
     double operator_pause_s = 0.0;  ///< Simulated operator's walk between views.
 };
@@ -88,28 +88,31 @@ void run_capture(const CaptureOptions& o) {
     if (!existing) fail_command(existing.error());
     const int already = static_cast<int>(existing->size());
 
-    const runtime::SimulatedTour tour{.views = o.views,
-                                      .flip_after = o.flip_after < 0 ? o.views / 2 : o.flip_after,
-                                      .distance_m = o.distance_m,
-                                      .seed = o.tour_seed};
+    const scanner_sources::SimulatedTour tour{
+        .views = o.views,
+        .flip_after = o.flip_after < 0 ? o.views / 2 : o.flip_after,
+        .distance_m = o.distance_m,
+        .seed = o.tour_seed};
     acquisition::CaptureSessionConfig config{.register_live = !o.no_register,
                                              .coverage_live = !o.no_coverage};
     auto session = CaptureSession::start(std::move(*store), config, printing_sink());
     if (!session) fail_command(session.error());
-    const runtime::ScannerSource source{
+    const scanner_sources::ScannerSource source{
         .uri = uri, .settings = o.settings, .sim_unplug_after = o.sim_unplug_after};
-    if (auto ok = (*session)->attach_scanner(uri, runtime::make_scanner_opener(source)); !ok)
+    if (auto ok = (*session)->attach_scanner(uri, scanner_sources::make_scanner_opener(source));
+        !ok)
         fail_command(ok.error());
     if (already > 0)
         std::printf("session %s has %d scans: resuming at view %d of %d\n", o.session.c_str(),
                     already, std::min(already, o.views) + 1, o.views);
     std::optional<Error> stopped;
-    const bool simulated = runtime::is_simulated(uri);
+    const bool simulated = scanner_sources::is_simulated(uri);
     for (int i = already; i < o.views && !stopped; ++i) {
         if (!simulated && !operator_ready(i, o.views)) break;
-        if (runtime::tour_turns_over_before(tour, i))
+        if (scanner_sources::tour_turns_over_before(tour, i))
             std::printf("the stone is turned over before view %d\n", i + 1);
-        stopped = capture_view(**session, runtime::tour_request(tour, i), o.reconnect_timeout_s);
+        stopped =
+            capture_view(**session, scanner_sources::tour_request(tour, i), o.reconnect_timeout_s);
         if (simulated && !stopped && i + 1 < o.views && o.operator_pause_s > 0.0)
             std::this_thread::sleep_for(std::chrono::duration<double>(o.operator_pause_s));
     }

@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
-#include "anascan/acquisition/session_coverage.hpp"
+#include "anascan/acquisition/coverage/session_coverage.hpp"
 #include "anascan/processing/io/coverage_ply.hpp"
 #include "commands.hpp"
 

@@ -2,8 +2,8 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "anascan/processing/evaluation/pose_evaluation.hpp"
 #include "anascan/processing/io/stanford_conf.hpp"
-#include "anascan/processing/pose_evaluation.hpp"
 #include "commands.hpp"
 #include "scan_preparation.hpp"
 

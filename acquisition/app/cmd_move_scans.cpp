@@ -10,10 +10,10 @@
 #include <filesystem>
 #include <random>
 
+#include "anascan/processing/cleaning/normals.hpp"
+#include "anascan/processing/evaluation/pose_sampling.hpp"
 #include "anascan/processing/io/ply.hpp"
 #include "anascan/processing/io/stanford_conf.hpp"
-#include "anascan/processing/normals.hpp"
-#include "anascan/processing/pose_sampling.hpp"
 #include "commands.hpp"
 #include "scan_preparation.hpp"
 

@@ -7,11 +7,11 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
-#include "anascan/processing/allocator.hpp"
+#include "anascan/processing/core/allocator.hpp"
 #include "anascan/processing/io/file_bytes.hpp"
 #include "anascan/processing/io/ply.hpp"
 #include "anascan/processing/io/stanford_conf.hpp"
-#include "anascan/processing/scan_registration.hpp"
+#include "anascan/processing/registration/batch/scan_registration.hpp"
 #include "commands.hpp"
 #include "scan_preparation.hpp"
 

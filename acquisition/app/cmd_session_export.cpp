@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <map>
 
-#include "anascan/acquisition/assembly.hpp"
+#include "anascan/acquisition/assembly/assembly.hpp"
 #include "anascan/processing/io/ply.hpp"
 #include "anascan/processing/io/stanford_conf.hpp"
 #include "commands.hpp"

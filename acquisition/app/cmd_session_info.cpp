@@ -2,8 +2,8 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
-#include "anascan/acquisition/session_check.hpp"
-#include "anascan/acquisition/session_json.hpp"
+#include "anascan/acquisition/store/session_check.hpp"
+#include "anascan/acquisition/store/session_json.hpp"
 #include "commands.hpp"
 #include "session_cli.hpp"
 

@@ -3,7 +3,7 @@
 // by global registration (the operator's "re-register" for scans that look wrong).
 #include <cstdio>
 
-#include "anascan/acquisition/capture_session.hpp"
+#include "anascan/acquisition/capture/capture_session.hpp"
 #include "capture_summary.hpp"
 #include "commands.hpp"
 #include "session_cli.hpp"

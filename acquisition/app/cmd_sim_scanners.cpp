@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "anascan/processing/core/stopwatch.hpp"
 #include "anascan/processing/io/ply.hpp"
 #include "anascan/processing/io/stanford_conf.hpp"
 #include "anascan/sim/ray_caster.hpp"
@@ -55,10 +56,6 @@ sim::RayCaster make_caster(const sim::Scene& scene) {
     auto caster = sim::RayCaster::create(scene.mesh);
     if (!caster) fail_command(caster.error());
     return std::move(*caster);
-}
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 void run_tof(const TofOptions& o) {

@@ -11,6 +11,7 @@
 
 #include "anascan/drivers/structured_light/image_files.hpp"
 #include "anascan/drivers/structured_light/stereo_decoder.hpp"
+#include "anascan/processing/core/stopwatch.hpp"
 #include "anascan/processing/io/ply.hpp"
 #include "commands.hpp"
 
@@ -39,10 +40,6 @@ struct SlDecodeOptions {
     bool no_subpixel = false;
     int threads = 0;
 };
-
-double seconds_since(Clock::time_point t0) {
-    return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 sl::StereoDecodeConfig decode_config(const SlDecodeOptions& o) {
     sl::StereoDecodeConfig config;

@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "anascan/processing/error.hpp"
+#include "anascan/processing/core/error.hpp"
 
 namespace anascan::cli {
 

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "anascan/processing/expected.hpp"
-#include "anascan/processing/point_cloud.hpp"
+#include "anascan/processing/core/expected.hpp"
+#include "anascan/processing/core/point_cloud.hpp"
 
 namespace anascan::cli {
 

@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <memory>
 
-#include "anascan/acquisition/session_store.hpp"
+#include "anascan/acquisition/store/session_store.hpp"
 
 namespace anascan::cli {
 

@@ -6,7 +6,7 @@
 #include <memory>
 #include <string>
 
-#include "anascan/processing/expected.hpp"
+#include "anascan/processing/core/expected.hpp"
 
 namespace anascan::drivers {
 

@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "anascan/processing/error.hpp"
+#include "anascan/processing/core/error.hpp"
 
 namespace anascan::drivers {
 

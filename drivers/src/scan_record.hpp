@@ -3,8 +3,8 @@
 
 #include <filesystem>
 
-#include "anascan/processing/expected.hpp"
-#include "anascan/processing/scan.hpp"
+#include "anascan/processing/core/expected.hpp"
+#include "anascan/processing/core/scan.hpp"
 
 namespace anascan::drivers {
 

@@ -9,7 +9,7 @@
 
 #include "anascan/drivers/camera.hpp"
 #include "anascan/drivers/device_registry.hpp"
-#include "anascan/processing/expected.hpp"
+#include "anascan/processing/core/expected.hpp"
 
 namespace anascan::drivers {
 

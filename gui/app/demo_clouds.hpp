@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "anascan/gui/field_view_state.hpp"
-#include "anascan/processing/expected.hpp"
-#include "anascan/processing/point_cloud.hpp"
+#include "anascan/processing/core/expected.hpp"
+#include "anascan/processing/core/point_cloud.hpp"
 
 namespace anascan::field {
 

@@ -7,7 +7,7 @@
 #include <memory>
 #include <string>
 
-#include "anascan/processing/expected.hpp"
+#include "anascan/processing/core/expected.hpp"
 
 struct GLFWwindow;
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "anascan/gui/ui_action.hpp"
-#include "anascan/processing/expected.hpp"
+#include "anascan/processing/core/expected.hpp"
 
 namespace anascan::field {
 

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "anascan/acquisition/device_control.hpp"
+#include "anascan/acquisition/capture/device_control.hpp"
 #include "anascan/gui/field_view_state.hpp"
 #include "anascan/gui/scan_preview.hpp"
 

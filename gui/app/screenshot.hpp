@@ -5,7 +5,7 @@
 
 #include <filesystem>
 
-#include "anascan/processing/expected.hpp"
+#include "anascan/processing/core/expected.hpp"
 
 namespace anascan::field {
 

@@ -43,7 +43,7 @@ const acquisition::SessionStore* SessionLink::store() const {
 
 void SessionLink::open(gui::FieldViewState& view) {
     view.session_dir = config_.dir.string();
-    for (const runtime::ScannerListing& s : runtime::list_scanners()) {
+    for (const scanner_sources::ScannerListing& s : scanner_sources::list_scanners()) {
         view.device.devices.push_back({.id = s.uri,
                                        .kind = s.model,
                                        .connected = true,

@@ -20,13 +20,13 @@
 #include <string>
 #include <vector>
 
-#include "anascan/acquisition/capture_session.hpp"
-#include "anascan/acquisition/session_check.hpp"
+#include "anascan/acquisition/capture/capture_session.hpp"
+#include "anascan/acquisition/store/session_check.hpp"
 #include "anascan/gui/field_view_state.hpp"
 #include "anascan/gui/point_renderer.hpp"
 #include "anascan/gui/scan_preview.hpp"
 #include "anascan/gui/ui_action.hpp"
-#include "anascan/runtime/scanner_source.hpp"
+#include "anascan/scanner_sources/scanner_source.hpp"
 #include "preview_texture.hpp"
 
 namespace anascan::field {
@@ -34,8 +34,8 @@ namespace anascan::field {
 struct SessionLinkConfig {
     std::filesystem::path dir;
     std::string device_uri = "sim:structured-light/small-block";  ///< Active at start.
-    runtime::SimulatedTour tour;                                  ///< For simulated scanners.
-    runtime::ScannerSettings settings;
+    scanner_sources::SimulatedTour tour;                          ///< For simulated scanners.
+    scanner_sources::ScannerSettings settings;
     int sim_unplug_after = -1;  ///< Fault injection (simulated scanners), -1: never.
     /// Nice increment of the capture session's threads and the scan loads over the UI
     /// thread (thread_priority.hpp); 0: same priority.

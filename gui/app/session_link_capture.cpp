@@ -60,10 +60,10 @@ bool SessionLink::attach(const std::string& uri, gui::FieldViewState& view) {
                         attached_uri_);
         return false;
     }
-    const runtime::ScannerSource source{
+    const scanner_sources::ScannerSource source{
         .uri = uri, .settings = config_.settings, .sim_unplug_after = config_.sim_unplug_after};
     auto ok = call_at_lower_priority(config_.worker_nice, [&] {
-        return session_->attach_scanner(uri, runtime::make_scanner_opener(source));
+        return session_->attach_scanner(uri, scanner_sources::make_scanner_opener(source));
     });
     if (!ok) {
         view.status.last_error = ok.error().message;
@@ -87,7 +87,8 @@ void SessionLink::capture(gui::FieldViewState& view) {
         return;
     }
     acquisition::CaptureRequest request;
-    if (runtime::is_simulated(uri)) request = runtime::tour_request(config_.tour, acknowledged_);
+    if (scanner_sources::is_simulated(uri))
+        request = scanner_sources::tour_request(config_.tour, acknowledged_);
     request.turned_over = request.turned_over || std::exchange(turned_over_pending_, false);
     pending_capture_ = session_->capture(std::move(request));
     view.device.capturing = true;

@@ -9,7 +9,7 @@
 #include <optional>
 
 #include "anascan/gui/field_view_state.hpp"
-#include "anascan/processing/expected.hpp"
+#include "anascan/processing/core/expected.hpp"
 
 namespace anascan::field {
 

@@ -5,7 +5,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
-#include "anascan/acquisition/session_coverage.hpp"
+#include "anascan/acquisition/coverage/session_coverage.hpp"
 
 namespace anascan::gui {
 namespace {

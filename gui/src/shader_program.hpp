@@ -4,7 +4,7 @@
 
 #include <string_view>
 
-#include "anascan/processing/expected.hpp"
+#include "anascan/processing/core/expected.hpp"
 #include "gl_api.hpp"
 
 namespace anascan::gui::detail {

@@ -12,8 +12,8 @@
 #include <utility>
 #include <vector>
 
-#include "anascan/processing/point_cloud.hpp"
-#include "anascan/processing/pose.hpp"
+#include "anascan/processing/core/point_cloud.hpp"
+#include "anascan/processing/core/pose.hpp"
 #include "anascan/sim/ray_caster.hpp"
 #include "anascan/sim/scene.hpp"
 #include "anascan/sim/viewpoints.hpp"

@@ -7,7 +7,7 @@
 #include <random>
 #include <string>
 
-#include "anascan/processing/scan.hpp"
+#include "anascan/processing/core/scan.hpp"
 
 namespace anascan::testing_util {
 

@@ -12,11 +12,11 @@
 #include <numbers>
 #include <optional>
 
-#include "anascan/processing/fine_registration.hpp"
+#include "anascan/processing/core/pose.hpp"
 #include "anascan/processing/io/ply.hpp"
 #include "anascan/processing/io/stanford_conf.hpp"
-#include "anascan/processing/kdtree.hpp"
-#include "anascan/processing/pose.hpp"
+#include "anascan/processing/registration/fine/fine_registration.hpp"
+#include "anascan/processing/spatial/kdtree.hpp"
 #include "test_normals_util.hpp"
 
 #if ANASCAN_BENCH_OPEN3D

@@ -17,8 +17,8 @@
 #include <string>
 #include <vector>
 
-#include "anascan/processing/allocator.hpp"
-#include "anascan/processing/multiview_refinement.hpp"
+#include "anascan/processing/core/allocator.hpp"
+#include "anascan/processing/registration/multiview/multiview_refinement.hpp"
 
 namespace {
 

@@ -10,9 +10,9 @@
 #include <filesystem>
 #include <string>
 
+#include "anascan/processing/cleaning/normals.hpp"
 #include "anascan/processing/io/ply.hpp"
 #include "anascan/processing/io/stanford_conf.hpp"
-#include "anascan/processing/normals.hpp"
 
 #if ANASCAN_HAVE_OPEN3D
 #include <open3d/geometry/KDTreeSearchParam.h>

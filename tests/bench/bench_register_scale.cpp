@@ -31,9 +31,9 @@
 #include <string>
 #include <vector>
 
-#include "anascan/processing/allocator.hpp"
-#include "anascan/processing/pose_sampling.hpp"
-#include "anascan/processing/scan_registration.hpp"
+#include "anascan/processing/core/allocator.hpp"
+#include "anascan/processing/evaluation/pose_sampling.hpp"
+#include "anascan/processing/registration/batch/scan_registration.hpp"
 
 namespace {
 

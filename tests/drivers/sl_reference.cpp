@@ -10,7 +10,7 @@
 #include <opencv2/structured_light.hpp>
 #include <random>
 
-#include "anascan/processing/kdtree.hpp"
+#include "anascan/processing/spatial/kdtree.hpp"
 
 namespace anascan::test {
 namespace {

@@ -6,7 +6,7 @@
 #include <random>
 #include <vector>
 
-#include "anascan/processing/point_cloud.hpp"
+#include "anascan/processing/core/point_cloud.hpp"
 
 namespace anascan::testing_util {
 

@@ -12,8 +12,8 @@
 #include <cstddef>
 #include <vector>
 
-#include "anascan/processing/kdtree.hpp"
-#include "anascan/processing/point_cloud.hpp"
+#include "anascan/processing/core/point_cloud.hpp"
+#include "anascan/processing/spatial/kdtree.hpp"
 
 namespace anascan::test {
 

@@ -8,7 +8,7 @@
 #include <cstdio>
 #include <vector>
 
-#include "anascan/processing/coverage.hpp"
+#include "anascan/processing/coverage/coverage.hpp"
 #include "anascan/sim/sim_structured_light_scanner.hpp"
 
 namespace anascan::sim::test {

@@ -1,7 +1,7 @@
 // The simulated structured-light scanner end to end: the sim renders a capture of a block
 // at 1 m, the real decoder (drivers::sl::decode_stereo: Gray code + phase shift, stereo
 // matching, triangulation) turns it into a cloud, and every point is measured against the
-// ground-truth mesh (issue 4: >= 95 % of points within 0.3 mm, RMS near the rig's noise).
+// ground-truth mesh (goal: >= 95 % of points within 0.3 mm, RMS near the rig's noise).
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -1,21 +1,13 @@
 #include "anascan/drivers/structured_light/stereo_decoder.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <opencv2/core.hpp>
 #include <string>
 
+#include "anascan/processing/core/stopwatch.hpp"
+
 namespace anascan::drivers::sl {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point& t0) {
-    const Clock::time_point now = Clock::now();
-    const double s = std::chrono::duration<double>(now - t0).count();
-    t0 = now;
-    return s;
-}
 
 Expected<void> check_size(std::span<const cv::Mat> images, const CameraIntrinsics& cam,
                           const std::string& name) {
@@ -105,15 +97,15 @@ Expected<StereoDecodeResult> decode_stereo(std::span<const cv::Mat> cam1_images,
     if (auto ok = check_size(cam1_images, calibration.cam1, "cam1"); !ok) return fail(ok.error());
     if (auto ok = check_size(cam2_images, calibration.cam2, "cam2"); !ok) return fail(ok.error());
     StereoDecodeResult result;
-    auto t0 = Clock::now();
+    Stopwatch stages;
     auto map1 = decode_named(cam1_images, config, "cam1");
     if (!map1) return fail(map1.error());
     auto map2 = decode_named(cam2_images, config, "cam2");
     if (!map2) return fail(map2.error());
-    result.decode_s = seconds_since(t0);
+    result.decode_s = stages.lap();
     const StereoMatches matches =
         match_projector_maps(*map1, *map2, config.sequence.gray, config.match);
-    result.match_s = seconds_since(t0);
+    result.match_s = stages.lap();
     const TriangulatedPoints points =
         triangulate_matches(matches, calibration, config.triangulation);
     result.cam1_valid = map1->valid_count;
@@ -121,7 +113,7 @@ Expected<StereoDecodeResult> decode_stereo(std::span<const cv::Mat> cam1_images,
     result.matched = matches.cam1_px.size();
     result.pixel_count = map1->column_px.total();
     fill_cloud(matches, points, *map1, config, result);
-    result.triangulate_s = seconds_since(t0);
+    result.triangulate_s = stages.lap();
     return result;
 }
 

@@ -11,7 +11,7 @@
 #include <string_view>
 #include <vector>
 
-#include "anascan/processing/expected.hpp"
+#include "anascan/processing/core/expected.hpp"
 #include "anascan/processing/io/ply.hpp"
 
 namespace anascan::io::ply_detail {

@@ -9,7 +9,7 @@
 #include <span>
 #include <vector>
 
-#include "anascan/processing/point_cloud.hpp"
+#include "anascan/processing/core/point_cloud.hpp"
 #include "ply_header.hpp"
 #include "ply_source.hpp"
 

@@ -1,6 +1,6 @@
 // A program outside the anascan tree using the installed package.
 #include <anascan/processing/io/ply.hpp>
-#include <anascan/processing/voxel_grid.hpp>
+#include <anascan/processing/spatial/voxel_grid.hpp>
 
 int main() {
     anascan::PointCloud cloud;

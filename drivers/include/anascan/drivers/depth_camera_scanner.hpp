@@ -9,7 +9,7 @@
 #include "anascan/drivers/camera.hpp"
 #include "anascan/drivers/device_registry.hpp"
 #include "anascan/drivers/scanner.hpp"
-#include "anascan/processing/range_grid.hpp"
+#include "anascan/processing/core/range_grid.hpp"
 
 namespace anascan::drivers {
 

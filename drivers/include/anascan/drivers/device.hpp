@@ -9,8 +9,8 @@
 #include <string>
 
 #include "anascan/drivers/settings.hpp"
-#include "anascan/processing/expected.hpp"
-#include "anascan/processing/scan.hpp"
+#include "anascan/processing/core/expected.hpp"
+#include "anascan/processing/core/scan.hpp"
 
 namespace anascan::drivers {
 

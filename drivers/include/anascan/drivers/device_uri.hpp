@@ -7,7 +7,7 @@
 #include <string>
 #include <string_view>
 
-#include "anascan/processing/expected.hpp"
+#include "anascan/processing/core/expected.hpp"
 
 namespace anascan::drivers {
 

@@ -8,7 +8,7 @@
 #include <string_view>
 #include <vector>
 
-#include "anascan/processing/expected.hpp"
+#include "anascan/processing/core/expected.hpp"
 
 namespace anascan::drivers {
 

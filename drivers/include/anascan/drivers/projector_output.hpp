@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "anascan/drivers/pattern_output.hpp"
-#include "anascan/processing/expected.hpp"
+#include "anascan/processing/core/expected.hpp"
 
 namespace anascan::drivers {
 

@@ -10,7 +10,7 @@
 
 #include "anascan/drivers/device.hpp"
 #include "anascan/drivers/frame.hpp"
-#include "anascan/processing/scan.hpp"
+#include "anascan/processing/core/scan.hpp"
 
 namespace anascan::drivers {
 

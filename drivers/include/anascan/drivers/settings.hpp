@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "anascan/drivers/frame.hpp"
-#include "anascan/processing/expected.hpp"
+#include "anascan/processing/core/expected.hpp"
 
 namespace anascan::drivers {
 

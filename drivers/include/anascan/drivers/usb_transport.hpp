@@ -10,7 +10,7 @@
 #include <span>
 #include <string>
 
-#include "anascan/processing/expected.hpp"
+#include "anascan/processing/core/expected.hpp"
 
 namespace anascan::drivers {
 

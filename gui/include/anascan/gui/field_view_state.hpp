@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "anascan/acquisition/device_control.hpp"
+#include "anascan/acquisition/capture/device_control.hpp"
 
 namespace anascan::gui {
 

@@ -19,8 +19,8 @@
 
 #include "anascan/gui/field_view_state.hpp"
 #include "anascan/gui/orbit_camera.hpp"
-#include "anascan/processing/expected.hpp"
-#include "anascan/processing/point_cloud.hpp"
+#include "anascan/processing/core/expected.hpp"
+#include "anascan/processing/core/point_cloud.hpp"
 
 namespace anascan::gui {
 

@@ -6,7 +6,7 @@
 #include <cstdint>
 
 #include "anascan/gui/field_view_state.hpp"
-#include "anascan/processing/point_cloud.hpp"
+#include "anascan/processing/core/point_cloud.hpp"
 
 namespace anascan::gui {
 

@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "anascan/processing/scan.hpp"
+#include "anascan/processing/core/scan.hpp"
 
 namespace anascan::gui {
 

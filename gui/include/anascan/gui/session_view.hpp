@@ -9,8 +9,8 @@
 #include <string_view>
 #include <vector>
 
-#include "anascan/acquisition/session_check.hpp"
-#include "anascan/acquisition/session_store.hpp"
+#include "anascan/acquisition/store/session_check.hpp"
+#include "anascan/acquisition/store/session_store.hpp"
 #include "anascan/gui/field_view_state.hpp"
 #include "anascan/gui/point_renderer.hpp"
 

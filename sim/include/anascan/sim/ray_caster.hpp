@@ -7,8 +7,8 @@
 #include <memory>
 #include <optional>
 
-#include "anascan/processing/expected.hpp"
-#include "anascan/processing/mesh.hpp"
+#include "anascan/processing/core/expected.hpp"
+#include "anascan/processing/core/mesh.hpp"
 
 namespace anascan::sim {
 

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "anascan/drivers/scanner.hpp"
-#include "anascan/processing/pose.hpp"
+#include "anascan/processing/core/pose.hpp"
 #include "anascan/sim/scene.hpp"
 #include "anascan/sim/viewpoints.hpp"
 

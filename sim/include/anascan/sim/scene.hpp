@@ -8,9 +8,9 @@
 #include <string_view>
 #include <vector>
 
-#include "anascan/processing/expected.hpp"
-#include "anascan/processing/mesh.hpp"
-#include "anascan/processing/pose.hpp"
+#include "anascan/processing/core/expected.hpp"
+#include "anascan/processing/core/mesh.hpp"
+#include "anascan/processing/core/pose.hpp"
 #include "anascan/sim/stone_block.hpp"
 
 namespace anascan::sim {

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "anascan/processing/expected.hpp"
+#include "anascan/processing/core/expected.hpp"
 #include "anascan/sim/ray_caster.hpp"
 #include "anascan/sim/scene.hpp"
 

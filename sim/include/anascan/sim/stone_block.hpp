@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "anascan/processing/mesh.hpp"
+#include "anascan/processing/core/mesh.hpp"
 
 namespace anascan::sim {
 

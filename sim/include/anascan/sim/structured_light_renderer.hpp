@@ -9,7 +9,7 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
-#include "anascan/processing/expected.hpp"
+#include "anascan/processing/core/expected.hpp"
 #include "anascan/sim/pattern_sequence.hpp"
 #include "anascan/sim/ray_caster.hpp"
 #include "anascan/sim/structured_light_rig.hpp"

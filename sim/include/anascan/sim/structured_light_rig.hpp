@@ -8,8 +8,8 @@
 #include <filesystem>
 
 #include "anascan/drivers/structured_light/stereo_calibration.hpp"
-#include "anascan/processing/expected.hpp"
-#include "anascan/processing/pose.hpp"
+#include "anascan/processing/core/expected.hpp"
+#include "anascan/processing/core/pose.hpp"
 
 namespace anascan::sim {
 

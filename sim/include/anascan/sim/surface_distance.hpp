@@ -5,8 +5,8 @@
 #include <cstddef>
 #include <vector>
 
-#include "anascan/processing/point_cloud.hpp"
-#include "anascan/processing/pose.hpp"
+#include "anascan/processing/core/point_cloud.hpp"
+#include "anascan/processing/core/pose.hpp"
 #include "anascan/sim/ray_caster.hpp"
 
 namespace anascan::sim {

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "anascan/processing/range_grid.hpp"
-#include "anascan/processing/scan.hpp"
+#include "anascan/processing/core/range_grid.hpp"
+#include "anascan/processing/core/scan.hpp"
 #include "anascan/sim/ray_caster.hpp"
 
 namespace anascan::sim {

@@ -4,7 +4,7 @@
 
 #include <Eigen/Core>
 
-#include "anascan/processing/pose.hpp"
+#include "anascan/processing/core/pose.hpp"
 
 namespace anascan::sim {
 

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "anascan/processing/expected.hpp"
+#include "anascan/processing/core/expected.hpp"
 
 namespace anascan::drivers::sl {
 

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "anascan/drivers/structured_light/gray_code.hpp"
-#include "anascan/processing/expected.hpp"
+#include "anascan/processing/core/expected.hpp"
 
 namespace anascan::drivers::sl {
 

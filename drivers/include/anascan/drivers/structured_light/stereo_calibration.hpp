@@ -9,8 +9,8 @@
 #include <optional>
 #include <vector>
 
-#include "anascan/processing/expected.hpp"
-#include "anascan/processing/pose.hpp"
+#include "anascan/processing/core/expected.hpp"
+#include "anascan/processing/core/pose.hpp"
 
 namespace anascan::drivers::sl {
 

@@ -15,8 +15,8 @@
 #include "anascan/drivers/structured_light/stereo_calibration.hpp"
 #include "anascan/drivers/structured_light/stereo_matching.hpp"
 #include "anascan/drivers/structured_light/triangulation.hpp"
-#include "anascan/processing/expected.hpp"
-#include "anascan/processing/point_cloud.hpp"
+#include "anascan/processing/core/expected.hpp"
+#include "anascan/processing/core/point_cloud.hpp"
 
 namespace anascan::drivers::sl {
 

@@ -5,8 +5,8 @@
 
 #include <filesystem>
 
-#include "anascan/processing/coverage.hpp"
-#include "anascan/processing/expected.hpp"
+#include "anascan/processing/core/expected.hpp"
+#include "anascan/processing/coverage/coverage.hpp"
 
 namespace anascan::io {
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "anascan/processing/expected.hpp"
+#include "anascan/processing/core/expected.hpp"
 
 namespace anascan::io {
 

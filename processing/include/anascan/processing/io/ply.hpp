@@ -16,10 +16,10 @@
 #include <string_view>
 #include <vector>
 
-#include "anascan/processing/expected.hpp"
-#include "anascan/processing/mesh.hpp"
-#include "anascan/processing/point_cloud.hpp"
-#include "anascan/processing/range_grid.hpp"
+#include "anascan/processing/core/expected.hpp"
+#include "anascan/processing/core/mesh.hpp"
+#include "anascan/processing/core/point_cloud.hpp"
+#include "anascan/processing/core/range_grid.hpp"
 
 namespace anascan::io {
 

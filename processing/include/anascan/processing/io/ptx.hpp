@@ -16,9 +16,9 @@
 #include <string_view>
 #include <vector>
 
-#include "anascan/processing/expected.hpp"
-#include "anascan/processing/range_grid.hpp"
-#include "anascan/processing/scan.hpp"
+#include "anascan/processing/core/expected.hpp"
+#include "anascan/processing/core/range_grid.hpp"
+#include "anascan/processing/core/scan.hpp"
 
 namespace anascan::io {
 

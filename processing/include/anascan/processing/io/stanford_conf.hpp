@@ -14,8 +14,8 @@
 #include <string_view>
 #include <vector>
 
-#include "anascan/processing/expected.hpp"
-#include "anascan/processing/pose.hpp"
+#include "anascan/processing/core/expected.hpp"
+#include "anascan/processing/core/pose.hpp"
 
 namespace anascan::io {
 

@@ -8,8 +8,8 @@
 #include <span>
 #include <string_view>
 
-#include "anascan/processing/expected.hpp"
-#include "anascan/processing/point_cloud.hpp"
+#include "anascan/processing/core/expected.hpp"
+#include "anascan/processing/core/point_cloud.hpp"
 
 namespace anascan::io {
 

@@ -8,8 +8,8 @@
 #include <string>
 #include <string_view>
 
-#include "anascan/processing/expected.hpp"
-#include "anascan/processing/pose.hpp"
+#include "anascan/processing/core/expected.hpp"
+#include "anascan/processing/core/pose.hpp"
 
 namespace anascan::io {
 

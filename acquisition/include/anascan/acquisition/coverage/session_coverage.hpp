@@ -1,0 +1,41 @@
+#pragma once
+/// \file
+/// Coverage of a session's stone from its registered scans (the `anascan coverage` command,
+/// the live figure of a capture session and the figure stored at its end).
+
+#include <functional>
+#include <optional>
+
+#include "anascan/acquisition/store/session_store.hpp"
+#include "anascan/processing/coverage/coverage.hpp"
+
+namespace anascan::acquisition {
+
+struct SessionCoverageConfig {
+    /// Each scan is down-sampled to this voxel edge (metres) first; coverage bins points at
+    /// CoverageConfig::bin_size_m anyway, so nothing finer is needed.
+    double voxel_size_m = 0.002;
+    CoverageConfig coverage{};
+};
+
+/// A scan reduced for coverage: voxel means, each standing for the captured points of its
+/// voxel on average (density is counted in captured points).
+struct CoverageCopy {
+    PointCloud cloud;
+    double points_per_point = 1.0;
+    std::optional<Eigen::Vector3d> sensor_origin_scan_m;
+};
+
+/// The group with the most registered, non-excluded scans (lowest id on a tie); -1: none.
+/// Coverage, the truth comparison and the field app all show this group.
+int largest_group(const std::vector<ScanRecord>& scans);
+
+CoverageCopy make_coverage_copy(const Scan& scan, double voxel_size_m);
+
+/// Coverage from the registered, non-excluded scans of the session's largest group, in that
+/// group's frame. kEmpty when no scan is registered. `progress(done, total)` may be empty.
+Expected<CoverageReport> session_coverage(
+    const SessionStore& store, const SessionCoverageConfig& config,
+    const std::function<void(std::size_t, std::size_t)>& progress = {});
+
+}  // namespace anascan::acquisition

@@ -1,0 +1,5 @@
+# acquisition/assembly: assembly of scans with known poses into one model.
+list(APPEND ANASCAN_ACQUISITION_SOURCES
+    src/assembly/assembly.cpp
+    src/assembly/json.cpp
+)

@@ -1,0 +1,58 @@
+#include "anascan/acquisition/coverage/session_coverage.hpp"
+
+#include <map>
+
+#include "anascan/processing/spatial/voxel_grid.hpp"
+
+namespace anascan::acquisition {
+
+int largest_group(const std::vector<ScanRecord>& scans) {
+    std::map<int, std::size_t> sizes;
+    for (const ScanRecord& s : scans)
+        if (s.state == ScanState::kRegistered && !s.excluded && s.pose) ++sizes[s.group];
+    int best = -1;
+    std::size_t best_size = 0;
+    for (const auto& [group, size] : sizes)
+        if (size > best_size) best = group, best_size = size;
+    return best;
+}
+
+CoverageCopy make_coverage_copy(const Scan& scan, double voxel_size_m) {
+    CoverageCopy copy;
+    copy.cloud = voxel_downsample(scan.cloud, {.voxel_size_m = voxel_size_m});
+    if (!copy.cloud.empty())
+        copy.points_per_point =
+            static_cast<double>(scan.cloud.size()) / static_cast<double>(copy.cloud.size());
+    copy.sensor_origin_scan_m = scan.meta.sensor_origin_scan_m;
+    return copy;
+}
+
+Expected<CoverageReport> session_coverage(
+    const SessionStore& store, const SessionCoverageConfig& config,
+    const std::function<void(std::size_t, std::size_t)>& progress) {
+    auto scans = store.scans();
+    if (!scans) return fail(scans.error());
+    const int group = largest_group(*scans);
+    if (group < 0)
+        return fail(ErrorCode::kEmpty, store.dir().string() + ": no registered scan to cover");
+    std::vector<CoverageCopy> copies;
+    std::vector<CoverageScanView> views;
+    std::vector<const ScanRecord*> members;
+    for (const ScanRecord& s : *scans)
+        if (s.state == ScanState::kRegistered && !s.excluded && s.pose && s.group == group)
+            members.push_back(&s);
+    copies.reserve(members.size());
+    for (std::size_t i = 0; i < members.size(); ++i) {
+        auto scan = store.load_scan(members[i]->seq);
+        if (!scan) return fail(scan.error());
+        copies.push_back(make_coverage_copy(*scan, config.voxel_size_m));
+        views.push_back({.cloud = &copies.back().cloud,
+                         .T_world_scan = *members[i]->pose,
+                         .sensor_origin_scan_m = copies.back().sensor_origin_scan_m,
+                         .points_per_point = copies.back().points_per_point});
+        if (progress) progress(i + 1, members.size());
+    }
+    return compute_coverage(views, config.coverage);
+}
+
+}  // namespace anascan::acquisition

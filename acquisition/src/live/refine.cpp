@@ -1,0 +1,251 @@
+// LiveRegistrar::refine: features ahead of need, group merges by global registration of
+// stone-only scans, multi-view links between overlapping scans, multi-view refinement.
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "anascan/processing/registration/multiview/link_compression.hpp"
+#include "anascan/processing/spatial/kdtree.hpp"
+#include "anascan/processing/spatial/voxel_grid.hpp"
+#include "live/state.hpp"
+#include "live/votes.hpp"
+
+namespace anascan::acquisition {
+namespace {
+
+using live::ScanEntry;
+using Clock = std::chrono::steady_clock;
+
+/// Fraction of (about `samples`) source points that land within `distance_m` of the target
+/// under `T_target_source`: a cheap forecast of a pair's overlap.
+double forecast_overlap(const ScanEntry& source, const ScanEntry& target, const KdTree& tree,
+                        const Pose& T_target_source, double distance_m) {
+    const std::size_t step = std::max<std::size_t>(1, source.cloud.size() / 200);
+    const Eigen::Isometry3f T_local =
+        (Eigen::Translation3d(-target.cloud.origin_m) * T_target_source *
+         Eigen::Translation3d(source.cloud.origin_m))
+            .cast<float>();
+    std::size_t near = 0, tried = 0;
+    Neighbor nearest;
+    for (std::size_t i = 0; i < source.cloud.size(); i += step, ++tried) {
+        near += tree.nearest_within(T_local * source.cloud.positions[i],
+                                    static_cast<float>(distance_m), nearest);
+    }
+    return tried == 0 ? 0.0 : static_cast<double>(near) / static_cast<double>(tried);
+}
+
+bool usable_link(const FineRegistrationResult& fine, const LiveRegistrationConfig& config) {
+    // A degenerate link moved only along the directions its overlap fixes; fewer
+    // iterations than the limit means it settled along those.
+    const bool settled_on_what_it_fixes = config.degenerate_links &&
+                                          fine.status == FineRegistrationStatus::kDegenerate &&
+                                          fine.iterations < config.link_fine.max_iterations;
+    return (fine.status == FineRegistrationStatus::kConverged ||
+            fine.status == FineRegistrationStatus::kMaxIterations || settled_on_what_it_fixes) &&
+           fine.overlap_fraction >= config.min_link_overlap_fraction &&
+           fine.normal_deviation_deg.value_or(0.0) <= config.max_normal_deviation_deg &&
+           fine.rms_m <= config.max_link_rms_voxel_factor * config.voxel_size_m;
+}
+
+}  // namespace
+
+Eigen::Vector3d live::cloud_centroid(const PointCloud& cloud) {
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    for (std::size_t i = 0; i < cloud.size(); ++i) sum += cloud.world_position(i);
+    return cloud.empty() ? sum : Eigen::Vector3d(sum / static_cast<double>(cloud.size()));
+}
+
+std::size_t LiveRegistrar::State::make_links() {
+    const auto tree_of = [&](std::size_t i) -> const KdTree& {
+        std::shared_ptr<const KdTree>& tree = scans[i].tree;  // Kept: the cloud never changes.
+        if (!tree) tree = std::make_shared<const KdTree>(scans[i].cloud.positions);
+        return *tree;
+    };
+    std::size_t added = 0;
+    for (std::size_t s = 0; s < scans.size(); ++s) {
+        for (std::size_t t = 0; t < s; ++t) {
+            if (!live::active(scans[s]) || !live::active(scans[t]) ||
+                scans[s].group != scans[t].group)
+                continue;
+            const Pose initial = scans[t].T_group_scan.inverse() * scans[s].T_group_scan;
+            const auto tried = link_tried.find({t, s});
+            if (tried != link_tried.end() &&
+                live::poses_agree(tried->second, initial, scans[s].centroid_m,
+                                  config.link_retry_deg, config.link_retry_m)) {
+                continue;
+            }
+            if (interrupted()) return added;  // Not marked tried: the next call does it.
+            link_tried[{t, s}] = initial;
+            // A link computed from other poses is replaced by the new attempt (or dropped).
+            std::erase_if(links,
+                          [&](const live::Link& l) { return l.target == t && l.source == s; });
+            if (forecast_overlap(scans[s], scans[t], tree_of(t), initial,
+                                 config.link_fine.overlap_distance_m) <
+                config.min_link_overlap_fraction) {
+                continue;
+            }
+            FineRegistrationResult fine = register_fine(scans[s].cloud, scans[t].cloud, tree_of(t),
+                                                        initial, config.link_fine);
+            if (!usable_link(fine, config)) continue;
+            link_rms_m.push_back(fine.rms_m);
+            links.push_back({.target = t,
+                             .source = s,
+                             .correspondences = compress_link(std::move(fine.correspondences),
+                                                              fine.T_target_source,
+                                                              config.max_link_correspondences)});
+            ++added;
+        }
+    }
+    return added;
+}
+
+std::vector<PoseUpdate> LiveRegistrar::State::refine_groups() {
+    std::vector<PoseUpdate> updates;
+    for (const int g : groups()) {
+        std::vector<std::size_t> group_scans = members(g);
+        std::reverse(group_scans.begin(), group_scans.end());  // Ascending: first scan fixed.
+        std::map<std::size_t, std::size_t> local;
+        std::vector<Pose> poses;
+        for (std::size_t i : group_scans) {
+            local[i] = poses.size();
+            poses.push_back(scans[i].T_group_scan);
+        }
+        std::vector<MultiviewLink> group_links;
+        for (const live::Link& l : links) {
+            if (!local.contains(l.target) || !local.contains(l.source)) continue;
+            group_links.push_back({.target_index = local[l.target],
+                                   .source_index = local[l.source],
+                                   .correspondences = l.correspondences});
+        }
+        if (poses.size() < 2 || group_links.empty()) continue;
+        MultiviewRefinementConfig mv = config.multiview;
+        mv.fixed_scan_index = 0;
+        const MultiviewRefinementResult refined = refine_multiview(poses, group_links, mv);
+        const bool usable = refined.status == MultiviewStatus::kConverged ||
+                            refined.status == MultiviewStatus::kMaxRounds ||
+                            refined.status == MultiviewStatus::kDisconnected;
+        if (!usable) continue;
+        ++report.groups_refined;
+        for (std::size_t m = 0; m < group_scans.size(); ++m) {
+            ScanEntry& e = scans[group_scans[m]];
+            const PoseDifference d = pose_difference(e.T_group_scan, refined.T_world_scan[m]);
+            if (d.rotation_deg < 1e-6 && d.translation_m < 1e-9) continue;
+            e.T_group_scan = refined.T_world_scan[m];
+            updates.push_back({.seq = e.seq, .group = g, .T_group_scan = e.T_group_scan});
+        }
+    }
+    return updates;
+}
+
+PointCloud LiveRegistrar::State::group_cloud(int group) const {
+    PointCloud merged;
+    for (std::size_t i : members(group))
+        append(merged, transformed(scans[i].cloud, scans[i].T_group_scan));
+    return voxel_downsample(merged, {.voxel_size_m = config.voxel_size_m});
+}
+
+Pose LiveRegistrar::State::refined_merge(int into, int from, const Pose& T_into_from) const {
+    // The voted transform agrees within the votes' tolerance (a centimetre): fine register
+    // the whole groups (stone only) so that the merged scans' links form at once.
+    const PointCloud target = group_cloud(into);
+    const PointCloud source = group_cloud(from);
+    if (target.empty() || source.empty()) return T_into_from;
+    const KdTree tree(target.positions);
+    const FineRegistrationResult fine =
+        register_fine(source, target, tree, T_into_from, config.fine);
+    const bool agrees =
+        live::poses_agree(T_into_from, fine.T_target_source, live::cloud_centroid(source),
+                          config.vote_rotation_deg, config.vote_displacement_m);
+    const live::VerificationLimits absolute{
+        .max_rms_m = config.max_rms_voxel_factor * config.voxel_size_m,
+        .max_normal_deviation_deg = config.max_normal_deviation_deg};
+    LiveRegistrationConfig relaxed = config;
+    relaxed.min_overlap_fraction = config.min_link_overlap_fraction;  // Other faces too.
+    if (!agrees || !live::rejection(fine, relaxed, absolute).empty()) return T_into_from;
+    return orthonormalized(fine.T_target_source);
+}
+
+std::vector<PoseUpdate> LiveRegistrar::State::merge(int into, int from,
+                                                    const Pose& T_into_from_voted) {
+    const Pose T_into_from = refined_merge(into, from, T_into_from_voted);
+    std::vector<PoseUpdate> updates;
+    for (ScanEntry& e : scans) {
+        if (e.group != from) continue;
+        e.group = into;
+        e.T_group_scan = orthonormalized(T_into_from * e.T_group_scan);
+        if (live::active(e))
+            updates.push_back({.seq = e.seq, .group = into, .T_group_scan = e.T_group_scan});
+    }
+    ++report.merges;
+    return updates;
+}
+
+std::vector<PoseUpdate> LiveRegistrar::State::merge_groups() {
+    const std::vector<int> ids = groups();
+    std::size_t attempts = 0;
+    for (std::size_t b = 1; b < ids.size(); ++b) {
+        for (std::size_t a = 0; a < b; ++a) {
+            // Across a turn-over single scans match by look-alike poses that fit only a few
+            // times worse than the right one: without the session's RMS gate (enough
+            // links), their votes can carry a wrong merge (seen on the demo session when
+            // the capture kept the background too busy for links). Wait for the gate.
+            if (group_side(ids[a]) != group_side(ids[b]) && !std::isfinite(rms_gate())) continue;
+            live::PoseVotes& box = merge_votes
+                                       .try_emplace({ids[a], ids[b]}, config.vote_rotation_deg,
+                                                    config.vote_displacement_m)
+                                       .first->second;
+            for (std::size_t j : members(ids[b])) {
+                for (std::size_t i : members(ids[a])) {
+                    if (attempts >= config.max_merge_attempts) return {};
+                    if (!merge_tried.insert({i, j}).second) continue;
+                    ++attempts;
+                    const GlobalRegistrationResult g = register_global(
+                        scans[j].cloud, features(j), scans[i].cloud, features(i), config.global);
+                    for (const HypothesisOutcome& h : g.hypotheses) {
+                        if (!h.verified || h.fine.rms_m > rms_gate()) continue;
+                        const Pose T_a_b = scans[i].T_group_scan * h.fine.T_target_source *
+                                           scans[j].T_group_scan.inverse();
+                        box.add(T_a_b, i * scans.size() + j,
+                                scans[j].T_group_scan * scans[j].centroid_m);
+                    }
+                    if (const auto T = box.winner(config.min_votes, config.vote_ratio)) {
+                        return merge(ids[a], ids[b], *T);
+                    }
+                }
+            }
+        }
+    }
+    return {};
+}
+
+std::vector<PoseUpdate> LiveRegistrar::refine(const std::function<bool()>& interrupt) {
+    const Clock::time_point start = Clock::now();
+    State& s = *state_;
+    s.report = {};
+    s.interrupt = interrupt;
+    std::map<std::int64_t, PoseUpdate> changed;
+    for (const PoseUpdate& u : s.merge_by_sequence()) changed[u.seq] = u;
+    if (s.report.merges == 0 && !s.interrupted())
+        for (const PoseUpdate& u : s.merge_whole_groups()) changed[u.seq] = u;
+    if (s.report.merges == 0 && !s.interrupted())
+        for (const PoseUpdate& u : s.merge_groups()) changed[u.seq] = u;
+    std::size_t described = 0;
+    for (std::size_t i = 0;
+         i < s.scans.size() && described < s.config.max_features_per_refine && !s.interrupted();
+         ++i) {
+        if (!live::active(s.scans[i]) || s.scans[i].features) continue;
+        s.features(i);
+        ++described;
+    }
+    if (!s.interrupted()) s.report.new_links = s.make_links();
+    // An interrupted round leaves the solve to the next call: the new scan comes first.
+    if (!s.interrupted())
+        for (const PoseUpdate& u : s.refine_groups()) changed[u.seq] = u;
+    s.interrupt = {};
+    s.report.time_s = seconds_since(start);
+    std::vector<PoseUpdate> out;
+    for (const auto& [seq, u] : changed) out.push_back(u);
+    return out;
+}
+
+}  // namespace anascan::acquisition

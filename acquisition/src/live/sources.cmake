@@ -1,0 +1,11 @@
+# acquisition/live: on-site registration of each new scan (the live registrar).
+list(APPEND ANASCAN_ACQUISITION_SOURCES
+    src/live/hypotheses.cpp
+    src/live/json.cpp
+    src/live/live_registration.cpp
+    src/live/merge.cpp
+    src/live/prepare.cpp
+    src/live/refine.cpp
+    src/live/sequence_merge.cpp
+    src/live/votes.cpp
+)

@@ -1,0 +1,211 @@
+#pragma once
+// Internal state and steps of LiveRegistrar (live_registration*.cpp).
+#include <chrono>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "anascan/acquisition/live/live_registration.hpp"
+#include "anascan/processing/core/stopwatch.hpp"
+#include "anascan/processing/spatial/kdtree.hpp"
+#include "live/votes.hpp"
+
+namespace anascan::acquisition {
+namespace live {
+
+/// The reduced copy of one scan and what the session knows of it.
+struct ScanEntry {
+    std::int64_t seq = 0;
+    PointCloud cloud;  ///< Stone only, down-sampled, unit normals toward the sensor.
+    Eigen::Vector3d sensor_origin_m = Eigen::Vector3d::Zero();  ///< Scan frame.
+    Eigen::Vector3d centroid_m = Eigen::Vector3d::Zero();       ///< Scan frame.
+    double radius_m = 0.0;                 ///< Of the bounding sphere around the centroid.
+    std::optional<ScanFeatures> features;  ///< Computed on demand, kept.
+    int side = 0;  ///< Turn-overs the operator marked before this scan (which side is up).
+    std::shared_ptr<const KdTree> tree;  ///< Over cloud.positions, built on first use.
+    bool registered = false;
+    bool excluded = false;
+    int group = -1;
+    Pose T_group_scan = Pose::Identity();
+};
+
+/// Registered and not excluded: part of its group's model.
+inline bool active(const ScanEntry& e) { return e.registered && !e.excluded; }
+
+/// A multi-view link between two entries (indices into State::scans).
+struct Link {
+    std::size_t target = 0, source = 0;
+    std::vector<FineCorrespondence> correspondences;
+};
+
+/// Outcome of one verified (or not) fine registration.
+struct Verified {
+    FineRegistrationResult fine;
+    std::string rejection;  ///< Empty when verified.
+};
+
+/// The reduced copy of a new scan, or why it cannot be used.
+struct Prepared {
+    ScanEntry entry;
+    std::string problem;
+};
+
+/// Reduces a scan (see LiveRegistrationConfig): the stone-only down-sampled cloud.
+Prepared prepare_scan(LiveScanInput input, const LiveRegistrationConfig& config);
+
+/// The merged model a hypothesis was last verified against, with its k-d tree.
+struct ModelCache {
+    int group = -1;
+    std::vector<std::size_t> scans;  ///< Entries merged, in order.
+    std::vector<Pose> poses;         ///< Their poses when merged.
+    PointCloud cloud;                ///< Group frame.
+    std::unique_ptr<KdTree> tree;    ///< Over cloud.positions.
+};
+
+/// The session's current verification bounds (see LiveRegistrationConfig).
+struct VerificationLimits {
+    double max_rms_m = 0.0;
+    double max_normal_deviation_deg = 0.0;
+};
+
+/// Why a fine registration is not acceptable (issue 3's verification); empty when it is.
+std::string rejection(const FineRegistrationResult& fine, const LiveRegistrationConfig& config,
+                      const VerificationLimits& limits);
+
+/// How far a prediction's refined pose may be from it.
+enum class CorrectionCheck {
+    kNone,        ///< Not a prediction (a global pose): no bound.
+    kBound,       ///< LiveRegistrationConfig::max_prior_correction_* (group merges).
+    kBoundOrFit,  ///< Also larger ones that fit like the session (max_fitting_correction_*).
+};
+
+/// The operator's predicted poses from the poses of the scans next to it in the capture order
+/// (`recent[0]` the nearest, at most 3 used): constant velocity ("motion-prior"), double step
+/// ("motion-prior-2", elevations alternating), "previous-pose". Time-symmetric: scans after
+/// it, nearest first, predict it backwards.
+std::vector<std::pair<std::string, Pose>> motion_priors(const std::vector<Pose>& recent);
+
+/// Mean of a cloud's points (its frame; zero when empty).
+Eigen::Vector3d cloud_centroid(const PointCloud& cloud);
+
+}  // namespace live
+
+struct LiveRegistrar::State {
+    LiveRegistrationConfig config;
+    std::vector<live::ScanEntry> scans;  ///< In add order (usable scans only).
+    std::map<std::int64_t, std::size_t> index_of_seq;
+    std::vector<live::Link> links;
+    std::optional<InvariantRadii> radii_m;  ///< Fixed at the first features.
+    std::optional<SaliencyLevels> levels;   ///< Fixed at the first features.
+    int next_group = 0;
+    bool awaiting_turn = false;  ///< Turned over: no cheap hypothesis until one is placed.
+    std::set<std::pair<std::size_t, std::size_t>> merge_tried;  ///< Global pairs tried (a, b).
+    /// Link pairs tried (t, s) and the relative pose T_t_s they were tried from: tried again
+    /// when the poses moved (see LiveRegistrationConfig::link_retry_m).
+    std::map<std::pair<std::size_t, std::size_t>, Pose> link_tried;
+    LiveRefineReport report;
+    std::function<bool()> interrupt;  ///< Set during refine(); see LiveRegistrar::refine.
+    /// True (and noted in the report) when refine() should stop: a new scan is waiting.
+    bool interrupted() {
+        if (!report.interrupted && interrupt && interrupt()) report.interrupted = true;
+        return report.interrupted;
+    }
+    std::vector<double> link_rms_m;      ///< RMS of every multi-view link (the session's noise).
+    std::vector<double> accepted_rms_m;  ///< Of every accepted add() decision.
+    std::vector<double> accepted_normal_deviation;  ///< Degrees, same.
+    /// Prepares and places a scan (add: `newest`; reregister: not, so no operator priors).
+    LiveDecision place(LiveScanInput scan, bool newest, std::optional<int> side = std::nullopt);
+    /// Verification bounds from the config and the session's accepted figures.
+    live::VerificationLimits limits() const;
+    /// Largest RMS a global hypothesis may have to count (see global_rms_median_factor).
+    double rms_gate() const;
+    mutable std::string last_prior;  ///< The motion prior that verified last.
+    /// Votes for the transform between two groups (lower id first), across refine() calls.
+    std::map<std::pair<int, int>, live::PoseVotes> merge_votes;
+
+    /// Registered, not excluded entries of `group`, most recent first.
+    std::vector<std::size_t> members(int group) const;
+    /// Groups with a registered, not excluded scan, ascending.
+    std::vector<int> groups() const;
+    /// Features of entry i (computed at the session's radii and levels on first use).
+    const ScanFeatures& features(std::size_t i);
+
+    mutable live::ModelCache model_cache;
+    /// The merged model of `candidates` (group frame), cached while they and their poses stay.
+    const live::ModelCache& model_of(int group, const std::vector<std::size_t>& candidates) const;
+    /// Fine registration of `entry` from `T_group_scan` against the group's model. For a
+    /// prediction (`check` not kNone) the refined pose is also rejected when it moved too
+    /// far from it, checked before the slide probes (a wrong basin is not worth probing)
+    /// and after them.
+    live::Verified verify_hypothesis(
+        const live::ScanEntry& entry, int group, const Pose& T_group_scan,
+        live::CorrectionCheck check = live::CorrectionCheck::kNone) const;
+    /// Why a pose refined from the prediction `T_prior` cannot come from it (moved too far,
+    /// so the fine registration fell into another minimum); empty when it can.
+    std::string correction_problem(const live::ScanEntry& entry, const Pose& T_prior,
+                                   const FineRegistrationResult& fine,
+                                   live::CorrectionCheck check) const;
+    /// Restarts along the weakest direction of `v` (see LiveRegistrationConfig::slide_probe_m).
+    void probe_slides(const live::ScanEntry& entry, const PointCloud& model, const KdTree& tree,
+                      live::Verified& v) const;
+    /// The cheap hypotheses (motion prior, previous pose), in order; appends attempts.
+    std::optional<live::Verified> try_cheap(const live::ScanEntry& entry, int& group,
+                                            std::string& method, LiveDecision& decision) const;
+    /// The operator's predicted poses of a new scan (motion priors, previous pose) in the
+    /// group of the latest registered scan (set in `group`); none after a turn-over.
+    std::vector<std::pair<std::string, Pose>> priors(std::int64_t seq, int& group) const;
+    /// A globally registered pose: a verified pose near a prior, else one that several
+    /// target scans vote for (or the only target's success).
+    std::optional<Pose> global_pose(std::size_t entry_index, int& group, LiveDecision& decision);
+    /// Global registration against registered scans of every group, most recent first.
+    std::optional<live::Verified> try_global(std::size_t entry_index, int& group,
+                                             LiveDecision& decision);
+
+    /// Multi-view refinement machinery (live_registration_refine.cpp).
+    std::size_t make_links();
+    std::vector<PoseUpdate> refine_groups();
+    std::vector<PoseUpdate> merge_groups();
+    /// Group merges by global registration of the whole groups' clouds under the up
+    /// constraint (live_registration_merge.cpp).
+    std::vector<PoseUpdate> merge_whole_groups();
+    /// The pose to merge two groups on from their whole-group registration: the verified
+    /// hypothesis of least RMS, within the groups' RMS gate, fitting clearly better than
+    /// every other verified pose (distinct at the source group's centroid); else none.
+    std::optional<Pose> clear_whole_group_match(const GlobalRegistrationResult& g,
+                                                const Eigen::Vector3d& source_centroid_m) const;
+    /// Mean viewing direction of a group's scans (its frame): the stone's up; none for a
+    /// group of too few scans or of views that do not agree on a side.
+    std::optional<Eigen::Vector3d> group_up(int group) const;
+    int group_side(int group) const;  ///< Side of its most recent scan.
+    /// Up kept (same side) or turned down (after a turn-over) between two groups, if known.
+    std::optional<AxisConstraint> up_constraint(int target, int source) const;
+    int turn_count = 0;  ///< Turn-overs marked so far.
+    /// Group merges by the capture order (live_registration_sequence_merge.cpp): a scan whose
+    /// neighbour in the order lies in another group of the same side is predicted there by
+    /// the motion priors (run backwards when the neighbour comes after it) and verified.
+    std::vector<PoseUpdate> merge_by_sequence();
+    /// The operator's predicted poses of entry `i` in group `group` from the entries next to
+    /// it in the capture order (`direction` +1: those after it, run backwards; -1: before).
+    std::vector<std::pair<std::string, Pose>> sequence_priors(std::size_t i, int group,
+                                                              int direction) const;
+    /// Sequence merges tried: (entry, direction) and the other group's scans then.
+    std::map<std::pair<std::size_t, int>, std::size_t> sequence_merge_tried;
+    /// Group pairs tried whole (lower id first) and the smaller and larger group's scans then.
+    std::map<std::pair<int, int>, std::pair<std::size_t, std::size_t>> whole_merge_tried;
+    /// The group's stone-only clouds in its frame, merged and voxel down-sampled.
+    PointCloud group_cloud(int group) const;
+    /// The voted transform between two groups refined by fine registration of the groups'
+    /// clouds (unchanged when that does not verify or leaves the votes' tolerance).
+    Pose refined_merge(int into, int from, const Pose& T_into_from) const;
+    /// Moves every scan of group `from` into `into` (T_into_from); returns the updates.
+    std::vector<PoseUpdate> merge(int into, int from, const Pose& T_into_from);
+};
+
+}  // namespace anascan::acquisition

@@ -1,0 +1,35 @@
+#pragma once
+// The state behind SessionStore (shared by the session_store*.cpp files).
+#include <filesystem>
+#include <mutex>
+
+#include "anascan/acquisition/store/session_store.hpp"
+#include "store/db.hpp"
+
+namespace anascan::acquisition {
+
+struct SessionStore::Impl {
+    std::filesystem::path dir;
+    bool read_only = false;
+    mutable std::mutex mutex;  ///< Around `db`.
+    std::mutex save_mutex;     ///< Serialises save_scan (seq allocation + file + row).
+    db::Connection db;
+    int lock_fd = -1;  ///< flock'ed DIR/session.lock of a writable store.
+    ~Impl();
+};
+
+/// Error for a write attempted on a read-only store.
+Error read_only_error(const std::filesystem::path& dir);
+
+/// Column list and reader of a `scans` row (+ whether a turnover precedes it).
+extern const char* const kScanColumns;
+ScanRecord read_scan_row(const db::Statement& row);
+
+/// Moves `DIR/file` (relative) to `DIR/recovered/` under a free name; returns the new path.
+Expected<std::filesystem::path> move_to_recovered(const std::filesystem::path& dir,
+                                                  const std::string& file);
+
+/// "DIR: what: the message" for errors not coming from SQLite.
+Error session_error(const std::filesystem::path& dir, ErrorCode code, std::string_view message);
+
+}  // namespace anascan::acquisition

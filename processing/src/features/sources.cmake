@@ -1,0 +1,5 @@
+# processing/features: integral-invariant descriptors and feature patches (paper §4.2.1).
+list(APPEND ANASCAN_PROCESSING_SOURCES
+    src/features/feature_patches.cpp
+    src/features/integral_invariants.cpp
+)
