@@ -11,7 +11,7 @@ seed=${1:?usage: $0 SEED [BUILD_DIR]}
 here=$(cd "$(dirname "$0")/.." && pwd)
 build=${2:-$here/build}
 anascan=$build/acquisition/anascan
-data=$here/../shared/data/stanford-bunny-range-scans/data
+data=${ANASCAN_SHARED_DATA_DIR:-$here/../shared/data}/stanford-bunny-range-scans/data
 out=/tmp/anascan-bunny-$seed
 mkdir -p "$out"
 mapfile -t order < <("$anascan" -q sim move-scans "$data/bun.conf" --seed "$seed" --out "$out")
