@@ -315,6 +315,7 @@ void finish(detail::PreparedScans& prepared, const detail::PoseGraph& graph,
     place_scans(graph, result);
     detail::warn_identical_scans(prepared, result);
     detail::warn_sliding_scans(config, result);
+    detail::warn_unconfirmed_scans(result);
     result.cloud_reloads = prepared.store.reload_count();
     result.spill_error = prepared.spill_error;
 }
