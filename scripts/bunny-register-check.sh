@@ -2,8 +2,9 @@
 # Registers the ten Stanford bunny scans after moving each by a random rigid transform
 # (seed SEED) and compares the poses with bun.conf's, moved likewise (DIR/truth.conf).
 #   scripts/bunny-register-check.sh SEED [BUILD_DIR]
-# Writes to /tmp/anascan-bunny-SEED/: the moved scans (with normals toward the scanner,
-# estimated before the move), truth.conf, poses.conf, stats.json. Exit status: that of
+# Writes to /tmp/anascan-bunny-SEED/ (prefix $ANASCAN_BUNNY_OUT): the moved scans (plain x y z points: no normals, no
+# sensor position, frames unknown), truth.conf, poses.conf, stats.json. The shared data
+# folder is $ANASCAN_SHARED_DATA_DIR (default ../shared/data). Exit status: that of
 # `anascan eval --at-centroid` with limits of 0.5 deg and 1 mm (translation measured at each
 # scan's centroid: the moved frames' origins lie up to ~0.6 m from the data).
 set -euo pipefail
@@ -11,8 +12,8 @@ seed=${1:?usage: $0 SEED [BUILD_DIR]}
 here=$(cd "$(dirname "$0")/.." && pwd)
 build=${2:-$here/build}
 anascan=$build/acquisition/anascan
-data=$here/../shared/data/stanford-bunny-range-scans/data
-out=/tmp/anascan-bunny-$seed
+data=${ANASCAN_SHARED_DATA_DIR:-$here/../shared/data}/stanford-bunny-range-scans/data
+out=${ANASCAN_BUNNY_OUT:-/tmp/anascan-bunny}-$seed
 mkdir -p "$out"
 mapfile -t order < <("$anascan" -q sim move-scans "$data/bun.conf" --seed "$seed" --out "$out")
 scans=()

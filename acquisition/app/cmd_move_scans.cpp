@@ -1,7 +1,8 @@
 // anascan sim move-scans IN.conf --seed S --out DIR (hidden): copies of the scans of a
-// .conf, each moved by a random rigid transform (uniform rotation, up to 0.5 m translation),
-// with normals toward (0,0,1) m in the original frames, and DIR/truth.conf with the moved
-// files' true poses, for registration checks. Prints the file names shuffled, one a line.
+// .conf, each moved by a random rigid transform (uniform rotation, up to 0.5 m translation)
+// and written as plain points (x y z only: no normals, no sensor position, as Open3D or
+// CloudCompare export them), and DIR/truth.conf with the moved files' true poses, for
+// registration checks. Prints the file names shuffled, one a line.
 #include <spdlog/spdlog.h>
 
 #include <Eigen/Geometry>
@@ -10,7 +11,6 @@
 #include <filesystem>
 #include <random>
 
-#include "anascan/processing/cleaning/normals.hpp"
 #include "anascan/processing/evaluation/pose_sampling.hpp"
 #include "anascan/processing/io/ply.hpp"
 #include "anascan/processing/io/stanford_conf.hpp"
@@ -28,6 +28,16 @@ struct MoveOptions {
     std::string out_dir;
 };
 
+/// The cloud with its points relative to zero: a plain export carries no frame origin (ours
+/// would be where the original frame's origin moved to).
+PointCloud without_origin(PointCloud cloud) {
+    for (Eigen::Vector3f& p : cloud.positions) {
+        p = (cloud.origin_m + p.cast<double>()).cast<float>();
+    }
+    cloud.origin_m.setZero();
+    return cloud;
+}
+
 void run_move(const MoveOptions& o) {
     auto conf = io::read_conf(o.conf);
     if (!conf) fail_command(conf.error());
@@ -41,16 +51,12 @@ void run_move(const MoveOptions& o) {
     for (const io::ConfEntry& entry : conf->entries) {
         auto cloud = load_ply_cloud((fs::path(o.conf).parent_path() / entry.file).string());
         if (!cloud) fail_command(cloud.error());
-        // The sensor position is not known after the move, so the normals are estimated and
-        // oriented toward it (0,0,1 m, the Cyberware convention) before, as a scanner that
-        // writes normals would; `register` then uses the PLY's own normals.
-        if (!cloud->has_normals()) {
-            estimate_normals(*cloud, {});
-            orient_toward(*cloud, Eigen::Vector3f(0.0f, 0.0f, 1.0f));
-        }
+        // Plain points: normals of the original frame would carry the side the scanner saw
+        // from, which a moved file's reader cannot know.
+        cloud->normals.clear();
         const fs::path out = fs::path(o.out_dir) / fs::path(entry.file).filename();
         const Pose T_moved_scan = sample_random_pose(rng, 0.5);
-        auto ok = io::write_ply(out, transformed(*cloud, T_moved_scan));
+        auto ok = io::write_ply(out, without_origin(transformed(*cloud, T_moved_scan)));
         if (!ok) fail_command(ok.error());
         names.push_back(fs::path(entry.file).filename().string());
         truth.entries.push_back({names.back(), entry.T_world_scan * T_moved_scan.inverse()});

@@ -5,4 +5,5 @@ list(APPEND ANASCAN_PROCESSING_SOURCES
     src/cleaning/normals_solve.cpp
     src/cleaning/outlier_removal.cpp
     src/cleaning/plane_removal.cpp
+    src/cleaning/view_side.cpp
 )

@@ -5,6 +5,7 @@
 #include <string>
 #include <utility>
 
+#include "anascan/processing/cleaning/view_side.hpp"
 #include "anascan/processing/features/integral_invariants.hpp"
 #include "anascan/processing/spatial/voxel_grid.hpp"
 #include "registration/batch/steps.hpp"
@@ -75,13 +76,11 @@ std::size_t prepare_scan(PointCloud& cloud, const std::optional<Eigen::Vector3d>
     remove_non_finite(cloud);
     if (cloud.empty()) return 0;
     if (!cloud.has_normals()) {
-        NormalEstimationConfig normals = config.normals;
-        normals.keep_graph = !sensor_origin_m;  // orient_consistently reuses it.
-        NormalEstimationResult estimated = estimate_normals(cloud, normals);
+        estimate_normals(cloud, config.normals);
         if (sensor_origin_m) {
             orient_toward(cloud, (*sensor_origin_m - cloud.origin_m).cast<float>());
         } else {
-            orient_consistently(cloud, estimated.graph);
+            orient_as_range_scan(cloud, config.view_side);
         }
     }
     drop_points_without_normal(cloud);

@@ -91,6 +91,10 @@ void warn_identical_scans(PreparedScans& scans, ScanRegistrationResult& result);
 /// direction (ScanRegistrationConfig::sliding_link_max_eigenvalue_ratio).
 void warn_sliding_scans(const ScanRegistrationConfig& config, ScanRegistrationResult& result);
 
+/// Adds a warning to every placed scan (of three or more) kept by fewer than two links:
+/// no second scan confirms its pose, so a look-alike fit would go unnoticed.
+void warn_unconfirmed_scans(ScanRegistrationResult& result);
+
 /// Descriptors and patches of every usable scan (features stage). In memory: descriptors
 /// of all scans, saliency levels pooled over all sites. Spilling: two passes, descriptors
 /// on disk in between, levels pooled over at most `max_level_sites_per_scan` sites a scan.

@@ -175,5 +175,31 @@ TEST(SlideProbes, AScanWhoseLinksAllEndStillSlidingGetsAWarning) {
     EXPECT_EQ(result.scans[2].warning, "");
 }
 
+// A placed scan kept by one link only (of three or more placed scans) is warned about: no
+// second scan confirms its pose; a closed loop confirms every scan; dropped links do not
+// count.
+TEST(SlideProbes, AScanThatNoSecondScanConfirmsGetsAWarning) {
+    using enum FineRegistrationStatus;
+    ScanRegistrationResult result;
+    for (int i = 0; i < 3; ++i) {
+        result.scans.push_back({.name = "scan " + std::to_string(i), .placed = true});
+    }
+    result.placed_count = 3;
+    result.pairs = {link(1, 0, kConverged, 0.5), link(2, 1, kConverged, 0.5)};
+    detail::warn_unconfirmed_scans(result);
+    EXPECT_NE(result.scans[0].warning.find("one link only"), std::string::npos);
+    EXPECT_EQ(result.scans[1].warning, "");
+    EXPECT_NE(result.scans[2].warning.find("one link only"), std::string::npos);
+
+    for (ScanOutcome& scan : result.scans) scan.warning.clear();
+    result.pairs.push_back(link(2, 0, kConverged, 0.5));
+    detail::warn_unconfirmed_scans(result);
+    for (const ScanOutcome& scan : result.scans) EXPECT_EQ(scan.warning, "") << scan.name;
+
+    result.pairs.back().link_dropped = true;
+    detail::warn_unconfirmed_scans(result);
+    EXPECT_NE(result.scans[2].warning.find("one link only"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace anascan

@@ -45,6 +45,7 @@
 #include <vector>
 
 #include "anascan/processing/cleaning/normals.hpp"
+#include "anascan/processing/cleaning/view_side.hpp"
 #include "anascan/processing/core/expected.hpp"
 #include "anascan/processing/core/point_cloud.hpp"
 #include "anascan/processing/core/pose.hpp"
@@ -61,7 +62,8 @@ struct ScanInput {
     /// them, are kept as they are (they must point out of the solid, e.g. toward the sensor).
     std::function<Expected<PointCloud>()> load;
     /// Sensor position in the scan's own frame (metres), used to orient estimated normals;
-    /// without it normals are oriented consistently (outward on a closed part).
+    /// without it they are oriented as seen from the side the scan shows its convex face to
+    /// (orient_as_range_scan: the input is one range scan).
     std::optional<Eigen::Vector3d> sensor_origin_scan_m;
     /// True when sensor_origin_scan_m is where the scan was taken from (a session's record,
     /// a simulation, an explicit `--sensor-origin`), not a guess for orienting normals: then
@@ -73,6 +75,9 @@ struct ScanInput {
 /// Settings of `register_scans`. Callers use designated initialisers.
 struct ScanRegistrationConfig {
     NormalEstimationConfig normals{};  ///< For scans loaded without normals.
+    /// Orienting estimated normals without a sensor position: the side each scan was seen
+    /// from (orient_as_range_scan).
+    ViewSideConfig view_side{};
     /// Prepared clouds are voxel down-sampled to this edge length (metres); 0 keeps them
     /// whole. Global and fine registration sample the clouds themselves.
     double voxel_size_m = 0.0;
@@ -272,7 +277,7 @@ ScanRegistrationResult register_scans(const std::vector<ScanInput>& scans,
 
 /// Preparation of one loaded cloud: drops non-finite points; when the cloud has no normals
 /// estimates them and orients them toward `sensor_origin_scan_m` (scan frame, metres) or,
-/// without it, consistently; drops points left without a finite unit normal; down-samples
+/// without it, as seen from the estimated side (`orient_as_range_scan`); drops points left without a finite unit normal; down-samples
 /// when `config.voxel_size_m` > 0. Returns the number of points kept.
 std::size_t prepare_scan(PointCloud& cloud, const std::optional<Eigen::Vector3d>& sensor_origin_m,
                          const ScanRegistrationConfig& config);
