@@ -21,18 +21,19 @@ std::string when(std::optional<double> latency_s) {
 
 std::string decision_message(const LiveDecision& decision, std::optional<double> latency_s) {
     char text[512];
-    if (decision.registered && (decision.method == "first" || decision.method == "new-group"))
-        std::snprintf(
-            text, sizeof(text), "registered scan %lld: opens group %d (%s), %s",
-            static_cast<long long>(decision.seq), decision.group,
-            decision.method == "first" ? "the session's frame" : "matches no earlier scan yet",
-            when(latency_s).c_str());
+    if (decision.registered &&
+        (decision.method == LiveMethod::kFirst || decision.method == LiveMethod::kNewGroup))
+        std::snprintf(text, sizeof(text), "registered scan %lld: opens group %d (%s), %s",
+                      static_cast<long long>(decision.seq), decision.group,
+                      decision.method == LiveMethod::kFirst ? "the session's frame"
+                                                            : "matches no earlier scan yet",
+                      when(latency_s).c_str());
     else if (decision.registered)
         std::snprintf(text, sizeof(text),
                       "registered scan %lld: group %d by %s, RMS %.3f mm, overlap %.0f %%, %s",
-                      static_cast<long long>(decision.seq), decision.group, decision.method.c_str(),
-                      decision.rms_m * 1e3, decision.overlap_fraction * 100.0,
-                      when(latency_s).c_str());
+                      static_cast<long long>(decision.seq), decision.group,
+                      to_string(decision.method).data(), decision.rms_m * 1e3,
+                      decision.overlap_fraction * 100.0, when(latency_s).c_str());
     else
         std::snprintf(text, sizeof(text),
                       "scan %lld NOT registered: %s — check that the stone is in view and "
@@ -142,7 +143,7 @@ void CaptureSession::Impl::record_decision(const SavedScan& saved, const LiveDec
           .seq = saved.seq,
           .message = decision_message(decision, live_latency_s),
           .group = decision.group,
-          .method = decision.method,
+          .method = std::string(to_string(decision.method)),
           .rms_m = decision.rms_m,
           .overlap_fraction = decision.overlap_fraction,
           .latency_s = latency_s});

@@ -23,8 +23,9 @@ Eigen::Vector3d sensor_in_group(const ScanEntry& entry, const Pose& T_group_scan
     return T_group_scan * entry.sensor_origin_m;
 }
 
-LiveAttempt attempt_of(std::string method, const Verified& v, std::int64_t target_seq, int group) {
-    return {.method = std::move(method),
+LiveAttempt attempt_of(LiveHypothesis method, const Verified& v, std::int64_t target_seq,
+                       int group) {
+    return {.method = method,
             .status = v.rejection.empty() ? "verified" : v.rejection,
             .target_seq = target_seq,
             .target_group = group,
@@ -41,37 +42,38 @@ std::string LiveRegistrar::State::correction_problem(const ScanEntry& entry, con
     const double rotation_deg = rotation_angle_deg(T_prior.inverse() * fine.T_target_source);
     const double moved_m =
         (T_prior * entry.centroid_m - fine.T_target_source * entry.centroid_m).norm();
-    if (rotation_deg <= config.max_prior_correction_deg &&
-        moved_m <= config.max_prior_correction_m) {
+    if (rotation_deg <= config.hypotheses.max_prior_correction_deg &&
+        moved_m <= config.hypotheses.max_prior_correction_m) {
         return {};
     }
-    const bool within_fitting_bounds = rotation_deg <= config.max_fitting_correction_deg &&
-                                       moved_m <= config.max_fitting_correction_m;
+    const bool within_fitting_bounds =
+        rotation_deg <= config.hypotheses.max_fitting_correction_deg &&
+        moved_m <= config.hypotheses.max_fitting_correction_m;
     if (check == live::CorrectionCheck::kBoundOrFit && within_fitting_bounds &&
-        accepted_rms_m.size() >= config.min_accepted_for_limits &&
-        fine.rms_m <= config.fitting_correction_factor * upper_median(accepted_rms_m) &&
+        accepted_rms_m.size() >= config.verify.min_accepted_for_limits &&
+        fine.rms_m <= config.hypotheses.fitting_correction_factor * upper_median(accepted_rms_m) &&
         fine.normal_deviation_deg.value_or(0.0) <=
-            config.fitting_correction_factor * upper_median(accepted_normal_deviation)) {
+            config.hypotheses.fitting_correction_factor * upper_median(accepted_normal_deviation)) {
         return {};
     }
     return "moved too far from the hypothesis";
 }
 
-std::vector<std::pair<std::string, Pose>> live::motion_priors(const std::vector<Pose>& recent) {
+std::vector<live::Prior> live::motion_priors(const std::vector<Pose>& recent) {
     // Walking around the stone moves the sensor by a rotation about the stone's vertical
     // axis (world frame): repeat the last step (constant velocity), or the last double step
     // applied to the scan before last (elevations alternating between two heights).
-    std::vector<std::pair<std::string, Pose>> hypotheses;
+    std::vector<live::Prior> hypotheses;
     if (recent.empty()) return hypotheses;
     if (recent.size() >= 2) {
-        hypotheses.emplace_back("motion-prior",
+        hypotheses.emplace_back(LiveHypothesis::kMotionPrior,
                                 orthonormalized(recent[0] * recent[1].inverse() * recent[0]));
     }
     if (recent.size() >= 3) {
-        hypotheses.emplace_back("motion-prior-2",
+        hypotheses.emplace_back(LiveHypothesis::kMotionPrior2,
                                 orthonormalized(recent[0] * recent[2].inverse() * recent[1]));
     }
-    hypotheses.emplace_back("previous-pose", recent[0]);
+    hypotheses.emplace_back(LiveHypothesis::kPreviousPose, recent[0]);
     return hypotheses;
 }
 
@@ -81,14 +83,16 @@ void LiveRegistrar::State::probe_slides(const ScanEntry& entry, const PointCloud
     // weakest direction into another minimum: restart from a few shifts along it and keep
     // the verified pose with the largest overlap.
     const Eigen::Vector3d weak = v.fine.degeneracy.weakest_direction.tail<3>();
-    if (config.slide_probe_m <= 0.0 || weak.norm() < 0.7) return;
+    if (config.hypotheses.slide_probe_m <= 0.0 || weak.norm() < 0.7) return;
     const Pose T_found = v.fine.T_target_source;
     for (const double k : {-1.0, 1.0}) {
         const Pose T_start =
-            Eigen::Translation3d(k * config.slide_probe_m * weak.normalized()) * T_found;
-        FineRegistrationResult fine = register_fine(entry.cloud, model, tree, T_start, config.fine);
+            Eigen::Translation3d(k * config.hypotheses.slide_probe_m * weak.normalized()) * T_found;
+        FineRegistrationResult fine =
+            register_fine(entry.cloud, model, tree, T_start, config.hypotheses.fine);
         if (!live::rejection(fine, config, limits()).empty()) continue;
-        if (fine.overlap_fraction > v.fine.overlap_fraction + config.slide_overlap_margin) {
+        if (fine.overlap_fraction >
+            v.fine.overlap_fraction + config.hypotheses.slide_overlap_margin) {
             v.fine = std::move(fine);
         }
     }
@@ -115,19 +119,22 @@ const ScanFeatures& LiveRegistrar::State::features(std::size_t i) {
     ScanEntry& entry = scans[i];
     if (entry.features) return *entry.features;
     if (!radii_m) {
-        const bool automatic = std::all_of(config.radii_m.begin(), config.radii_m.end(),
-                                           [](double r) { return r == 0.0; });
+        const bool automatic =
+            std::all_of(config.global.radii_m.begin(), config.global.radii_m.end(),
+                        [](double r) { return r == 0.0; });
         radii_m = automatic ? radii_for_object_size_m(local_bounds(entry.cloud).extent().norm())
-                            : config.radii_m;
+                            : config.global.radii_m;
     }
-    IntegralInvariantResult invariants = describe_scan(entry.cloud, *radii_m, config.global);
+    IntegralInvariantResult invariants =
+        describe_scan(entry.cloud, *radii_m, config.global.registration);
     if (!levels && invariants.status == IntegralInvariantStatus::kOk) {
         const IntegralInvariantResult* const first[] = {&invariants};
-        levels = saliency_levels(first, config.global.patches);
+        levels = saliency_levels(first, config.global.registration.patches);
     }
     ScanFeatures f;
     if (levels && invariants.status == IntegralInvariantStatus::kOk) {
-        f.patches = extract_feature_patches(invariants, *levels, config.global.patches);
+        f.patches =
+            extract_feature_patches(invariants, *levels, config.global.registration.patches);
     }
     f.invariants = std::move(invariants);
     f.spacing_m = median_sample_spacing_m(entry.cloud);
@@ -167,7 +174,8 @@ live::Verified LiveRegistrar::State::verify_hypothesis(const ScanEntry& entry, i
         return (sensor_in_group(scans[a], scans[a].T_group_scan) - sensor).squaredNorm() <
                (sensor_in_group(scans[b], scans[b].T_group_scan) - sensor).squaredNorm();
     });
-    if (candidates.size() > config.model_scans) candidates.resize(config.model_scans);
+    if (candidates.size() > config.hypotheses.model_scans)
+        candidates.resize(config.hypotheses.model_scans);
     std::sort(candidates.begin(), candidates.end());  // The same set: the same cached model.
     Verified v;
     if (candidates.empty()) {
@@ -177,7 +185,7 @@ live::Verified LiveRegistrar::State::verify_hypothesis(const ScanEntry& entry, i
     const live::ModelCache& cache = model_of(group, candidates);
     const PointCloud& model = cache.cloud;
     const KdTree& tree = *cache.tree;
-    v.fine = register_fine(entry.cloud, model, tree, T_group_scan, config.fine);
+    v.fine = register_fine(entry.cloud, model, tree, T_group_scan, config.hypotheses.fine);
     v.rejection = live::rejection(v.fine, config, limits());
     const auto check_correction = [&] {
         if (check != live::CorrectionCheck::kNone && v.rejection.empty())
@@ -191,29 +199,29 @@ live::Verified LiveRegistrar::State::verify_hypothesis(const ScanEntry& entry, i
 }
 
 live::VerificationLimits LiveRegistrar::State::limits() const {
-    live::VerificationLimits out{.max_rms_m = config.max_rms_voxel_factor * config.voxel_size_m,
-                                 .max_normal_deviation_deg = config.max_normal_deviation_deg};
-    if (accepted_rms_m.size() < config.min_accepted_for_limits) return out;
-    out.max_rms_m =
-        std::min(out.max_rms_m, std::max(config.min_rms_limit_m, config.accepted_rms_median_factor *
-                                                                     upper_median(accepted_rms_m)));
-    out.max_normal_deviation_deg = std::min(
-        out.max_normal_deviation_deg,
-        std::max(config.min_normal_deviation_limit_deg,
-                 config.accepted_normal_median_factor * upper_median(accepted_normal_deviation)));
+    live::VerificationLimits out{
+        .max_rms_m = config.verify.max_rms_voxel_factor * config.prepare.voxel_size_m,
+        .max_normal_deviation_deg = config.verify.max_normal_deviation_deg};
+    if (accepted_rms_m.size() < config.verify.min_accepted_for_limits) return out;
+    out.max_rms_m = std::min(out.max_rms_m, std::max(config.verify.min_rms_limit_m,
+                                                     config.verify.accepted_rms_median_factor *
+                                                         upper_median(accepted_rms_m)));
+    out.max_normal_deviation_deg = std::min(out.max_normal_deviation_deg,
+                                            std::max(config.verify.min_normal_deviation_limit_deg,
+                                                     config.verify.accepted_normal_median_factor *
+                                                         upper_median(accepted_normal_deviation)));
     return out;
 }
 
 double LiveRegistrar::State::rms_gate() const {
-    if (link_rms_m.size() < config.min_links_for_rms_gate) {
+    if (link_rms_m.size() < config.global.min_links_for_rms_gate) {
         return std::numeric_limits<double>::infinity();
     }
-    return config.global_rms_median_factor * upper_median(link_rms_m);
+    return config.global.rms_median_factor * upper_median(link_rms_m);
 }
 
-std::vector<std::pair<std::string, Pose>> LiveRegistrar::State::priors(std::int64_t seq,
-                                                                       int& group) const {
-    std::vector<std::pair<std::string, Pose>> hypotheses;
+std::vector<live::Prior> LiveRegistrar::State::priors(std::int64_t seq, int& group) const {
+    std::vector<live::Prior> hypotheses;
     if (awaiting_turn) return hypotheses;
     // The latest registered scan's group is where the operator is working.
     std::optional<std::size_t> latest;
@@ -228,13 +236,13 @@ std::vector<std::pair<std::string, Pose>> LiveRegistrar::State::priors(std::int6
         recent.push_back(scans[i].T_group_scan);
     }
     hypotheses = live::motion_priors(recent);
-    if (hypotheses.size() == 3 && last_prior == "motion-prior-2")
+    if (hypotheses.size() == 3 && last_prior == LiveHypothesis::kMotionPrior2)
         std::swap(hypotheses[0], hypotheses[1]);
     return hypotheses;
 }
 
 std::optional<live::Verified> LiveRegistrar::State::try_cheap(const ScanEntry& entry, int& group,
-                                                              std::string& method,
+                                                              LiveMethod& method,
                                                               LiveDecision& decision) const {
     const auto hypotheses = priors(entry.seq, group);
     for (const auto& [name, T] : hypotheses) {
@@ -243,7 +251,8 @@ std::optional<live::Verified> LiveRegistrar::State::try_cheap(const ScanEntry& e
         decision.attempts.push_back(attempt_of(name, v, scans[members(group)[0]].seq, group));
         decision.attempts.back().time_s = seconds_since(start);  // Model, fine and probes.
         if (v.rejection.empty()) {
-            method = name == "previous-pose" ? name : "motion-prior";
+            method = name == LiveHypothesis::kPreviousPose ? LiveMethod::kPreviousPose
+                                                           : LiveMethod::kMotionPrior;
             last_prior = name;
             return v;
         }
@@ -251,23 +260,48 @@ std::optional<live::Verified> LiveRegistrar::State::try_cheap(const ScanEntry& e
     return std::nullopt;
 }
 
-std::optional<Pose> LiveRegistrar::State::global_pose(std::size_t entry_index, int& group,
-                                                      LiveDecision& decision) {
+std::vector<std::size_t> LiveRegistrar::State::global_targets(std::size_t entry_index) const {
     std::vector<std::size_t> targets;
     for (std::size_t i = scans.size(); i-- > 0;) {
-        if (i != entry_index && scans[i].registered && !scans[i].excluded) targets.push_back(i);
+        if (i != entry_index && live::active(scans[i])) targets.push_back(i);
     }
-    if (targets.size() > config.max_global_targets) targets.resize(config.max_global_targets);
+    if (targets.size() > config.global.max_targets) targets.resize(config.global.max_targets);
+    return targets;
+}
+
+const HypothesisOutcome* LiveRegistrar::State::vote(const GlobalRegistrationResult& g,
+                                                    std::size_t target, const ScanEntry& entry,
+                                                    const std::vector<live::Prior>& near_priors,
+                                                    live::PoseVotes& box) const {
+    // A verified pose near the operator's predicted one settles the ambiguity (the largest
+    // overlap among them); otherwise verified poses within the session's RMS gate vote.
+    const HypothesisOutcome* near_prior = nullptr;
+    for (const HypothesisOutcome& h : g.hypotheses) {
+        if (!h.verified || h.fine.rms_m > rms_gate()) continue;
+        const Pose T = scans[target].T_group_scan * h.fine.T_target_source;
+        const bool near = std::any_of(near_priors.begin(), near_priors.end(), [&](const auto& p) {
+            return live::poses_agree(p.second, T, entry.centroid_m, config.global.max_prior_deg,
+                                     config.global.max_prior_m);
+        });
+        if (near && (!near_prior || h.fine.overlap_fraction > near_prior->fine.overlap_fraction))
+            near_prior = &h;
+        box.add(T, target, entry.centroid_m);
+    }
+    return near_prior;
+}
+
+std::optional<Pose> LiveRegistrar::State::global_pose(std::size_t entry_index, int& group,
+                                                      LiveDecision& decision) {
     int prior_group = -1;
-    const auto hypotheses = priors(scans[entry_index].seq, prior_group);
+    const std::vector<live::Prior> hypotheses = priors(scans[entry_index].seq, prior_group);
     const ScanFeatures& source_f = features(entry_index);
-    const ScanEntry& entry = scans[entry_index];
     std::map<int, live::PoseVotes> votes;
-    for (std::size_t t : targets) {
+    for (std::size_t t : global_targets(entry_index)) {
         const Clock::time_point start = Clock::now();
         const GlobalRegistrationResult g =
-            register_global(entry.cloud, source_f, scans[t].cloud, features(t), config.global);
-        decision.attempts.push_back({.method = "global",
+            register_global(scans[entry_index].cloud, source_f, scans[t].cloud, features(t),
+                            config.global.registration);
+        decision.attempts.push_back({.method = LiveHypothesis::kGlobal,
                                      .status = std::string(to_string(g.status)),
                                      .target_seq = scans[t].seq,
                                      .target_group = scans[t].group,
@@ -275,39 +309,23 @@ std::optional<Pose> LiveRegistrar::State::global_pose(std::size_t entry_index, i
                                      .overlap_fraction = g.overlap_fraction,
                                      .time_s = seconds_since(start)});
         const int g_id = scans[t].group;
-        auto& box = votes.try_emplace(g_id, config.vote_rotation_deg, config.vote_displacement_m)
+        auto& box = votes.try_emplace(g_id, config.votes.rotation_deg, config.votes.displacement_m)
                         .first->second;
-        // A verified pose near the operator's predicted one settles the ambiguity (the
-        // largest overlap among them); otherwise verified poses within the session's RMS
-        // gate vote.
-        const HypothesisOutcome* near_prior = nullptr;
-        for (const HypothesisOutcome& h : g.hypotheses) {
-            if (!h.verified || h.fine.rms_m > rms_gate()) continue;
-            const Pose T = scans[t].T_group_scan * h.fine.T_target_source;
-            const bool near = g_id == prior_group &&
-                              std::any_of(hypotheses.begin(), hypotheses.end(), [&](const auto& p) {
-                                  return live::poses_agree(p.second, T, entry.centroid_m,
-                                                           config.max_global_prior_deg,
-                                                           config.max_global_prior_m);
-                              });
-            if (near &&
-                (!near_prior || h.fine.overlap_fraction > near_prior->fine.overlap_fraction)) {
-                near_prior = &h;
-            }
-            box.add(T, t, entry.centroid_m);
-        }
-        if (near_prior) {
+        const std::vector<live::Prior> none;
+        const HypothesisOutcome* near =
+            vote(g, t, scans[entry_index], g_id == prior_group ? hypotheses : none, box);
+        if (near) {
             group = g_id;
             decision.attempts.back().status = "verified near a prior";
-            return scans[t].T_group_scan * near_prior->fine.T_target_source;
+            return scans[t].T_group_scan * near->fine.T_target_source;
         }
         // A group too small to vote (e.g. the one scan after a turn-over) takes a success.
         if (g.status == GlobalRegistrationStatus::kSuccess && g.rms_m <= rms_gate() &&
-            members(g_id).size() < config.min_votes) {
+            members(g_id).size() < config.votes.min_count) {
             group = g_id;
             return scans[t].T_group_scan * g.T_target_source;
         }
-        if (const std::optional<Pose> T = box.winner(config.min_votes, config.vote_ratio)) {
+        if (const std::optional<Pose> T = box.winner(config.votes.min_count, config.votes.ratio)) {
             group = g_id;
             decision.attempts.back().status = "verified by votes";
             return T;
@@ -322,7 +340,7 @@ std::optional<live::Verified> LiveRegistrar::State::try_global(std::size_t entry
     if (!T) return std::nullopt;
     // Refine against the group's model for the same figures as the cheap path.
     Verified v = verify_hypothesis(scans[entry_index], group, *T);
-    decision.attempts.push_back(attempt_of("global-model", v, -1, group));
+    decision.attempts.push_back(attempt_of(LiveHypothesis::kGlobalModel, v, -1, group));
     if (!v.rejection.empty()) return std::nullopt;
     return v;
 }

@@ -7,14 +7,14 @@ namespace anascan::acquisition {
 std::string decision_json(const LiveDecision& d) {
     nlohmann::json attempts = nlohmann::json::array();
     for (const LiveAttempt& a : d.attempts)
-        attempts.push_back({{"method", a.method},
+        attempts.push_back({{"method", std::string(to_string(a.method))},
                             {"status", a.status},
                             {"target_seq", a.target_seq},
                             {"target_group", a.target_group},
                             {"rms_m", a.rms_m},
                             {"overlap_fraction", a.overlap_fraction},
                             {"time_s", a.time_s}});
-    return nlohmann::json{{"method", d.method},
+    return nlohmann::json{{"method", std::string(to_string(d.method))},
                           {"registered", d.registered},
                           {"group", d.group},
                           {"rms_m", d.rms_m},

@@ -25,13 +25,47 @@ std::string summary(const LiveDecision& d) {
     std::snprintf(text, sizeof(text),
                   "scan %lld: %s, group %d, rms %.3f mm, overlap %.1f %%, normals %.2f deg, "
                   "degeneracy %.4f, %zu attempts, %.3f s",
-                  static_cast<long long>(d.seq), d.method.c_str(), d.group, d.rms_m * 1e3,
+                  static_cast<long long>(d.seq), to_string(d.method).data(), d.group, d.rms_m * 1e3,
                   d.overlap_fraction * 100.0, d.normal_deviation_deg, d.degeneracy,
                   d.attempts.size(), d.time_s);
     return text;
 }
 
 }  // namespace
+
+std::string_view to_string(LiveHypothesis hypothesis) {
+    switch (hypothesis) {
+        case LiveHypothesis::kMotionPrior:
+            return "motion-prior";
+        case LiveHypothesis::kMotionPrior2:
+            return "motion-prior-2";
+        case LiveHypothesis::kPreviousPose:
+            return "previous-pose";
+        case LiveHypothesis::kGlobal:
+            return "global";
+        case LiveHypothesis::kGlobalModel:
+            return "global-model";
+    }
+    return "unknown";
+}
+
+std::string_view to_string(LiveMethod method) {
+    switch (method) {
+        case LiveMethod::kFirst:
+            return "first";
+        case LiveMethod::kMotionPrior:
+            return "motion-prior";
+        case LiveMethod::kPreviousPose:
+            return "previous-pose";
+        case LiveMethod::kGlobal:
+            return "global";
+        case LiveMethod::kNewGroup:
+            return "new-group";
+        case LiveMethod::kUnusable:
+            return "unusable";
+    }
+    return "unknown";
+}
 
 LiveRegistrar::LiveRegistrar(LiveRegistrationConfig config) : state_(std::make_unique<State>()) {
     state_->config = std::move(config);
@@ -44,7 +78,7 @@ LiveRegistrar& LiveRegistrar::operator=(LiveRegistrar&&) noexcept = default;
 LiveDecision LiveRegistrar::add(LiveScanInput scan) {
     if (state_->index_of_seq.contains(scan.seq)) {
         return {.seq = scan.seq,
-                .method = "unusable",
+                .method = LiveMethod::kUnusable,
                 .message = "scan " + std::to_string(scan.seq) + " was already added"};
     }
     return state_->place(std::move(scan), true);
@@ -77,7 +111,7 @@ LiveDecision LiveRegistrar::State::place(LiveScanInput scan, bool newest, std::o
     live::Prepared prepared = live::prepare_scan(std::move(scan), config);
     decision.reduced_points = prepared.entry.cloud.size();
     if (!prepared.problem.empty()) {
-        decision.method = "unusable";
+        decision.method = LiveMethod::kUnusable;
         decision.message = "scan " + std::to_string(decision.seq) + ": " + prepared.problem;
         decision.time_s = seconds_since(start);
         return decision;
@@ -91,18 +125,35 @@ LiveDecision LiveRegistrar::State::place(LiveScanInput scan, bool newest, std::o
     const std::size_t index = scans.size();
     index_of_seq[decision.seq] = index;
     scans.push_back(std::move(prepared.entry));
-    std::optional<live::Verified> accepted;
     int group = -1;
-    if (!first) {
-        // The operator's predictions belong to the newest scan; a scan registered again
-        // goes straight to global registration.
-        if (newest) accepted = try_cheap(scans[index], group, decision.method, decision);
-        const bool opens_the_new_side = turned && newest && config.new_group_after_turn;
-        if (!accepted && !opens_the_new_side) {
-            accepted = try_global(index, group, decision);
-            decision.method = "global";
-        }
+    const std::optional<live::Verified> accepted =
+        first ? std::nullopt
+              : hypothesise(index, {.newest = newest, .turned = turned}, group, decision);
+    record(index, accepted, group, first, decision);
+    if (newest) awaiting_turn = false;
+    decision.time_s = seconds_since(start);
+    decision.message = summary(decision);
+    return decision;
+}
+
+std::optional<live::Verified> LiveRegistrar::State::hypothesise(std::size_t index,
+                                                                live::PlaceMode mode, int& group,
+                                                                LiveDecision& decision) {
+    // The operator's predictions belong to the newest scan; a scan registered again goes
+    // straight to global registration.
+    std::optional<live::Verified> accepted;
+    if (mode.newest) accepted = try_cheap(scans[index], group, decision.method, decision);
+    const bool opens_the_new_side =
+        mode.turned && mode.newest && config.hypotheses.new_group_after_turn;
+    if (!accepted && !opens_the_new_side) {
+        accepted = try_global(index, group, decision);
+        decision.method = LiveMethod::kGlobal;
     }
+    return accepted;
+}
+
+void LiveRegistrar::State::record(std::size_t index, const std::optional<live::Verified>& accepted,
+                                  int group, bool first, LiveDecision& decision) {
     live::ScanEntry& entry = scans[index];
     entry.registered = true;
     if (accepted) {
@@ -111,16 +162,12 @@ LiveDecision LiveRegistrar::State::place(LiveScanInput scan, bool newest, std::o
         accepted_rms_m.push_back(decision.rms_m);
         accepted_normal_deviation.push_back(decision.normal_deviation_deg);
     } else {
-        decision.method = first ? "first" : "new-group";
+        decision.method = first ? LiveMethod::kFirst : LiveMethod::kNewGroup;
         decision.group = next_group++;
     }
-    if (newest) awaiting_turn = false;
     entry.group = decision.group;
     entry.T_group_scan = decision.T_group_scan;
     decision.registered = true;
-    decision.time_s = seconds_since(start);
-    decision.message = summary(decision);
-    return decision;
 }
 
 void LiveRegistrar::exclude(std::int64_t seq, bool excluded) {

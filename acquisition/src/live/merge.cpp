@@ -37,22 +37,23 @@ std::optional<AxisConstraint> LiveRegistrar::State::up_constraint(int target, in
     if (!up_target || !up_source) return std::nullopt;
     // A group of a few scans has a viewing direction, not yet an up: the sensor looks down
     // on the stone from above, but from one side (up to 70° off the vertical).
-    const bool few =
-        std::min(members(target).size(), members(source).size()) < config.min_group_scans_for_up;
-    const double slack_deg = few ? config.few_scans_up_slack_deg : 0.0;
+    const bool few = std::min(members(target).size(), members(source).size()) <
+                     config.merges.min_group_scans_for_up;
+    const double slack_deg = few ? config.merges.few_scans_up_slack_deg : 0.0;
     const bool turned = group_side(target) != group_side(source);
     return AxisConstraint{
         .source_axis = *up_source,
         .target_axis = *up_target,
         .min_angle_deg = turned ? 90.0 + slack_deg : 0.0,
-        .max_angle_deg = turned ? 180.0 : config.max_same_side_up_deg + slack_deg};
+        .max_angle_deg = turned ? 180.0 : config.merges.max_same_side_up_deg + slack_deg};
 }
 
 std::optional<Pose> LiveRegistrar::State::clear_whole_group_match(
     const GlobalRegistrationResult& g, const Eigen::Vector3d& source_centroid_m) const {
     // Merged group clouds blend several scans, so their fit is looser than one link's: the
     // right merge of the demo session's sides had 0.26-0.39 mm against links of ~0.18 mm.
-    const double gate_m = config.whole_group_rms_factor * std::min(rms_gate(), limits().max_rms_m);
+    const double gate_m =
+        config.merges.whole_group_rms_factor * std::min(rms_gate(), limits().max_rms_m);
     // The best fit, not the largest overlap: on the demo session a pose slid by 21 mm had
     // 57 % overlap at 0.50 mm, the right one 55 % at 0.26 mm.
     const HypothesisOutcome* best = nullptr;
@@ -66,8 +67,8 @@ std::optional<Pose> LiveRegistrar::State::clear_whole_group_match(
         if (!h.verified || &h == best) continue;
         const bool same =
             live::poses_agree(best->fine.T_target_source, h.fine.T_target_source, source_centroid_m,
-                              config.vote_rotation_deg, config.vote_displacement_m);
-        if (!same && best->fine.rms_m > config.whole_group_rms_ratio * h.fine.rms_m)
+                              config.votes.rotation_deg, config.votes.displacement_m);
+        if (!same && best->fine.rms_m > config.merges.whole_group_rms_ratio * h.fine.rms_m)
             return std::nullopt;
     }
     return orthonormalized(best->fine.T_target_source);
@@ -76,7 +77,7 @@ std::optional<Pose> LiveRegistrar::State::clear_whole_group_match(
 std::vector<PoseUpdate> LiveRegistrar::State::merge_whole_groups() {
     // Without the session's own noise level (enough links) a look-alike cannot be told from
     // the right pose by its RMS: wait.
-    if (!config.whole_group_merges || !std::isfinite(rms_gate())) return {};
+    if (!config.merges.whole_groups || !std::isfinite(rms_gate())) return {};
     const std::vector<int> ids = groups();
     for (std::size_t b = 1; b < ids.size(); ++b) {
         for (std::size_t a = 0; a < b; ++a) {
@@ -95,7 +96,7 @@ std::vector<PoseUpdate> LiveRegistrar::State::merge_whole_groups() {
             const bool a_smaller = members(ids[a]).size() < members(ids[b]).size();
             const int source_id = a_smaller ? ids[a] : ids[b];
             const int target_id = a_smaller ? ids[b] : ids[a];
-            GlobalRegistrationConfig global = config.global;
+            GlobalRegistrationConfig global = config.global.registration;
             global.axis_constraint = up_constraint(target_id, source_id);
             const PointCloud source = group_cloud(source_id);
             const GlobalRegistrationResult g =

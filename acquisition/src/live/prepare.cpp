@@ -37,12 +37,12 @@ double positive_side_fraction(const PointCloud& cloud, const Plane& plane, doubl
 std::optional<Plane> find_ground(const PointCloud& cloud, const Eigen::Vector3f& sensor_local,
                                  const LiveRegistrationConfig& config) {
     PointCloud rest = cloud;
-    for (int attempt = 0; attempt < config.ground_attempts && rest.size() >= 3; ++attempt) {
-        const PlaneFitResult fit = find_dominant_plane(rest, config.ground);
+    for (int attempt = 0; attempt < config.prepare.ground_attempts && rest.size() >= 3; ++attempt) {
+        const PlaneFitResult fit = find_dominant_plane(rest, config.prepare.ground);
         if (fit.status != PlaneFitStatus::kOk) return std::nullopt;
         const Plane plane = facing(fit.plane, sensor_local);
-        if (positive_side_fraction(cloud, plane, config.ground_band_m) >=
-            config.ground_sensor_side_fraction) {
+        if (positive_side_fraction(cloud, plane, config.prepare.ground_band_m) >=
+            config.prepare.ground_sensor_side_fraction) {
             return plane;
         }
         std::vector<bool> inlier(rest.size(), false);
@@ -64,7 +64,8 @@ void remove_ground(PointCloud& cloud, const Eigen::Vector3f& sensor_local,
     std::vector<std::size_t> keep;
     keep.reserve(cloud.size());
     for (std::size_t i = 0; i < cloud.size(); ++i) {
-        if (ground->signed_distance_m(cloud.positions[i]) > config.ground_band_m) keep.push_back(i);
+        if (ground->signed_distance_m(cloud.positions[i]) > config.prepare.ground_band_m)
+            keep.push_back(i);
     }
     cloud = select(cloud, keep);
 }
@@ -97,18 +98,19 @@ Prepared prepare_scan(LiveScanInput input, const LiveRegistrationConfig& config)
         return out;
     }
     input.cloud.normals.clear();
-    entry.cloud = voxel_downsample(input.cloud, {.voxel_size_m = config.voxel_size_m});
-    // Normals on the reduced cloud (issue 3's preparation, without its down-sampling).
+    entry.cloud = voxel_downsample(input.cloud, {.voxel_size_m = config.prepare.voxel_size_m});
+    // Normals on the reduced cloud (batch registration's preparation, without its
+    // down-sampling).
     anascan::prepare_scan(entry.cloud, entry.sensor_origin_m,
-                          ScanRegistrationConfig{.normals = config.normals});
+                          ScanRegistrationConfig{.normals = config.prepare.normals});
     const Eigen::Vector3f sensor_local =
         (entry.sensor_origin_m - entry.cloud.origin_m).cast<float>();
     remove_ground(entry.cloud, sensor_local, config);
-    if (entry.cloud.size() < config.min_scan_points) {
+    if (entry.cloud.size() < config.prepare.min_scan_points) {
         out.problem = "only " + std::to_string(entry.cloud.size()) + " stone points of " +
                       std::to_string(loaded) +
                       " after down-sampling and ground removal (at least " +
-                      std::to_string(config.min_scan_points) + " are needed)";
+                      std::to_string(config.prepare.min_scan_points) + " are needed)";
         return out;
     }
     bounding_sphere(entry);
@@ -122,13 +124,13 @@ std::string rejection(const FineRegistrationResult& fine, const LiveRegistration
         return "fine registration: " + std::string(to_string(fine.status));
     }
     if (fine.degeneracy.eigenvalue_ratio <
-        std::max(config.fine.degeneracy_threshold, config.min_degeneracy_ratio)) {
+        std::max(config.hypotheses.fine.degeneracy_threshold, config.verify.min_degeneracy_ratio)) {
         return "degenerate (" + std::to_string(fine.degeneracy.eigenvalue_ratio) + ")";
     }
     if (fine.rms_m > limits.max_rms_m) {
         return "rms too large (limit " + std::to_string(limits.max_rms_m * 1e3) + " mm)";
     }
-    if (fine.overlap_fraction < config.min_overlap_fraction) return "overlap too small";
+    if (fine.overlap_fraction < config.verify.min_overlap_fraction) return "overlap too small";
     if (fine.normal_deviation_deg.value_or(0.0) > limits.max_normal_deviation_deg) {
         return "normal deviation too large (" +
                std::to_string(fine.normal_deviation_deg.value_or(0.0)) + " deg)";

@@ -37,14 +37,14 @@ double forecast_overlap(const ScanEntry& source, const ScanEntry& target, const 
 bool usable_link(const FineRegistrationResult& fine, const LiveRegistrationConfig& config) {
     // A degenerate link moved only along the directions its overlap fixes; fewer
     // iterations than the limit means it settled along those.
-    const bool settled_on_what_it_fixes = config.degenerate_links &&
+    const bool settled_on_what_it_fixes = config.links.degenerate &&
                                           fine.status == FineRegistrationStatus::kDegenerate &&
-                                          fine.iterations < config.link_fine.max_iterations;
+                                          fine.iterations < config.links.fine.max_iterations;
     return (fine.status == FineRegistrationStatus::kConverged ||
             fine.status == FineRegistrationStatus::kMaxIterations || settled_on_what_it_fixes) &&
-           fine.overlap_fraction >= config.min_link_overlap_fraction &&
-           fine.normal_deviation_deg.value_or(0.0) <= config.max_normal_deviation_deg &&
-           fine.rms_m <= config.max_link_rms_voxel_factor * config.voxel_size_m;
+           fine.overlap_fraction >= config.links.min_overlap_fraction &&
+           fine.normal_deviation_deg.value_or(0.0) <= config.verify.max_normal_deviation_deg &&
+           fine.rms_m <= config.links.max_rms_voxel_factor * config.prepare.voxel_size_m;
 }
 
 }  // namespace
@@ -55,12 +55,34 @@ Eigen::Vector3d live::cloud_centroid(const PointCloud& cloud) {
     return cloud.empty() ? sum : Eigen::Vector3d(sum / static_cast<double>(cloud.size()));
 }
 
+const KdTree& LiveRegistrar::State::tree_of(std::size_t i) {
+    std::shared_ptr<const KdTree>& tree = scans[i].tree;  // Kept: the cloud never changes.
+    if (!tree) tree = std::make_shared<const KdTree>(scans[i].cloud.positions);
+    return *tree;
+}
+
+bool LiveRegistrar::State::try_link(std::size_t t, std::size_t s, const Pose& initial) {
+    link_tried[{t, s}] = initial;
+    // A link computed from other poses is replaced by the new attempt (or dropped).
+    std::erase_if(links, [&](const live::Link& l) { return l.target == t && l.source == s; });
+    if (forecast_overlap(scans[s], scans[t], tree_of(t), initial,
+                         config.links.fine.overlap_distance_m) <
+        config.links.min_overlap_fraction) {
+        return false;
+    }
+    FineRegistrationResult fine =
+        register_fine(scans[s].cloud, scans[t].cloud, tree_of(t), initial, config.links.fine);
+    if (!usable_link(fine, config)) return false;
+    link_rms_m.push_back(fine.rms_m);
+    links.push_back(
+        {.target = t,
+         .source = s,
+         .correspondences = compress_link(std::move(fine.correspondences), fine.T_target_source,
+                                          config.links.max_correspondences)});
+    return true;
+}
+
 std::size_t LiveRegistrar::State::make_links() {
-    const auto tree_of = [&](std::size_t i) -> const KdTree& {
-        std::shared_ptr<const KdTree>& tree = scans[i].tree;  // Kept: the cloud never changes.
-        if (!tree) tree = std::make_shared<const KdTree>(scans[i].cloud.positions);
-        return *tree;
-    };
     std::size_t added = 0;
     for (std::size_t s = 0; s < scans.size(); ++s) {
         for (std::size_t t = 0; t < s; ++t) {
@@ -71,29 +93,11 @@ std::size_t LiveRegistrar::State::make_links() {
             const auto tried = link_tried.find({t, s});
             if (tried != link_tried.end() &&
                 live::poses_agree(tried->second, initial, scans[s].centroid_m,
-                                  config.link_retry_deg, config.link_retry_m)) {
+                                  config.links.retry_deg, config.links.retry_m)) {
                 continue;
             }
             if (interrupted()) return added;  // Not marked tried: the next call does it.
-            link_tried[{t, s}] = initial;
-            // A link computed from other poses is replaced by the new attempt (or dropped).
-            std::erase_if(links,
-                          [&](const live::Link& l) { return l.target == t && l.source == s; });
-            if (forecast_overlap(scans[s], scans[t], tree_of(t), initial,
-                                 config.link_fine.overlap_distance_m) <
-                config.min_link_overlap_fraction) {
-                continue;
-            }
-            FineRegistrationResult fine = register_fine(scans[s].cloud, scans[t].cloud, tree_of(t),
-                                                        initial, config.link_fine);
-            if (!usable_link(fine, config)) continue;
-            link_rms_m.push_back(fine.rms_m);
-            links.push_back({.target = t,
-                             .source = s,
-                             .correspondences = compress_link(std::move(fine.correspondences),
-                                                              fine.T_target_source,
-                                                              config.max_link_correspondences)});
-            ++added;
+            added += try_link(t, s, initial);
         }
     }
     return added;
@@ -101,47 +105,49 @@ std::size_t LiveRegistrar::State::make_links() {
 
 std::vector<PoseUpdate> LiveRegistrar::State::refine_groups() {
     std::vector<PoseUpdate> updates;
-    for (const int g : groups()) {
-        std::vector<std::size_t> group_scans = members(g);
-        std::reverse(group_scans.begin(), group_scans.end());  // Ascending: first scan fixed.
-        std::map<std::size_t, std::size_t> local;
-        std::vector<Pose> poses;
-        for (std::size_t i : group_scans) {
-            local[i] = poses.size();
-            poses.push_back(scans[i].T_group_scan);
-        }
-        std::vector<MultiviewLink> group_links;
-        for (const live::Link& l : links) {
-            if (!local.contains(l.target) || !local.contains(l.source)) continue;
-            group_links.push_back({.target_index = local[l.target],
-                                   .source_index = local[l.source],
-                                   .correspondences = l.correspondences});
-        }
-        if (poses.size() < 2 || group_links.empty()) continue;
-        MultiviewRefinementConfig mv = config.multiview;
-        mv.fixed_scan_index = 0;
-        const MultiviewRefinementResult refined = refine_multiview(poses, group_links, mv);
-        const bool usable = refined.status == MultiviewStatus::kConverged ||
-                            refined.status == MultiviewStatus::kMaxRounds ||
-                            refined.status == MultiviewStatus::kDisconnected;
-        if (!usable) continue;
-        ++report.groups_refined;
-        for (std::size_t m = 0; m < group_scans.size(); ++m) {
-            ScanEntry& e = scans[group_scans[m]];
-            const PoseDifference d = pose_difference(e.T_group_scan, refined.T_world_scan[m]);
-            if (d.rotation_deg < 1e-6 && d.translation_m < 1e-9) continue;
-            e.T_group_scan = refined.T_world_scan[m];
-            updates.push_back({.seq = e.seq, .group = g, .T_group_scan = e.T_group_scan});
-        }
-    }
+    for (const int g : groups()) refine_group(g, updates);
     return updates;
+}
+
+void LiveRegistrar::State::refine_group(int g, std::vector<PoseUpdate>& updates) {
+    std::vector<std::size_t> group_scans = members(g);
+    std::reverse(group_scans.begin(), group_scans.end());  // Ascending: first scan fixed.
+    std::map<std::size_t, std::size_t> local;
+    std::vector<Pose> poses;
+    for (std::size_t i : group_scans) {
+        local[i] = poses.size();
+        poses.push_back(scans[i].T_group_scan);
+    }
+    std::vector<MultiviewLink> group_links;
+    for (const live::Link& l : links) {
+        if (!local.contains(l.target) || !local.contains(l.source)) continue;
+        group_links.push_back({.target_index = local[l.target],
+                               .source_index = local[l.source],
+                               .correspondences = l.correspondences});
+    }
+    if (poses.size() < 2 || group_links.empty()) return;
+    MultiviewRefinementConfig mv = config.links.multiview;
+    mv.fixed_scan_index = 0;
+    const MultiviewRefinementResult refined = refine_multiview(poses, group_links, mv);
+    const bool usable = refined.status == MultiviewStatus::kConverged ||
+                        refined.status == MultiviewStatus::kMaxRounds ||
+                        refined.status == MultiviewStatus::kDisconnected;
+    if (!usable) return;
+    ++report.groups_refined;
+    for (std::size_t m = 0; m < group_scans.size(); ++m) {
+        ScanEntry& e = scans[group_scans[m]];
+        const PoseDifference d = pose_difference(e.T_group_scan, refined.T_world_scan[m]);
+        if (d.rotation_deg < 1e-6 && d.translation_m < 1e-9) continue;
+        e.T_group_scan = refined.T_world_scan[m];
+        updates.push_back({.seq = e.seq, .group = g, .T_group_scan = e.T_group_scan});
+    }
 }
 
 PointCloud LiveRegistrar::State::group_cloud(int group) const {
     PointCloud merged;
     for (std::size_t i : members(group))
         append(merged, transformed(scans[i].cloud, scans[i].T_group_scan));
-    return voxel_downsample(merged, {.voxel_size_m = config.voxel_size_m});
+    return voxel_downsample(merged, {.voxel_size_m = config.prepare.voxel_size_m});
 }
 
 Pose LiveRegistrar::State::refined_merge(int into, int from, const Pose& T_into_from) const {
@@ -152,15 +158,15 @@ Pose LiveRegistrar::State::refined_merge(int into, int from, const Pose& T_into_
     if (target.empty() || source.empty()) return T_into_from;
     const KdTree tree(target.positions);
     const FineRegistrationResult fine =
-        register_fine(source, target, tree, T_into_from, config.fine);
+        register_fine(source, target, tree, T_into_from, config.hypotheses.fine);
     const bool agrees =
         live::poses_agree(T_into_from, fine.T_target_source, live::cloud_centroid(source),
-                          config.vote_rotation_deg, config.vote_displacement_m);
+                          config.votes.rotation_deg, config.votes.displacement_m);
     const live::VerificationLimits absolute{
-        .max_rms_m = config.max_rms_voxel_factor * config.voxel_size_m,
-        .max_normal_deviation_deg = config.max_normal_deviation_deg};
+        .max_rms_m = config.verify.max_rms_voxel_factor * config.prepare.voxel_size_m,
+        .max_normal_deviation_deg = config.verify.max_normal_deviation_deg};
     LiveRegistrationConfig relaxed = config;
-    relaxed.min_overlap_fraction = config.min_link_overlap_fraction;  // Other faces too.
+    relaxed.verify.min_overlap_fraction = config.links.min_overlap_fraction;  // Other faces too.
     if (!agrees || !live::rejection(fine, relaxed, absolute).empty()) return T_into_from;
     return orthonormalized(fine.T_target_source);
 }
@@ -180,6 +186,35 @@ std::vector<PoseUpdate> LiveRegistrar::State::merge(int into, int from,
     return updates;
 }
 
+void LiveRegistrar::State::vote_scan_pair(std::size_t i, std::size_t j, live::PoseVotes& box) {
+    const GlobalRegistrationResult g = register_global(scans[j].cloud, features(j), scans[i].cloud,
+                                                       features(i), config.global.registration);
+    for (const HypothesisOutcome& h : g.hypotheses) {
+        if (!h.verified || h.fine.rms_m > rms_gate()) continue;
+        const Pose T_a_b =
+            scans[i].T_group_scan * h.fine.T_target_source * scans[j].T_group_scan.inverse();
+        box.add(T_a_b, i * scans.size() + j, scans[j].T_group_scan * scans[j].centroid_m);
+    }
+}
+
+std::optional<std::vector<PoseUpdate>> LiveRegistrar::State::merge_by_votes(int a, int b,
+                                                                            std::size_t& attempts) {
+    live::PoseVotes& box =
+        merge_votes.try_emplace({a, b}, config.votes.rotation_deg, config.votes.displacement_m)
+            .first->second;
+    for (std::size_t j : members(b)) {
+        for (std::size_t i : members(a)) {
+            if (attempts >= config.merges.max_attempts) return std::vector<PoseUpdate>{};
+            if (!merge_tried.insert({i, j}).second) continue;
+            ++attempts;
+            vote_scan_pair(i, j, box);
+            if (const auto T = box.winner(config.votes.min_count, config.votes.ratio))
+                return merge(a, b, *T);
+        }
+    }
+    return std::nullopt;
+}
+
 std::vector<PoseUpdate> LiveRegistrar::State::merge_groups() {
     const std::vector<int> ids = groups();
     std::size_t attempts = 0;
@@ -190,29 +225,7 @@ std::vector<PoseUpdate> LiveRegistrar::State::merge_groups() {
             // links), their votes can carry a wrong merge (seen on the demo session when
             // the capture kept the background too busy for links). Wait for the gate.
             if (group_side(ids[a]) != group_side(ids[b]) && !std::isfinite(rms_gate())) continue;
-            live::PoseVotes& box = merge_votes
-                                       .try_emplace({ids[a], ids[b]}, config.vote_rotation_deg,
-                                                    config.vote_displacement_m)
-                                       .first->second;
-            for (std::size_t j : members(ids[b])) {
-                for (std::size_t i : members(ids[a])) {
-                    if (attempts >= config.max_merge_attempts) return {};
-                    if (!merge_tried.insert({i, j}).second) continue;
-                    ++attempts;
-                    const GlobalRegistrationResult g = register_global(
-                        scans[j].cloud, features(j), scans[i].cloud, features(i), config.global);
-                    for (const HypothesisOutcome& h : g.hypotheses) {
-                        if (!h.verified || h.fine.rms_m > rms_gate()) continue;
-                        const Pose T_a_b = scans[i].T_group_scan * h.fine.T_target_source *
-                                           scans[j].T_group_scan.inverse();
-                        box.add(T_a_b, i * scans.size() + j,
-                                scans[j].T_group_scan * scans[j].centroid_m);
-                    }
-                    if (const auto T = box.winner(config.min_votes, config.vote_ratio)) {
-                        return merge(ids[a], ids[b], *T);
-                    }
-                }
-            }
+            if (auto done = merge_by_votes(ids[a], ids[b], attempts)) return std::move(*done);
         }
     }
     return {};

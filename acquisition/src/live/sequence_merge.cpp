@@ -14,8 +14,8 @@ constexpr std::size_t kRetryAfterScans = 3;
 
 }  // namespace
 
-std::vector<std::pair<std::string, Pose>> LiveRegistrar::State::sequence_priors(
-    std::size_t i, int group, int direction) const {
+std::vector<live::Prior> LiveRegistrar::State::sequence_priors(std::size_t i, int group,
+                                                               int direction) const {
     std::vector<Pose> neighbours;
     for (std::ptrdiff_t j = static_cast<std::ptrdiff_t>(i) + direction;
          j >= 0 && j < static_cast<std::ptrdiff_t>(scans.size()) && neighbours.size() < 3;
@@ -28,34 +28,38 @@ std::vector<std::pair<std::string, Pose>> LiveRegistrar::State::sequence_priors(
     return live::motion_priors(neighbours);
 }
 
+std::optional<std::vector<PoseUpdate>> LiveRegistrar::State::sequence_merge(std::size_t i,
+                                                                            int direction) {
+    const std::ptrdiff_t j = static_cast<std::ptrdiff_t>(i) + direction;
+    if (j < 0 || j >= static_cast<std::ptrdiff_t>(scans.size())) return std::nullopt;
+    const live::ScanEntry& next = scans[static_cast<std::size_t>(j)];
+    if (!live::active(next) || next.group == scans[i].group || next.side != scans[i].side)
+        return std::nullopt;
+    const int into = next.group;
+    const std::size_t size = members(into).size();
+    auto [it, first] = sequence_merge_tried.try_emplace({i, direction}, size);
+    if (!first && size < it->second + kRetryAfterScans) return std::nullopt;
+    it->second = size;
+    ++report.merge_attempts;
+    for (const auto& [name, T] : sequence_priors(i, into, direction)) {
+        // A merge moves a whole group: only the usual bound on the correction.
+        live::Verified v = verify_hypothesis(scans[i], into, T, live::CorrectionCheck::kBound);
+        if (!v.rejection.empty()) continue;
+        // T_into_from maps the scan's group into `into`; the lower id survives.
+        const int from = scans[i].group;
+        const Pose T_into_from =
+            orthonormalized(v.fine.T_target_source * scans[i].T_group_scan.inverse());
+        return into < from ? merge(into, from, T_into_from)
+                           : merge(from, into, orthonormalized(T_into_from.inverse()));
+    }
+    return std::vector<PoseUpdate>{};  // One try per call: a new scan may be waiting.
+}
+
 std::vector<PoseUpdate> LiveRegistrar::State::merge_by_sequence() {
     for (std::size_t i = 0; i < scans.size(); ++i) {
         if (!live::active(scans[i])) continue;
         for (const int direction : {+1, -1}) {
-            const std::ptrdiff_t j = static_cast<std::ptrdiff_t>(i) + direction;
-            if (j < 0 || j >= static_cast<std::ptrdiff_t>(scans.size())) continue;
-            const live::ScanEntry& next = scans[static_cast<std::size_t>(j)];
-            if (!live::active(next) || next.group == scans[i].group || next.side != scans[i].side)
-                continue;
-            const int into = next.group;
-            const std::size_t size = members(into).size();
-            auto [it, first] = sequence_merge_tried.try_emplace({i, direction}, size);
-            if (!first && size < it->second + kRetryAfterScans) continue;
-            it->second = size;
-            ++report.merge_attempts;
-            for (const auto& [name, T] : sequence_priors(i, into, direction)) {
-                // A merge moves a whole group: only the usual bound on the correction.
-                live::Verified v =
-                    verify_hypothesis(scans[i], into, T, live::CorrectionCheck::kBound);
-                if (!v.rejection.empty()) continue;
-                // T_into_from maps the scan's group into `into`; the lower id survives.
-                const int from = scans[i].group;
-                const Pose T_into_from =
-                    orthonormalized(v.fine.T_target_source * scans[i].T_group_scan.inverse());
-                return into < from ? merge(into, from, T_into_from)
-                                   : merge(from, into, orthonormalized(T_into_from.inverse()));
-            }
-            return {};  // One try per call: a new scan may be waiting.
+            if (auto done = sequence_merge(i, direction)) return std::move(*done);
         }
     }
     return {};

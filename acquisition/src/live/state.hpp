@@ -60,6 +60,13 @@ struct Prepared {
 /// Reduces a scan (see LiveRegistrationConfig): the stone-only down-sampled cloud.
 Prepared prepare_scan(LiveScanInput input, const LiveRegistrationConfig& config);
 
+/// How a scan is placed: the newest scan (the operator's priors are about it) or one placed
+/// again; right after the operator marked a turn-over.
+struct PlaceMode {
+    bool newest = true;
+    bool turned = false;
+};
+
 /// The merged model a hypothesis was last verified against, with its k-d tree.
 struct ModelCache {
     int group = -1;
@@ -75,7 +82,8 @@ struct VerificationLimits {
     double max_normal_deviation_deg = 0.0;
 };
 
-/// Why a fine registration is not acceptable (issue 3's verification); empty when it is.
+/// Why a fine registration is not acceptable (batch registration's verification); empty
+/// when it is.
 std::string rejection(const FineRegistrationResult& fine, const LiveRegistrationConfig& config,
                       const VerificationLimits& limits);
 
@@ -86,11 +94,14 @@ enum class CorrectionCheck {
     kBoundOrFit,  ///< Also larger ones that fit like the session (max_fitting_correction_*).
 };
 
+/// A predicted pose and the hypothesis that predicted it.
+using Prior = std::pair<LiveHypothesis, Pose>;
+
 /// The operator's predicted poses from the poses of the scans next to it in the capture order
 /// (`recent[0]` the nearest, at most 3 used): constant velocity ("motion-prior"), double step
 /// ("motion-prior-2", elevations alternating), "previous-pose". Time-symmetric: scans after
 /// it, nearest first, predict it backwards.
-std::vector<std::pair<std::string, Pose>> motion_priors(const std::vector<Pose>& recent);
+std::vector<Prior> motion_priors(const std::vector<Pose>& recent);
 
 /// Mean of a cloud's points (its frame; zero when empty).
 Eigen::Vector3d cloud_centroid(const PointCloud& cloud);
@@ -122,11 +133,19 @@ struct LiveRegistrar::State {
     std::vector<double> accepted_normal_deviation;  ///< Degrees, same.
     /// Prepares and places a scan (add: `newest`; reregister: not, so no operator priors).
     LiveDecision place(LiveScanInput scan, bool newest, std::optional<int> side = std::nullopt);
+    /// The cheap hypotheses, then global registration, for the new entry `index`; sets
+    /// `group` and the decision's method and attempts. None: it opens a new group.
+    std::optional<live::Verified> hypothesise(std::size_t index, live::PlaceMode mode, int& group,
+                                              LiveDecision& decision);
+    /// Marks entry `index` registered, in `group` with the accepted pose, or in a new group.
+    void record(std::size_t index, const std::optional<live::Verified>& accepted, int group,
+                bool first, LiveDecision& decision);
     /// Verification bounds from the config and the session's accepted figures.
     live::VerificationLimits limits() const;
     /// Largest RMS a global hypothesis may have to count (see global_rms_median_factor).
     double rms_gate() const;
-    mutable std::string last_prior;  ///< The motion prior that verified last.
+    /// The motion prior that verified last.
+    mutable LiveHypothesis last_prior = LiveHypothesis::kMotionPrior;
     /// Votes for the transform between two groups (lower id first), across refine() calls.
     std::map<std::pair<int, int>, live::PoseVotes> merge_votes;
 
@@ -157,10 +176,19 @@ struct LiveRegistrar::State {
                       live::Verified& v) const;
     /// The cheap hypotheses (motion prior, previous pose), in order; appends attempts.
     std::optional<live::Verified> try_cheap(const live::ScanEntry& entry, int& group,
-                                            std::string& method, LiveDecision& decision) const;
+                                            LiveMethod& method, LiveDecision& decision) const;
     /// The operator's predicted poses of a new scan (motion priors, previous pose) in the
     /// group of the latest registered scan (set in `group`); none after a turn-over.
-    std::vector<std::pair<std::string, Pose>> priors(std::int64_t seq, int& group) const;
+    std::vector<live::Prior> priors(std::int64_t seq, int& group) const;
+    /// Registered scans tried by global registration for entry `entry_index`, most recent
+    /// first (at most LiveGlobalConfig::max_targets).
+    std::vector<std::size_t> global_targets(std::size_t entry_index) const;
+    /// Adds the verified hypotheses of `g` (entry against `target`) within the RMS gate to
+    /// `box`; returns the one of largest overlap near one of `near_priors`, if any.
+    const HypothesisOutcome* vote(const GlobalRegistrationResult& g, std::size_t target,
+                                  const live::ScanEntry& entry,
+                                  const std::vector<live::Prior>& near_priors,
+                                  live::PoseVotes& box) const;
     /// A globally registered pose: a verified pose near a prior, else one that several
     /// target scans vote for (or the only target's success).
     std::optional<Pose> global_pose(std::size_t entry_index, int& group, LiveDecision& decision);
@@ -170,8 +198,21 @@ struct LiveRegistrar::State {
 
     /// Multi-view refinement machinery (live_registration_refine.cpp).
     std::size_t make_links();
+    /// The k-d tree over entry i's cloud (built on first use, kept).
+    const KdTree& tree_of(std::size_t i);
+    /// Tries the link t <- s from the relative pose `initial`; true when it was added.
+    bool try_link(std::size_t t, std::size_t s, const Pose& initial);
     std::vector<PoseUpdate> refine_groups();
+    /// Multi-view refinement of group g's poses; appends the changed ones.
+    void refine_group(int g, std::vector<PoseUpdate>& updates);
     std::vector<PoseUpdate> merge_groups();
+    /// Votes for the transform between groups a and b from global registrations of their
+    /// scan pairs not tried yet. The merge's updates once the votes decide; empty updates
+    /// when the call's `attempts` budget ran out; none when the pairs are exhausted.
+    std::optional<std::vector<PoseUpdate>> merge_by_votes(int a, int b, std::size_t& attempts);
+    /// Global registration of entry j against entry i, verified poses (group a <- group b)
+    /// within the RMS gate added to `box`.
+    void vote_scan_pair(std::size_t i, std::size_t j, live::PoseVotes& box);
     /// Group merges by global registration of the whole groups' clouds under the up
     /// constraint (live_registration_merge.cpp).
     std::vector<PoseUpdate> merge_whole_groups();
@@ -191,10 +232,12 @@ struct LiveRegistrar::State {
     /// neighbour in the order lies in another group of the same side is predicted there by
     /// the motion priors (run backwards when the neighbour comes after it) and verified.
     std::vector<PoseUpdate> merge_by_sequence();
+    /// The sequence merge of entry i with its neighbour in `direction`: none when it does not
+    /// apply (or was tried at this size), else the merge's updates (empty: it did not verify).
+    std::optional<std::vector<PoseUpdate>> sequence_merge(std::size_t i, int direction);
     /// The operator's predicted poses of entry `i` in group `group` from the entries next to
     /// it in the capture order (`direction` +1: those after it, run backwards; -1: before).
-    std::vector<std::pair<std::string, Pose>> sequence_priors(std::size_t i, int group,
-                                                              int direction) const;
+    std::vector<live::Prior> sequence_priors(std::size_t i, int group, int direction) const;
     /// Sequence merges tried: (entry, direction) and the other group's scans then.
     std::map<std::pair<std::size_t, int>, std::size_t> sequence_merge_tried;
     /// Group pairs tried whole (lower id first) and the smaller and larger group's scans then.

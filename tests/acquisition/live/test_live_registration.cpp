@@ -84,7 +84,7 @@ TEST_F(LiveRegistrationSession, PosesMatchTheTruthInTheFirstPlacement) {
                         e.rotation_deg, e.translation_m * 1e3);
             for (const LiveAttempt& a : (*decisions_)[i].attempts) {
                 std::printf("    %s -> %s (target %lld, rms %.3f mm, overlap %.2f, %.3f s)\n",
-                            a.method.c_str(), a.status.c_str(),
+                            to_string(a.method).data(), a.status.c_str(),
                             static_cast<long long>(a.target_seq), a.rms_m * 1e3, a.overlap_fraction,
                             a.time_s);
             }
@@ -102,10 +102,11 @@ TEST_F(LiveRegistrationSession, PosesMatchTheTruthInTheFirstPlacement) {
 
 TEST_F(LiveRegistrationSession, CheapHypothesesCarryTheTourAndTheFlipOpensAGroup) {
     const std::vector<LiveDecision>& d = *decisions_;
-    EXPECT_EQ(d[0].method, "first");
+    EXPECT_EQ(d[0].method, LiveMethod::kFirst);
     std::size_t cheap = 0;
     for (std::size_t i = 1; i < d.size(); ++i) {
-        cheap += d[i].method == "motion-prior" || d[i].method == "previous-pose";
+        cheap +=
+            d[i].method == LiveMethod::kMotionPrior || d[i].method == LiveMethod::kPreviousPose;
         if (i != kViewsPerSide) {
             EXPECT_FALSE(d[i].attempts.empty()) << d[i].message;
         }
@@ -118,12 +119,12 @@ TEST_F(LiveRegistrationSession, CheapHypothesesCarryTheTourAndTheFlipOpensAGroup
     // whole-group merge joins to the first side later (EveryScanEndsInOneGroup).
     const LiveDecision& flipped = d[kViewsPerSide];
     EXPECT_TRUE(flipped.attempts.empty()) << flipped.message;
-    EXPECT_EQ(flipped.method, "new-group") << flipped.message;
+    EXPECT_EQ(flipped.method, LiveMethod::kNewGroup) << flipped.message;
 }
 
 TEST_F(LiveRegistrationSession, DecisionsCarryTheirFigures) {
     for (const LiveDecision& d : *decisions_) {
-        if (d.method == "first" || d.method == "new-group") continue;
+        if (d.method == LiveMethod::kFirst || d.method == LiveMethod::kNewGroup) continue;
         EXPECT_GT(d.overlap_fraction, 0.3) << d.message;
         EXPECT_GT(d.rms_m, 0.0) << d.message;
         EXPECT_LT(d.rms_m, 0.002) << d.message;

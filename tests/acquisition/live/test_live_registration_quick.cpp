@@ -72,9 +72,10 @@ protected:
 
 TEST_F(LiveRegistrationWalk, SmallStepsTakeTheCheapHypotheses) {
     const std::vector<LiveDecision>& d = *decisions_;
-    EXPECT_EQ(d[0].method, "first");
+    EXPECT_EQ(d[0].method, LiveMethod::kFirst);
     for (std::size_t i = 1; i < d.size(); ++i) {
-        EXPECT_TRUE(d[i].method == "motion-prior" || d[i].method == "previous-pose")
+        EXPECT_TRUE(d[i].method == LiveMethod::kMotionPrior ||
+                    d[i].method == LiveMethod::kPreviousPose)
             << d[i].message;
         EXPECT_EQ(d[i].group, 0) << d[i].message;
     }
@@ -96,7 +97,7 @@ TEST_F(LiveRegistrationWalk, PosesMatchTheTruth) {
 
 TEST_F(LiveRegistrationWalk, DecisionsCarryTheirFigures) {
     for (const LiveDecision& d : *decisions_) {
-        if (d.method == "first") continue;
+        if (d.method == LiveMethod::kFirst) continue;
         EXPECT_GT(d.overlap_fraction, 0.3) << d.message;
         EXPECT_GT(d.rms_m, 0.0) << d.message;
         EXPECT_LT(d.rms_m, 0.001) << d.message;
@@ -144,7 +145,7 @@ TEST_F(LiveRegistrationWalk, AScanRegisteredAgainIsPlacedGloballyAndOnce) {
                         .registered);
     const LiveDecision again = r.reregister({.seq = 3, .cloud = (*scans_)[2].cloud});
     ASSERT_TRUE(again.registered) << again.message;
-    EXPECT_EQ(again.method, "global") << again.message;
+    EXPECT_EQ(again.method, LiveMethod::kGlobal) << again.message;
     EXPECT_EQ(again.group, 0) << again.message;
     const std::vector<LiveModelScan> model = r.model();
     EXPECT_EQ(model.size(), scans_->size());
@@ -166,16 +167,15 @@ TEST_F(LiveRegistrationWalk, ScansAfterAGapPlaceTheScanBeforeItByTheCaptureOrder
     // join it on the cheap hypotheses. refine() then runs the motion priors backwards from
     // scans 2-4, places scan 1 in their group and merges the groups (the merges by global
     // registration are off).
-    LiveRegistrar r({.max_global_targets = 0,
-                     .whole_group_merges = false,
-                     .max_merge_attempts = 0,
+    LiveRegistrar r({.global = {.max_targets = 0},
+                     .merges = {.whole_groups = false, .max_attempts = 0},
                      .max_features_per_refine = 0});
     const std::vector<std::size_t> views = {0, 2, 3, 4};
     std::vector<LiveDecision> d;
     for (std::size_t k = 0; k < views.size(); ++k)
         d.push_back(
             r.add({.seq = static_cast<std::int64_t>(k + 1), .cloud = (*scans_)[views[k]].cloud}));
-    ASSERT_EQ(d[1].method, "new-group") << d[1].message;
+    ASSERT_EQ(d[1].method, LiveMethod::kNewGroup) << d[1].message;
     EXPECT_EQ(r.group_count(), 2u);
     for (int round = 0; round < 3 && r.group_count() > 1; ++round) r.refine();
     ASSERT_EQ(r.group_count(), 1u);
@@ -233,7 +233,7 @@ TEST(LiveRegistration, UnusableScansAreReportedAndNotPlaced) {
     LiveRegistrar registrar;
     const LiveDecision empty = registrar.add({.seq = 1});
     EXPECT_FALSE(empty.registered);
-    EXPECT_EQ(empty.method, "unusable");
+    EXPECT_EQ(empty.method, LiveMethod::kUnusable);
     EXPECT_NE(empty.message.find("empty"), std::string::npos) << empty.message;
 
     PointCloud nan_cloud;
@@ -269,10 +269,10 @@ PointCloud sphere_scan() {
 TEST_F(LiveRegistrationWalk, AScanThatMatchesNothingOpensANewGroup) {
     LiveRegistrar registrar(quick_config());
     const LiveDecision first = registrar.add({.seq = 1, .cloud = (*scans_)[0].cloud});
-    EXPECT_EQ(first.method, "first");
+    EXPECT_EQ(first.method, LiveMethod::kFirst);
     const LiveDecision other = registrar.add({.seq = 2, .cloud = sphere_scan()});
     EXPECT_TRUE(other.registered) << other.message;
-    EXPECT_EQ(other.method, "new-group") << other.message;
+    EXPECT_EQ(other.method, LiveMethod::kNewGroup) << other.message;
     EXPECT_EQ(other.group, 1);
     EXPECT_FALSE(other.attempts.empty());
     EXPECT_EQ(registrar.group_count(), 2u);

@@ -109,12 +109,12 @@ TEST(LiveSessionStructuredLight, EveryScanRegisteredInOneGroupNearTheTruth) {
                            .sensor_origin_scan_m = scan->meta.sensor_origin_scan_m,
                            .turned_over_before = plan[i].turned_over_before});
         add_s.push_back(d.time_s);
-        ++methods[d.method];
+        ++methods[std::string(to_string(d.method))];
         std::printf("%zu points | %s\n", points, d.message.c_str());
         if (std::getenv("ANASCAN_LIVE_VERBOSE")) {
             for (const LiveAttempt& a : d.attempts) {
                 std::printf("    %s -> %s (target %lld, rms %.3f mm, overlap %.2f, %.3f s)\n",
-                            a.method.c_str(), a.status.c_str(),
+                            to_string(a.method).data(), a.status.c_str(),
                             static_cast<long long>(a.target_seq), a.rms_m * 1e3, a.overlap_fraction,
                             a.time_s);
             }

@@ -1,7 +1,7 @@
 #pragma once
 /// \file
-/// On-site, acquisition-aware registration (DESIGN.md "On-site registration", issue 5 item
-/// 3): scans arrive one at a time in capture order and are placed as they come.
+/// On-site, acquisition-aware registration (DESIGN.md "On-site registration"): scans arrive one at
+/// a time in capture order and are placed as they come.
 ///
 /// For each new scan `add` keeps a reduced copy (non-finite points dropped, voxel
 /// down-sampled, normals oriented toward the sensor, the ground plane removed: stone only)
@@ -10,7 +10,7 @@
 ///     the step between the last two registered scans of the group, applied once more);
 ///  2. the previous scan's pose;
 /// each refined by fine registration against the group's model (the registered scans whose
-/// sensors stood nearest the hypothesis, merged) and verified as in issue 3 (converged,
+/// sensors stood nearest the hypothesis, merged) and verified as in batch registration (converged,
 /// overlap, normals agree, RMS within the sample spacing, not degenerate). If neither
 /// verifies: global registration from integral-invariant features against the registered
 /// scans, most recent first, of every group (stone only, so a stone turned over still
@@ -40,6 +40,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "anascan/processing/cleaning/normals.hpp"
@@ -52,8 +53,8 @@
 
 namespace anascan::acquisition {
 
-/// Settings of a live registration session. Callers use designated initialisers.
-struct LiveRegistrationConfig {
+/// How a new scan is reduced to its stone-only copy.
+struct LivePrepareConfig {
     /// Reduced copies are voxel down-sampled to this edge (metres): ~1.5-2 mm keeps a
     /// structured-light scan of ~300k points at ~30k points.
     double voxel_size_m = 0.002;
@@ -67,6 +68,11 @@ struct LiveRegistrationConfig {
     double ground_sensor_side_fraction = 0.9;
     int ground_attempts = 3;            ///< Planes tried (each rejected one is set aside).
     std::size_t min_scan_points = 500;  ///< Fewer stone points: the scan is not usable.
+};
+
+/// The cheap hypotheses (motion priors, previous pose) and their fine registration against
+/// the group's model.
+struct LiveHypothesisConfig {
     /// Fine registration of a hypothesis against the model; the first gate must cover the
     /// error of a motion prior (a few centimetres when the operator's steps vary).
     FineRegistrationConfig fine{.max_correspondence_distance_m = 0.06,
@@ -79,23 +85,32 @@ struct LiveRegistrationConfig {
     double max_prior_correction_deg = 15.0;
     double max_prior_correction_m = 0.15;
     /// A larger correction, up to these, is taken when the refined pose fits like the
-    /// session's accepted scans (once `min_accepted_for_limits` were accepted): RMS and
-    /// normal deviation at most `fitting_correction_factor` times their medians. On the demo
-    /// session the operator's steps are 33-40°, and from the motion priors of the scans
-    /// after the turn-over fine registration found, 28-37° away, the very pose global
-    /// registration found (0.17-0.18 mm RMS); the one wrong minimum had 0.43 mm, 6.8°.
+    /// session's accepted scans (once `LiveVerifyConfig::min_accepted_for_limits` were
+    /// accepted): RMS and normal deviation at most `fitting_correction_factor` times their
+    /// medians. On the demo session the operator's steps are 33-40°, and from the motion
+    /// priors of the scans after the turn-over fine registration found, 28-37° away, the
+    /// very pose global registration found (0.17-0.18 mm RMS); the one wrong minimum had
+    /// 0.43 mm, 6.8°.
     double max_fitting_correction_deg = 45.0;
     double max_fitting_correction_m = 0.3;
     double fitting_correction_factor = 1.5;
-    std::size_t model_scans = 5;
+    std::size_t model_scans = 5;  ///< Registered scans merged into the model of a hypothesis.
     /// A verified pose is probed by restarts shifted ± this (metres) along its weakest
     /// direction (an ornament band repeats every few centimetres: a start 3 cm off a slide
     /// of one period lies in the right basin); a restart whose overlap is larger by
     /// `slide_overlap_margin` replaces it. 0 = no probes.
     double slide_probe_m = 0.03;
-    double slide_overlap_margin =
-        0.01;  ///< Registered scans merged into the model of a hypothesis.
-    /// Verification (issue 3): RMS at most this many voxel sizes ...
+    double slide_overlap_margin = 0.01;
+    /// The first scan after the operator marked the stone turned over opens a new group at
+    /// once: the other side's scans match it only by look-alike poses (on the demo session
+    /// eight global attempts, ~6 s, decided nothing), and the whole-group merge joins the
+    /// sides once the new one has a few scans. False: it tries global registration first.
+    bool new_group_after_turn = true;
+};
+
+/// When a fine registration is accepted.
+struct LiveVerifyConfig {
+    /// RMS at most this many voxel sizes ...
     double max_rms_voxel_factor = 0.75;
     /// ... and, once `min_accepted_for_limits` scans were accepted, at most this multiple of
     /// the session's median accepted RMS (not below `min_rms_limit_m`): a scan slid along a
@@ -108,78 +123,88 @@ struct LiveRegistrationConfig {
     double min_normal_deviation_limit_deg = 3.0;
     std::size_t min_accepted_for_limits = 3;
     /// ... and a degeneracy figure (smallest / largest eigenvalue) at least this (and at
-    /// least fine.degeneracy_threshold). 0: only the latter. Measured on the small block's
-    /// structured-light tour, right alignments have 0.0016-0.016 (views of two faces at 30°
-    /// steps are weakly constrained), so no fixed bound separates a slide from them.
+    /// least the fine registration's degeneracy_threshold). 0: only the latter. Measured on
+    /// the small block's structured-light tour, right alignments have 0.0016-0.016 (views of
+    /// two faces at 30° steps are weakly constrained), so no fixed bound separates a slide.
     double min_degeneracy_ratio = 0.0;
     double min_overlap_fraction = 0.3;       ///< ... overlap of the new scan at least this ...
     double max_normal_deviation_deg = 20.0;  ///< ... and mean normal angle at most this.
-    /// The first scan after the operator marked the stone turned over opens a new group at
-    /// once: the other side's scans match it only by look-alike poses (on the demo session
-    /// eight global attempts, ~6 s, decided nothing), and the whole-group merge joins the
-    /// sides once the new one has a few scans. False: it tries global registration first.
-    bool new_group_after_turn = true;
-    /// Global registration (features at radii fixed for the session, see `radii_m`). Its
-    /// slide probes are off: the live registrar probes slides itself (`slide_probe_m`),
-    /// with the session's model, and stop 13's capture figures were measured so.
-    GlobalRegistrationConfig global{.slide_probe_max_eigenvalue_ratio = 0.0};
+};
+
+/// Global registration of a new scan against registered scans.
+struct LiveGlobalConfig {
+    /// Features at radii fixed for the session (see `radii_m`). Its slide probes are off:
+    /// the live registrar probes slides itself (`LiveHypothesisConfig::slide_probe_m`) with
+    /// the session's model.
+    GlobalRegistrationConfig registration{.slide_probe_max_eigenvalue_ratio = 0.0};
     /// Descriptor radii for the session; all zero = from the first usable scan's diagonal.
     InvariantRadii radii_m{};
-    std::size_t max_global_targets = 8;
+    std::size_t max_targets = 8;  ///< Registered scans tried per global attempt.
     /// Once `min_links_for_rms_gate` links exist, a global hypothesis counts only with an RMS
     /// within this multiple of the links' median RMS: a near-symmetric stone (a box with
     /// different relief per face) matches itself turned by 90° or 180° at a few times the
     /// RMS of the right pose.
-    double global_rms_median_factor = 2.5;
+    double rms_median_factor = 2.5;
     std::size_t min_links_for_rms_gate = 5;
     /// A verified global pose (any hypothesis, also of an ambiguous result) within these of
     /// a motion prior or the previous pose is taken: the prior resolves the look-alikes.
-    double max_global_prior_deg = 30.0;
-    double max_global_prior_m = 0.3;
-    /// Without a prior, a global pose needs verified votes from at least `min_votes` target
-    /// scans, `vote_ratio` times more than any other pose's; votes agree within these.
-    std::size_t min_votes = 2;
-    double vote_ratio = 2.0;
-    double vote_rotation_deg = 3.0;
-    double vote_displacement_m = 0.01;  ///< Registered scans tried per global attempt.
-    /// Links for multi-view refinement: pairs of one group whose predicted overlap (feature
-    /// sites) reaches this fraction are fine registered from their current poses.
-    double min_link_overlap_fraction = 0.15;
+    double max_prior_deg = 30.0;
+    double max_prior_m = 0.3;
+};
+
+/// Without a prior, a global pose needs verified votes from at least `min_count` target
+/// scans, `ratio` times more than any other pose's; votes agree within these.
+struct LiveVoteConfig {
+    std::size_t min_count = 2;
+    double ratio = 2.0;
+    double rotation_deg = 3.0;
+    double displacement_m = 0.01;
+};
+
+/// Links for multi-view refinement (paper eq. 4).
+struct LiveLinkConfig {
+    /// Pairs of one group whose predicted overlap (feature sites) reaches this fraction are
+    /// fine registered from their current poses.
+    double min_overlap_fraction = 0.15;
     /// The links sample many points: along a weakly constrained direction (two faces in
     /// view) a link's error falls with the square root of its samples, and the chain of
     /// links around the stone adds them up (3000 samples: 0.6 mm at the far side of the
     /// demo session; 20 000: 0.17 mm; 60 000, about all of a reduced scan: 0.15-0.17 mm on
     /// two live captures against 0.16-0.22 mm, docs/live-registration.md).
-    FineRegistrationConfig link_fine{.max_correspondence_distance_m = 0.006,
-                                     .min_correspondence_distance_m = 0.002,
-                                     .max_iterations = 30,
-                                     .sample_count = 60000,
-                                     .overlap_distance_m = 0.003,
-                                     .keep_correspondences = true};
+    FineRegistrationConfig fine{.max_correspondence_distance_m = 0.006,
+                                .min_correspondence_distance_m = 0.002,
+                                .max_iterations = 30,
+                                .sample_count = 60000,
+                                .overlap_distance_m = 0.003,
+                                .keep_correspondences = true};
     /// Correspondences a link keeps for the multi-view solve (`compress_link`: same optimum
     /// and stiffness as all of them, a tenth of the memory). 0 = all.
-    std::size_t max_link_correspondences = 2000;
+    std::size_t max_correspondences = 2000;
     /// A tried pair is tried again when its scans' relative pose moved by more than these
     /// since (degrees, metres at the source's centroid): a scan corrected by the refinement
     /// gets links to its true neighbours, and links computed from a wrong pose are redone.
-    double link_retry_deg = 0.05;
-    double link_retry_m = 0.0005;
+    double retry_deg = 0.05;
+    double retry_m = 0.0005;
     /// Links whose overlap only fixes some directions (one face, a band of the sides: the
     /// fine registration reports them degenerate) are kept too: their fine registration
     /// moved only along the fixed directions, and in the multi-view solve they add stiffness
     /// only there. Across a turn-over every pair is of this kind (eigenvalue ratios 2e-5 to
     /// 6e-4 on the demo session); without them the second side hangs on the one rigid
-    /// transform of the group merge (docs/live-registration.md, "Seventh pass").
-    bool degenerate_links = true;
+    /// transform of the group merge.
+    bool degenerate = true;
     /// A link needs an RMS within this many voxel sizes (looser than the verification:
     /// its correspondences reach farther).
-    double max_link_rms_voxel_factor = 1.0;
+    double max_rms_voxel_factor = 1.0;
     MultiviewRefinementConfig multiview{};  ///< fixed_scan_index is set per group.
-    /// Group merges by global registration of the whole groups' clouds, with the stone's up
+};
+
+/// Group merges in the background.
+struct LiveMergeConfig {
+    /// Merges by global registration of the whole groups' clouds, with the stone's up
     /// (each group's mean viewing direction) kept within `max_same_side_up_deg` on the same
     /// side and turned by at least 90° across a turn-over; tried again when one of the two
     /// groups has grown by half.
-    bool whole_group_merges = true;
+    bool whole_groups = true;
     std::size_t min_group_scans_for_up = 3;
     /// A whole-group match counts with an RMS up to this multiple of the session's gates
     /// (merged clouds of several scans fit looser than one pair) ...
@@ -189,7 +214,18 @@ struct LiveRegistrationConfig {
     double max_same_side_up_deg = 30.0;
     /// With fewer scans in a group its up is one viewing direction: the bounds widen by this.
     double few_scans_up_slack_deg = 45.0;
-    std::size_t max_merge_attempts = 4;  ///< Global pair attempts per refine() for merges.
+    std::size_t max_attempts = 4;  ///< Global pair attempts per refine() for merges.
+};
+
+/// Settings of a live registration session, by concern. Callers use designated initialisers.
+struct LiveRegistrationConfig {
+    LivePrepareConfig prepare{};
+    LiveHypothesisConfig hypotheses{};
+    LiveVerifyConfig verify{};
+    LiveGlobalConfig global{};
+    LiveVoteConfig votes{};
+    LiveLinkConfig links{};
+    LiveMergeConfig merges{};
     /// Scans whose features (for a later global registration) refine() computes per call.
     std::size_t max_features_per_refine = 2;
 };
@@ -204,12 +240,32 @@ struct LiveScanInput {
     bool turned_over_before = false;  ///< The operator marked the stone turned over.
 };
 
+/// A hypothesis tried for a scan.
+enum class LiveHypothesis {
+    kMotionPrior,   ///< "motion-prior": constant velocity.
+    kMotionPrior2,  ///< "motion-prior-2": double step (alternating elevations).
+    kPreviousPose,  ///< "previous-pose".
+    kGlobal,        ///< "global": against one target scan.
+    kGlobalModel,   ///< "global-model": the chosen global pose refined against the model.
+};
+/// The name stored in a session's decision JSON (stable: stored sessions read it).
+std::string_view to_string(LiveHypothesis hypothesis);
+
+/// How `add` placed a scan.
+enum class LiveMethod {
+    kFirst,         ///< "first": the session's frame.
+    kMotionPrior,   ///< "motion-prior" (also the double step).
+    kPreviousPose,  ///< "previous-pose".
+    kGlobal,        ///< "global".
+    kNewGroup,      ///< "new-group": matches no earlier scan yet.
+    kUnusable,      ///< "unusable": not registered (see the message).
+};
+/// The name stored in a session's decision JSON (stable: stored sessions read it).
+std::string_view to_string(LiveMethod method);
+
 /// One hypothesis tried for a scan.
 struct LiveAttempt {
-    /// "motion-prior" (constant velocity), "motion-prior-2" (double step, alternating
-    /// elevations), "previous-pose", "global" (one target scan), "global-model" (the chosen
-    /// global pose refined against the group's model).
-    std::string method;
+    LiveHypothesis method = LiveHypothesis::kGlobal;
     std::string status;  ///< "verified", or why not ("rms too large", "no_consensus", ...).
     std::int64_t target_seq = -1;  ///< Global: the target scan; else the latest model scan.
     int target_group = -1;
@@ -224,8 +280,7 @@ struct LiveDecision {
     bool registered = false;  ///< False: the scan is unusable (see message); no group.
     int group = -1;
     Pose T_group_scan = Pose::Identity();  ///< Scan frame into its group's frame.
-    /// "first", "motion-prior", "previous-pose", "global", "new-group", "unusable".
-    std::string method;
+    LiveMethod method = LiveMethod::kUnusable;
     double rms_m = 0.0;  ///< Of the accepted fine registration (0 for first/new-group).
     double overlap_fraction = 0.0;
     double normal_deviation_deg = 0.0;
