@@ -1,4 +1,4 @@
-// anascan convert IN OUT.ply: any supported point format to PLY.
+// anascan convert IN OUT: any supported point format to PLY or XYZ text (by OUT's extension).
 #include <spdlog/spdlog.h>
 
 #include <cstdio>
@@ -9,6 +9,7 @@
 #include "anascan/processing/io/ptx.hpp"
 #include "anascan/processing/io/text_points.hpp"
 #include "commands.hpp"
+#include "point_files.hpp"
 
 namespace anascan::cli {
 namespace {
@@ -23,12 +24,13 @@ struct ConvertOptions {
 
 std::vector<PointCloud> read_clouds(const ConvertOptions& o) {
     const std::filesystem::path in(o.input);
+    check_point_input(in);
     std::vector<PointCloud> clouds;
-    if (in.extension() == ".ply") {
+    if (lower_extension(in) == ".ply") {
         auto ply = io::read_ply(in);
         if (!ply) fail_command(ply.error());
         clouds.push_back(std::move(ply->cloud));
-    } else if (in.extension() == ".ptx") {
+    } else if (lower_extension(in) == ".ptx") {
         auto ptx = io::read_ptx(in);
         if (!ptx) fail_command(ptx.error());
         for (io::PtxScan& s : *ptx) {
@@ -53,6 +55,8 @@ std::filesystem::path output_path(const ConvertOptions& o, std::size_t index, st
 }
 
 void run_convert(const ConvertOptions& o) {
+    check_point_output(o.output);
+    check_output_writable(o.output, "output");
     std::vector<PointCloud> clouds = read_clouds(o);
     for (std::size_t i = 0; i < clouds.size(); ++i) {
         PointCloud& cloud = clouds[i];
@@ -61,8 +65,7 @@ void run_convert(const ConvertOptions& o) {
                 spdlog::warn("dropped {} non-finite points", n);
         }
         const std::filesystem::path out = output_path(o, i, clouds.size());
-        if (auto ok = io::write_ply(out, cloud, {.format = o.format}); !ok)
-            fail_command(ok.error());
+        write_points(out, cloud, {.format = o.format});
         std::printf("wrote %s (%zu points)\n", out.c_str(), cloud.size());
     }
 }
@@ -73,9 +76,11 @@ void add_convert_command(CLI::App& app) {
     auto opts = std::make_shared<ConvertOptions>();
     auto* cmd = app.add_subcommand(
         "convert",
-        "Convert .ply/.xyz/.pts/.ptx points to PLY (one file per PTX station: OUT-NN.ply)");
+        "Convert .ply/.xyz/.pts/.ptx points to PLY or XYZ text, the format OUT's extension "
+        "names (one file per PTX station: OUT-NN.ply)");
     cmd->add_option("input", opts->input, "Input file")->required()->check(CLI::ExistingFile);
-    cmd->add_option("output", opts->output, "Output .ply file")->required();
+    cmd->add_option("output", opts->output, "Output file (.ply, or .xyz/.txt/.asc for XYZ text)")
+        ->required();
     const std::map<std::string, io::PlyFormat> formats{
         {"binary", io::PlyFormat::kBinaryLittleEndian},
         {"binary-be", io::PlyFormat::kBinaryBigEndian},

@@ -11,5 +11,6 @@ list(APPEND ANASCAN_PROCESSING_SOURCES
     src/io/stanford_conf.cpp
     src/io/text_lines.cpp
     src/io/text_points.cpp
+    src/io/text_points_writer.cpp
     src/io/xf.cpp
 )
