@@ -190,7 +190,7 @@ void check_not_background(const PointCloud& source, const PointCloud& target,
     const double apart_m = (T_target_source * source_centroid - target_centroid).norm();
     const double size_m = std::max(source_size, target_size);
     if (rotation_angle_deg(T_target_source) > 2.0 || moved_m > 0.02 * size_m) return;
-    if (apart_m < 0.25 * size_m) return;
+    if (apart_m < 0.1 * size_m) return;
     report_poor_result(fmt::format(
         "the verified transform is close to the identity ({:.2f} deg, {:.1f} mm) while the "
         "clouds' centroids stay {:.0f} mm apart: it likely locked onto a static background "

@@ -25,7 +25,7 @@ bool one_of(const std::string& extension, std::string_view list) {
     return false;
 }
 
-constexpr std::string_view kPointExtensions = ".ply .ptx .xyz .txt .asc .pts";
+constexpr std::string_view kPointExtensions = ".ply .ptx .e57 .xyz .txt .asc .pts";
 constexpr std::string_view kTextExtensions = ".xyz .txt .asc";
 
 }  // namespace
@@ -39,12 +39,6 @@ std::string lower_extension(const fs::path& path) {
 
 void check_point_input(const fs::path& path, std::string_view extra) {
     const std::string extension = lower_extension(path);
-    if (extension == ".e57") {
-        throw CommandFailed(path.string() +
-                            ": E57 is not supported yet; export the scan as PTX or PLY (for "
-                            "example with CloudCompare), then use that file. anascan reads " +
-                            kReadablePointFormats);
-    }
     if (!one_of(extension, kPointExtensions) && !one_of(extension, extra)) {
         throw CommandFailed(path.string() + ": " +
                             (extension.empty() ? "no extension" : "'" + extension + "'") +
@@ -56,12 +50,14 @@ void check_point_input(const fs::path& path, std::string_view extra) {
         throw CommandFailed(path.string() + ": empty file (0 bytes)");
 }
 
-void check_point_output(const fs::path& path) {
+void check_point_output(const fs::path& path, std::string_view extra) {
     const std::string extension = lower_extension(path);
-    if (extension == ".ply" || one_of(extension, kTextExtensions)) return;
+    if (extension == ".ply" || one_of(extension, kTextExtensions) || one_of(extension, extra))
+        return;
     throw CommandFailed(path.string() + ": cannot write " +
                         (extension.empty() ? "a file without extension" : "'" + extension + "'") +
-                        "; name the output with the format wanted: " + kWritablePointFormats);
+                        "; name the output with the format wanted: " + kWritablePointFormats +
+                        (extra.empty() ? "" : " or " + std::string(extra)));
 }
 
 void write_points(const fs::path& path, const PointCloud& cloud, const io::PlyWriteOptions& ply) {

@@ -12,7 +12,7 @@ namespace anascan::cli {
 
 /// Every point format the command line reads, for messages.
 inline constexpr const char* kReadablePointFormats =
-    "PLY (.ply), PTX (.ptx), XYZ text (.xyz, .txt, .asc), Leica PTS (.pts)";
+    "PLY (.ply), PTX (.ptx), E57 (.e57), XYZ text (.xyz, .txt, .asc), Leica PTS (.pts)";
 /// Every point format the command line writes, for messages.
 inline constexpr const char* kWritablePointFormats = "PLY (.ply), XYZ text (.xyz, .txt, .asc)";
 
@@ -20,12 +20,13 @@ inline constexpr const char* kWritablePointFormats = "PLY (.ply), XYZ text (.xyz
 std::string lower_extension(const std::filesystem::path& path);
 
 /// Throws CommandFailed naming the whole path when the file is empty (0 bytes) or when its
-/// extension names no format `extra` or the point readers handle (E57 is named as not
-/// supported yet, with what to do). `extra`: further extensions the command reads.
+/// extension names no format `extra` or the point readers handle. `extra`: further
+/// extensions the command reads.
 void check_point_input(const std::filesystem::path& path, std::string_view extra = "");
 
-/// Throws CommandFailed when write_points cannot write the format `path`'s extension names.
-void check_point_output(const std::filesystem::path& path);
+/// Throws CommandFailed when write_points cannot write the format `path`'s extension names
+/// and `extra` (further extensions the command writes itself, ".e57") does not name it.
+void check_point_output(const std::filesystem::path& path, std::string_view extra = "");
 
 /// Writes the cloud in the format the extension names: .ply (encoding from `ply`), or
 /// .xyz/.txt/.asc as XYZ text. Throws CommandFailed on error.

@@ -38,8 +38,10 @@ void add_region_options(CLI::App* cmd, RegionOptions& options) {
 
 PointCloud select_region(const PointCloud& cloud, const RegionOptions& region,
                          const std::string& path) {
+    const bool box_or_range = !region.box_m.empty() || !region.range_m.empty();
+    if (!box_or_range && !region.remove_background_plane) return cloud;
     PointCloud selected = cloud;
-    if (!region.box_m.empty() || !region.range_m.empty()) {
+    if (box_or_range) {
         std::vector<std::size_t> keep;
         for (std::size_t i = 0; i < cloud.size(); ++i)
             if (in_region(cloud.world_position(i), region)) keep.push_back(i);
@@ -57,7 +59,8 @@ PointCloud select_region(const PointCloud& cloud, const RegionOptions& region,
             spdlog::warn("{}: no dominant plane to remove", path);
         }
     }
-    if (selected.empty()) throw CommandFailed(path + ": no point left in the region of interest");
+    if (selected.empty() && !cloud.empty())
+        throw CommandFailed(path + ": no point left in the region of interest");
     return selected;
 }
 
