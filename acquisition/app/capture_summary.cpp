@@ -94,9 +94,11 @@ void print_capture_summary(const acquisition::SessionStore& store) {
     if (coverage && *coverage) {
         const auto j = nlohmann::json::parse(**coverage, nullptr, false);
         if (j.is_object() && j.contains("fraction"))
-            std::printf("coverage %.1f %% of the stone's surface, %zu holes\n",
-                        j["fraction"].get<double>() * 100.0,
-                        j.contains("holes") ? j["holes"].size() : std::size_t{0});
+            std::printf(
+                "coverage at the end: %.1f %% of the %.3f m² surface estimated from all "
+                "registered scans of the model, %zu holes (recomputed from the saved scans)\n",
+                j["fraction"].get<double>() * 100.0, j.value("surface_area_m2", 0.0),
+                j.value("hole_count", j.contains("holes") ? j["holes"].size() : std::size_t{0}));
     }
 }
 

@@ -1,5 +1,6 @@
 // anascan align SOURCE.ply TARGET.ply: pairwise registration (global + fine, or fine from
 // --init), T maps source points into the target frame.
+#include <spdlog/fmt/fmt.h>
 #include <spdlog/spdlog.h>
 
 #include <chrono>
@@ -7,12 +8,16 @@
 #include <nlohmann/json.hpp>
 
 #include "anascan/processing/core/stopwatch.hpp"
+#include "anascan/processing/evaluation/scan_agreement.hpp"
 #include "anascan/processing/io/file_bytes.hpp"
 #include "anascan/processing/io/xf.hpp"
 #include "anascan/processing/registration/batch/scan_registration.hpp"
 #include "anascan/processing/registration/global/global_registration.hpp"
+#include "anascan/processing/spatial/kdtree.hpp"
 #include "commands.hpp"
+#include "point_files.hpp"
 #include "scan_preparation.hpp"
+#include "scan_region.hpp"
 
 namespace anascan::cli {
 namespace {
@@ -24,6 +29,7 @@ struct AlignOptions {
     std::string out;
     std::string stats;
     SensorOptions sensor;
+    RegionOptions region;
     std::vector<double> source_up, target_up;  ///< A known direction in each scan (3 each).
     std::vector<double> up_angle_deg;          ///< Admissible angle between them (min, max).
 };
@@ -68,11 +74,12 @@ nlohmann::json global_figures(const GlobalRegistrationResult& g) {
             {"overlap", g.overlap_fraction}};
 }
 
-PointCloud load_prepared(const std::string& path, const SensorOptions& sensor,
-                         AlignStages& stages) {
+PointCloud load_prepared(const std::string& path, const AlignOptions& o, AlignStages& stages) {
+    const SensorOptions& sensor = o.sensor;
     auto start = std::chrono::steady_clock::now();
-    auto cloud = load_ply_cloud(path);
-    if (!cloud) fail_command(cloud.error());
+    auto loaded = load_ply_cloud(path);
+    if (!loaded) fail_command(loaded.error());
+    auto cloud = std::optional(select_region(*loaded, o.region, path));
     stages.load_s += seconds_since(start);
     start = std::chrono::steady_clock::now();
     if (prepare_scan(*cloud, sensor_origin(sensor), {}) == 0) {
@@ -98,9 +105,25 @@ std::string rejection(const FineRegistrationResult& fine) {
     return {};
 }
 
-void print_fine(const FineRegistrationResult& fine, const std::string& status, double time_s) {
+/// The one RMS `align` reports, whatever gates the registration used: the scans'
+/// agreement as `assemble` measures it (point-to-plane distance of source samples to the
+/// target, over the samples with a target point within 5 mm).
+PairAgreement agreement(const PointCloud& source, const PointCloud& target,
+                        const Pose& T_target_source) {
+    const PointCloud placed = transformed(source, T_target_source);
+    const KdTree tree(target.positions);
+    return measure_agreement(placed, target, tree, {});
+}
+
+void print_fine(const FineRegistrationResult& fine, const PairAgreement& agreement,
+                const std::string& status, double time_s) {
     std::printf("status: %s\n", status.c_str());
-    std::printf("rms: %.4f mm\n", 1e3 * fine.rms_m);
+    std::printf(
+        "rms: %.4f mm (agreement: point-to-plane, source samples within %.0f mm of "
+        "the target, %.1f %% of them)\n",
+        1e3 * agreement.rms_distance_m, 1e3 * AgreementConfig{}.overlap_radius_m,
+        100.0 * agreement.overlap_fraction);
+    std::printf("fine registration residual: %.4f mm (within its final gate)\n", 1e3 * fine.rms_m);
     std::printf("overlap: %.1f %%\n", 100.0 * fine.overlap_fraction);
     std::printf("normal deviation: %.2f deg\n", fine.normal_deviation_deg.value_or(-1.0));
     std::printf("degeneracy (smallest/largest eigenvalue): %.4g\n",
@@ -147,10 +170,40 @@ void write_outputs(const AlignOptions& o, const FineRegistrationResult& fine,
 
 constexpr double kVerifiedGateFloorM = 0.002;
 
+/// Centroid (world frame of the cloud) and bounding-box diagonal, metres.
+std::pair<Eigen::Vector3d, double> centroid_and_size(const PointCloud& cloud) {
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    for (const Eigen::Vector3f& p : cloud.positions) sum += p.cast<double>();
+    const Bounds b = local_bounds(cloud);
+    return {cloud.origin_m + sum / double(std::max<std::size_t>(cloud.size(), 1)),
+            b.extent().cast<double>().norm()};
+}
+
+/// A verified transform close to the identity between clouds whose centroids differ: it
+/// most likely locked onto a static background both scans share (a wall behind a statue
+/// turned around). Reported as a poor result with what to try.
+void check_not_background(const PointCloud& source, const PointCloud& target,
+                          const Pose& T_target_source) {
+    const auto [source_centroid, source_size] = centroid_and_size(source);
+    const auto [target_centroid, target_size] = centroid_and_size(target);
+    const double moved_m = (T_target_source * source_centroid - source_centroid).norm();
+    const double apart_m = (T_target_source * source_centroid - target_centroid).norm();
+    const double size_m = std::max(source_size, target_size);
+    if (rotation_angle_deg(T_target_source) > 2.0 || moved_m > 0.02 * size_m) return;
+    if (apart_m < 0.1 * size_m) return;
+    report_poor_result(fmt::format(
+        "the verified transform is close to the identity ({:.2f} deg, {:.1f} mm) while the "
+        "clouds' centroids stay {:.0f} mm apart: it likely locked onto a static background "
+        "both scans share. Try --remove-background-plane, --roi-box or --roi-range-m",
+        rotation_angle_deg(T_target_source), moved_m * 1e3, apart_m * 1e3));
+}
+
 void run_align(const AlignOptions& o) {
+    check_output_writable(o.out, "--out");
+    check_output_writable(o.stats, "--stats");
     AlignStages stages;
-    const PointCloud source = load_prepared(o.source, o.sensor, stages);
-    const PointCloud target = load_prepared(o.target, o.sensor, stages);
+    const PointCloud source = load_prepared(o.source, o, stages);
+    const PointCloud target = load_prepared(o.target, o, stages);
     Pose initial = Pose::Identity();
     std::string status = "fine only";
     if (o.init.empty()) {
@@ -181,9 +234,11 @@ void run_align(const AlignOptions& o) {
     const FineRegistrationResult fine = register_fine(source, target, initial, fine_config);
     const std::string why = rejection(fine);
     status += why.empty() ? ", verified" : ", NOT verified (" + why + ")";
-    print_fine(fine, status, stages.global.total_s + fine.time_s);
+    print_fine(fine, agreement(source, target, fine.T_target_source), status,
+               stages.global.total_s + fine.time_s);
     if (!why.empty()) throw CommandFailed("not verified: " + why);
     write_outputs(o, fine, status, stages);
+    check_not_background(source, target, fine.T_target_source);
 }
 
 }  // namespace
@@ -214,6 +269,7 @@ void add_align_command(CLI::App& app) {
                     "(default 0 180; a stone turned over: 90 180; lying as before: 0 30)")
         ->expected(2);
     add_sensor_options(cmd, opts->sensor);
+    add_region_options(cmd, opts->region);
     cmd->callback([opts] { run_align(*opts); });
 }
 

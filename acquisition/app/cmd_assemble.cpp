@@ -6,6 +6,7 @@
 #include "anascan/processing/io/ply.hpp"
 #include "assemble_runner.hpp"
 #include "commands.hpp"
+#include "point_files.hpp"
 
 namespace anascan::cli {
 
@@ -27,6 +28,9 @@ void print_assembly(const acquisition::AssemblyReport& report) {
 }
 
 acquisition::AssemblyReport run_assemble(const AssembleOptions& o) {
+    if (!o.model_out.empty()) check_point_output(o.model_out);
+    check_output_writable(o.model_out, "--out");
+    check_output_writable(o.report_out, "--report");
     acquisition::AssemblyConfig config{.model_voxel_m = o.voxel_mm * 1e-3,
                                        .min_pair_overlap = o.min_overlap_percent / 100.0};
     config.agreement.overlap_radius_m = o.overlap_radius_mm * 1e-3;
@@ -35,7 +39,7 @@ acquisition::AssemblyReport run_assemble(const AssembleOptions& o) {
     if (!report) fail_command(report.error());
     print_assembly(*report);
     if (!o.model_out.empty()) {
-        if (auto ok = io::write_ply(o.model_out, report->model); !ok) fail_command(ok.error());
+        write_points(o.model_out, report->model);
         std::printf("model: %s (%zu points)\n", o.model_out.c_str(), report->model.size());
     }
     if (!o.report_out.empty()) {
@@ -55,7 +59,8 @@ void add_assemble_command(CLI::App& app) {
     cmd->add_option("conf", opts->conf, "Pose file (bmesh FILE tx ty tz qx qy qz qw)")
         ->required()
         ->check(CLI::ExistingFile);
-    cmd->add_option("--out", opts->model_out, "Merged model (.ply)");
+    cmd->add_option("--out", opts->model_out,
+                    "Merged model (.ply, or .xyz/.txt/.asc for XYZ text)");
     cmd->add_option("--report", opts->report_out, "Agreement report (.json)");
     cmd->add_option("--voxel-mm", opts->voxel_mm, "Down-sample the model to this voxel size, mm")
         ->check(CLI::NonNegativeNumber);

@@ -1,10 +1,14 @@
 // anascan capture --device DEV --session DIR: a scanning session. With a simulated scanner
 // the simulated operator walks around the block (N views, turned over after K); with a
-// real scanner each view waits for the operator (Enter). Prints each acknowledged scan
-// and its registration as they happen.
+// real scanner each view waits for the operator (Enter; not when stdin is no terminal).
+// Prints each acknowledged scan and its registration as they happen. The device is opened
+// before the session folder is touched; Ctrl-C stops after the scan in flight.
+#include <signal.h>
 #include <spdlog/spdlog.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <iostream>
@@ -13,6 +17,8 @@
 
 #include "anascan/acquisition/capture/capture_session.hpp"
 #include "anascan/acquisition/coverage/session_coverage.hpp"
+#include "anascan/acquisition/store/stone_check.hpp"
+#include "anascan/drivers/scanner.hpp"
 #include "anascan/scanner_sources/scanner_source.hpp"
 #include "capture_summary.hpp"
 #include "commands.hpp"
@@ -32,6 +38,7 @@ struct CaptureOptions {
     double distance_m = 1.1;
     bool no_register = false;
     bool no_coverage = false;
+    bool mix_stones = false;  ///< Add to a session of another stone without asking.
     int sim_unplug_after = -1;
     scanner_sources::ScannerSettings settings;  ///< Only the fields given on the command line.
     double reconnect_timeout_s = 10.0;
@@ -50,14 +57,60 @@ std::string device_uri(const CaptureOptions& o) {
     return o.device + "/" + o.scene;
 }
 
+/// Set by SIGINT (Ctrl-C): the capture loop stops after the scan in flight.
+std::atomic<bool> g_interrupted{false};
+
+void on_interrupt(int) {
+    g_interrupted = true;
+    struct sigaction again {};
+    again.sa_handler = SIG_DFL;  // A second Ctrl-C ends the process at once.
+    ::sigaction(SIGINT, &again, nullptr);
+}
+
+/// Catches Ctrl-C for the lifetime of the object (no SA_RESTART: a waiting prompt returns).
+class InterruptGuard {
+public:
+    InterruptGuard() {
+        g_interrupted = false;
+        struct sigaction action {};
+        action.sa_handler = on_interrupt;
+        ::sigemptyset(&action.sa_mask);
+        ::sigaction(SIGINT, &action, &previous_);
+    }
+    ~InterruptGuard() { ::sigaction(SIGINT, &previous_, nullptr); }
+    InterruptGuard(const InterruptGuard&) = delete;
+    InterruptGuard& operator=(const InterruptGuard&) = delete;
+
+private:
+    struct sigaction previous_ {};
+};
+
+/// Opens the scanner now, before any prompt or session folder, so that a missing device
+/// or an unknown scene fails at once; the capture session then takes this opened scanner
+/// (and reopens through `open` after an unplug).
+acquisition::ScannerOpener open_now(const std::string& uri, acquisition::ScannerOpener open) {
+    auto opened = open();
+    if (!opened)
+        throw CommandFailed(opened.error().message + " (see `anascan devices`; nothing was " +
+                            "written)");
+    auto first = std::make_shared<std::unique_ptr<drivers::Scanner>>(std::move(*opened));
+    spdlog::debug("{}: opened", uri);
+    return [first, open]() -> Expected<std::unique_ptr<drivers::Scanner>> {
+        if (*first) return std::move(*first);
+        return open();
+    };
+}
+
 /// A real scanner: the operator places it and presses Enter (q or end of input stops).
+/// Without a terminal on stdin nobody can press Enter: each view is captured at once.
 bool operator_ready(int view, int views) {
+    if (::isatty(STDIN_FILENO) == 0) return !g_interrupted;
     std::printf("place the scanner for view %d of %d and press Enter (q to stop) ", view + 1,
                 views);
     std::fflush(stdout);
     std::string line;
     if (!std::getline(std::cin, line)) return false;
-    return line != "q";
+    return line != "q" && !g_interrupted;
 }
 
 /// Captures one view, retrying while the device is away (unplugged, silent) for at most
@@ -79,14 +132,66 @@ std::optional<Error> capture_view(CaptureSession& session,
     }
 }
 
+/// Asks before scans of another stone join an existing session: at a terminal the
+/// operator answers; otherwise the capture refuses unless --mix-stones is given.
+void confirm_same_stone(const acquisition::SessionStore& store, const CaptureOptions& o,
+                        const std::string& uri) {
+    auto devices = store.devices();
+    if (!devices) fail_command(devices.error());
+    const auto reason = acquisition::another_stone_reason(*devices, uri);
+    if (!reason || o.mix_stones) return;
+    const std::string what = o.session + ": another stone? " + *reason;
+    if (::isatty(STDIN_FILENO) == 0)
+        throw CommandFailed(what +
+                            ". Use a new --session for a new stone, or --mix-stones to "
+                            "add these scans anyway");
+    std::printf("%s.\nadd the new scans to this session anyway? [y/N] ", what.c_str());
+    std::fflush(stdout);
+    std::string answer;
+    if (!std::getline(std::cin, answer) || (answer != "y" && answer != "yes"))
+        throw CommandFailed(o.session + ": nothing added; use a new --session for a new stone");
+}
+
+/// The simulated operator walks on for the pause, unless Ctrl-C comes first.
+void operator_pause(double pause_s) {
+    const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(pause_s);
+    while (!g_interrupted && std::chrono::steady_clock::now() < until)
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+}
+
+/// The command that goes on where an interrupted capture stopped.
+std::string resume_command(const CaptureOptions& o) {
+    std::string command = "anascan capture --device " + o.device + " --session " + o.session;
+    if (!o.scene.empty()) command += " --scene " + o.scene;
+    return command + " --views " + std::to_string(o.views);
+}
+
+/// Exit code 3 when the session has two or more scans but no two of them were joined.
+void check_joined(const acquisition::SessionStore& store) {
+    auto scans = store.scans();
+    if (!scans || scans->size() < 2) return;
+    const int group = acquisition::largest_group(*scans);
+    const auto joined = std::count_if(scans->begin(), scans->end(), [&](const auto& s) {
+        return acquisition::counts_in_group(s) && s.group == group;
+    });
+    if (joined >= 2) return;
+    report_poor_result("no two of the " + std::to_string(scans->size()) +
+                       " scans were joined, so there is no model and no coverage: the views "
+                       "need to overlap (or the device's scans are too sparse to match)");
+}
+
 void run_capture(const CaptureOptions& o) {
     const std::string uri = device_uri(o);
+    const scanner_sources::ScannerSource source{
+        .uri = uri, .settings = o.settings, .sim_unplug_after = o.sim_unplug_after};
+    auto opener = open_now(uri, scanner_sources::make_scanner_opener(source));
     auto store =
         acquisition::SessionStore::open(o.session, acquisition::SessionOpenMode::kCreateOrOpen);
     if (!store) fail_command(store.error());
     auto existing = (*store)->scans();
     if (!existing) fail_command(existing.error());
     const int already = static_cast<int>(existing->size());
+    if (already > 0) confirm_same_stone(**store, o, uri);
 
     const scanner_sources::SimulatedTour tour{
         .views = o.views,
@@ -97,30 +202,34 @@ void run_capture(const CaptureOptions& o) {
                                              .coverage_live = !o.no_coverage};
     auto session = CaptureSession::start(std::move(*store), config, printing_sink());
     if (!session) fail_command(session.error());
-    const scanner_sources::ScannerSource source{
-        .uri = uri, .settings = o.settings, .sim_unplug_after = o.sim_unplug_after};
-    if (auto ok = (*session)->attach_scanner(uri, scanner_sources::make_scanner_opener(source));
-        !ok)
-        fail_command(ok.error());
+    if (auto ok = (*session)->attach_scanner(uri, std::move(opener)); !ok) fail_command(ok.error());
     if (already > 0)
         std::printf("session %s has %d scans: resuming at view %d of %d\n", o.session.c_str(),
                     already, std::min(already, o.views) + 1, o.views);
     std::optional<Error> stopped;
     const bool simulated = scanner_sources::is_simulated(uri);
-    for (int i = already; i < o.views && !stopped; ++i) {
+    const InterruptGuard interrupt_guard;
+    for (int i = already; i < o.views && !stopped && !g_interrupted; ++i) {
         if (!simulated && !operator_ready(i, o.views)) break;
         if (scanner_sources::tour_turns_over_before(tour, i))
             std::printf("the stone is turned over before view %d\n", i + 1);
         stopped =
             capture_view(**session, scanner_sources::tour_request(tour, i), o.reconnect_timeout_s);
         if (simulated && !stopped && i + 1 < o.views && o.operator_pause_s > 0.0)
-            std::this_thread::sleep_for(std::chrono::duration<double>(o.operator_pause_s));
+            operator_pause(o.operator_pause_s);
     }
     spdlog::info("capture done; waiting for registration to catch up");
     (*session)->wait_until_idle();
     if (!o.no_register && !o.no_coverage) store_final_coverage((*session)->store());
     print_capture_summary((*session)->store());
     if (stopped) throw CommandFailed("capture stopped: " + stopped->message);
+    if (g_interrupted) {
+        auto scans = (*session)->store().scans();
+        const std::size_t saved = scans ? scans->size() : 0;
+        throw CommandInterrupted("stopped (Ctrl-C) after scan " + std::to_string(saved) +
+                                 "; the session is saved; resume with: " + resume_command(o));
+    }
+    if (!o.no_register) check_joined((*session)->store());
 }
 
 }  // namespace
@@ -151,6 +260,9 @@ void add_capture_command(CLI::App& app) {
     cmd->add_option("--max-range-m", opts->settings.max_range_m, "Farthest depth kept, m");
     cmd->add_flag("--no-register", opts->no_register, "Only capture and save (register later)");
     cmd->add_flag("--no-coverage", opts->no_coverage, "No live coverage");
+    cmd->add_flag("--mix-stones", opts->mix_stones,
+                  "Add to an existing session even when its scans show another stone "
+                  "(default: ask, or refuse without a terminal)");
     cmd->add_option("--reconnect-timeout-s", opts->reconnect_timeout_s,
                     "How long to wait for a device that went away, s (default 10)")
         ->check(CLI::Range(0.0, 3600.0));

@@ -1,4 +1,5 @@
-// anascan convert IN OUT: any supported point format to PLY, or to E57 (OUT.e57).
+// anascan convert IN OUT: any supported point format to PLY, XYZ text or E57 (by OUT's
+// extension).
 #include <spdlog/spdlog.h>
 
 #include <cstdio>
@@ -10,6 +11,7 @@
 #include "anascan/processing/io/ptx.hpp"
 #include "anascan/processing/io/text_points.hpp"
 #include "commands.hpp"
+#include "point_files.hpp"
 
 namespace anascan::cli {
 namespace {
@@ -24,12 +26,13 @@ struct ConvertOptions {
 
 std::vector<PointCloud> read_clouds(const ConvertOptions& o) {
     const std::filesystem::path in(o.input);
+    check_point_input(in);
     std::vector<PointCloud> clouds;
-    if (in.extension() == ".ply") {
+    if (lower_extension(in) == ".ply") {
         auto ply = io::read_ply(in);
         if (!ply) fail_command(ply.error());
         clouds.push_back(std::move(ply->cloud));
-    } else if (in.extension() == ".ptx") {
+    } else if (lower_extension(in) == ".ptx") {
         auto ptx = io::read_ptx(in);
         if (!ptx) fail_command(ptx.error());
         for (io::PtxScan& s : *ptx) {
@@ -94,7 +97,9 @@ void convert_to_e57(const ConvertOptions& o) {
 }
 
 void run_convert(const ConvertOptions& o) {
-    if (std::filesystem::path(o.output).extension() == ".e57") return convert_to_e57(o);
+    check_point_output(o.output, ".e57");
+    check_output_writable(o.output, "output");
+    if (lower_extension(o.output) == ".e57") return convert_to_e57(o);
     std::vector<PointCloud> clouds = read_clouds(o);
     for (std::size_t i = 0; i < clouds.size(); ++i) {
         PointCloud& cloud = clouds[i];
@@ -103,8 +108,7 @@ void run_convert(const ConvertOptions& o) {
                 spdlog::warn("dropped {} non-finite points", n);
         }
         const std::filesystem::path out = output_path(o, i, clouds.size());
-        if (auto ok = io::write_ply(out, cloud, {.format = o.format}); !ok)
-            fail_command(ok.error());
+        write_points(out, cloud, {.format = o.format});
         std::printf("wrote %s (%zu points)\n", out.c_str(), cloud.size());
     }
 }
@@ -115,10 +119,12 @@ void add_convert_command(CLI::App& app) {
     auto opts = std::make_shared<ConvertOptions>();
     auto* cmd = app.add_subcommand(
         "convert",
-        "Convert .ply/.xyz/.pts/.ptx/.e57 points to PLY (one file per station: OUT-NN.ply) "
-        "or to one E57 file (OUT.e57, grids and poses kept)");
+        "Convert .ply/.xyz/.pts/.ptx/.e57 points to PLY or XYZ text (one file per station: "
+        "OUT-NN.ply) or to one E57 file (OUT.e57, grids and poses kept), by OUT's extension");
     cmd->add_option("input", opts->input, "Input file")->required()->check(CLI::ExistingFile);
-    cmd->add_option("output", opts->output, "Output .ply or .e57 file")->required();
+    cmd->add_option("output", opts->output,
+                    "Output file (.ply, .xyz/.txt/.asc for XYZ text, or .e57)")
+        ->required();
     const std::map<std::string, io::PlyFormat> formats{
         {"binary", io::PlyFormat::kBinaryLittleEndian},
         {"binary-be", io::PlyFormat::kBinaryBigEndian},

@@ -37,14 +37,17 @@ fs::path write_synthetic_scans(const fs::path& folder) {
 }
 
 fs::path choose_input(const DemoOptions& o, const fs::path& out) {
-    const fs::path bunny_conf = fs::path(o.bunny_dir) / "bun.conf";
-    if (!o.bunny_dir.empty() && fs::exists(bunny_conf)) {
+    if (!o.bunny_dir.empty()) {
+        const fs::path bunny_conf = fs::path(o.bunny_dir) / "bun.conf";
+        if (!fs::exists(bunny_conf))
+            throw CommandFailed("--bunny " + o.bunny_dir + ": " + bunny_conf.string() +
+                                " not found; give the folder of the Stanford bunny range scans "
+                                "(bun.conf and bun*.ply), or leave --bunny out for the "
+                                "synthetic example");
         std::printf("input: Stanford bunny range scans with their ground-truth poses (%s)\n",
                     bunny_conf.c_str());
         return bunny_conf;
     }
-    if (!o.bunny_dir.empty())
-        spdlog::warn("{} not found; using the synthetic example", bunny_conf.string());
     std::printf("input: simulated scans of a 0.8 x 0.5 x 0.4 m block with their true poses\n");
     return write_synthetic_scans(out / "synthetic-scans");
 }

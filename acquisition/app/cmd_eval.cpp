@@ -1,6 +1,8 @@
 // anascan eval POSES.conf --truth TRUTH.conf: per-scan pose errors against ground truth.
 #include <cstdio>
 #include <filesystem>
+#include <optional>
+#include <set>
 
 #include "anascan/processing/evaluation/pose_evaluation.hpp"
 #include "anascan/processing/io/stanford_conf.hpp"
@@ -54,12 +56,52 @@ void print_evaluation(const PoseEvaluation& eval) {
                 1e3 * eval.max_translation_m);
 }
 
+bool shares_a_name(const std::vector<NamedPose>& a, const std::vector<NamedPose>& b) {
+    for (const NamedPose& x : a)
+        for (const NamedPose& y : b)
+            if (x.name == y.name) return true;
+    return false;
+}
+
+/// The poses renamed to their file names, when those are unique in the list.
+std::optional<std::vector<NamedPose>> by_file_name(std::vector<NamedPose> poses) {
+    std::set<std::string> seen;
+    for (NamedPose& p : poses) {
+        p.name = std::filesystem::path(p.name).filename().string();
+        if (!seen.insert(p.name).second) return std::nullopt;
+    }
+    return poses;
+}
+
+/// The estimated poses under the truth's names: as they are when they share a name,
+/// else matched by file name (a .conf names scans relative to its own folder).
+std::vector<NamedPose> match_names(const EvalOptions& o, std::vector<NamedPose> estimated,
+                                   std::vector<NamedPose>& truth) {
+    if (shares_a_name(estimated, truth)) return estimated;
+    auto est = by_file_name(estimated);
+    auto tru = by_file_name(truth);
+    if (!est || !tru || !shares_a_name(*est, *tru)) {
+        throw CommandFailed(o.estimated + " and " + o.truth +
+                            " share no scan name, even by file name (first: '" +
+                            (estimated.empty() ? "" : estimated[0].name) + "' and '" +
+                            (truth.empty() ? "" : truth[0].name) + "')");
+    }
+    std::printf(
+        "matched by file name (the two .conf files name the scans by different "
+        "paths, e.g. '%s' and '%s')\n",
+        estimated.empty() ? "" : estimated[0].name.c_str(),
+        truth.empty() ? "" : truth[0].name.c_str());
+    truth = std::move(*tru);
+    return std::move(*est);
+}
+
 void run_eval(const EvalOptions& o) {
     std::vector<NamedPose> truth = read_named_poses(o.truth);
     if (o.at_centroid) {
         for (NamedPose& t : truth) t.measure_at_scan_m = scan_centroid(o.truth, t.name);
     }
-    const auto eval = evaluate_poses(read_named_poses(o.estimated), truth);
+    const std::vector<NamedPose> estimated = match_names(o, read_named_poses(o.estimated), truth);
+    const auto eval = evaluate_poses(estimated, truth);
     if (!eval) throw CommandFailed(o.estimated + " and " + o.truth + " share no scan name");
     print_evaluation(*eval);
     const bool all_placed = eval->placed == eval->scans.size();

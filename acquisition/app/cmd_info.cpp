@@ -1,4 +1,6 @@
 // anascan info FILE...: what a scan, pose or mesh file holds.
+#include <spdlog/spdlog.h>
+
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -10,6 +12,7 @@
 #include "anascan/processing/io/text_points.hpp"
 #include "anascan/processing/io/xf.hpp"
 #include "commands.hpp"
+#include "point_files.hpp"
 
 namespace anascan::cli {
 namespace {
@@ -93,19 +96,37 @@ void info_e57(const std::filesystem::path& path) {
     }
 }
 
-void info_conf(const std::filesystem::path& path) {
+/// Describes the .conf; returns how many of the scan files it names are missing.
+std::size_t info_conf(const std::filesystem::path& path) {
     auto conf = io::read_conf(path);
     if (!conf) fail_command(conf.error());
     std::printf("%s: Stanford .conf, %zu scan(s)\n", path.c_str(), conf->entries.size());
-    for (const io::ConfEntry& e : conf->entries) print_pose(e.file.c_str(), e.T_world_scan);
+    std::size_t missing = 0;
+    for (const io::ConfEntry& e : conf->entries) {
+        print_pose(e.file.c_str(), e.T_world_scan);
+        const std::filesystem::path scan = path.parent_path() / e.file;
+        std::error_code ec;
+        if (std::filesystem::is_regular_file(scan, ec)) continue;
+        spdlog::warn("{}: scan file {} is missing (scans are named relative to the .conf's folder)",
+                     path.string(), scan.string());
+        ++missing;
+    }
+    return missing;
 }
 
 void info_file(const std::filesystem::path& path) {
-    const std::string ext = path.extension().string();
+    const std::string ext = lower_extension(path);
+    check_point_input(path, ".conf .xf");
     if (ext == ".ply") return info_ply(path);
     if (ext == ".ptx") return info_ptx(path);
     if (ext == ".e57") return info_e57(path);
-    if (ext == ".conf") return info_conf(path);
+    if (ext == ".conf") {
+        const std::size_t missing = info_conf(path);
+        if (missing > 0)
+            throw CommandFailed(path.string() + ": " + std::to_string(missing) +
+                                " scan file(s) it names are missing");
+        return;
+    }
     if (ext == ".xf") {
         auto T = io::read_xf(path);
         if (!T) fail_command(T.error());

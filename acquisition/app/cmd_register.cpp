@@ -13,7 +13,9 @@
 #include "anascan/processing/io/stanford_conf.hpp"
 #include "anascan/processing/registration/batch/scan_registration.hpp"
 #include "commands.hpp"
+#include "point_files.hpp"
 #include "scan_preparation.hpp"
+#include "scan_region.hpp"
 
 namespace anascan::cli {
 namespace {
@@ -26,6 +28,7 @@ struct RegisterOptions {
     std::string merged;
     std::string stats;
     SensorOptions sensor;
+    RegionOptions region;
 };
 
 /// The scan's name in the .conf: relative to the .conf's folder when possible.
@@ -172,7 +175,7 @@ void write_merged(const RegisterOptions& o, const ScanRegistrationResult& r) {
         cloud->normals.clear();  // Some scans may lack them; append keeps common ones only.
         append(merged, transformed(*cloud, r.scans[i].T_world_scan));
     }
-    if (auto ok = io::write_ply(o.merged, merged); !ok) fail_command(ok.error());
+    write_points(o.merged, merged);
     std::printf("merged: %s (%zu points)\n", o.merged.c_str(), merged.size());
 }
 
@@ -194,13 +197,25 @@ void write_outputs(const RegisterOptions& o, const ScanRegistrationResult& r) {
 }
 
 void run_register(const RegisterOptions& o) {
+    check_output_writable(o.out, "--out");
+    check_output_writable(o.stats, "--stats");
+    if (!o.merged.empty()) check_point_output(o.merged);
+    check_output_writable(o.merged, "--merged");
     // Large per-scan buffers mapped and returned on free: peak memory does not grow with
     // the number of scans through heap fragmentation (docs/scan-registration.md, "Scale").
     if (!use_fixed_mmap_threshold()) spdlog::debug("allocator: mmap threshold not fixed");
     std::vector<ScanInput> inputs;
     for (const std::string& path : o.scans) {
         inputs.push_back({.name = path,
-                          .load = [path] { return load_ply_cloud(path); },
+                          .load = [path, &o]() -> Expected<PointCloud> {
+                              auto cloud = load_ply_cloud(path);
+                              if (!cloud) return cloud;
+                              try {  // Loads may run on worker threads: no exception out.
+                                  return select_region(*cloud, o.region, path);
+                              } catch (const CommandFailed& e) {
+                                  return fail(ErrorCode::kEmpty, e.what());
+                              }
+                          },
                           .sensor_origin_scan_m = sensor_origin(o.sensor),
                           .sensor_origin_known = o.sensor.origin_given && !o.sensor.no_sensor});
     }
@@ -209,6 +224,9 @@ void run_register(const RegisterOptions& o) {
     print_result(result);
     if (result.placed_count == 0) throw CommandFailed("no scan could be placed");
     write_outputs(o, result);
+    if (result.placed_count < 2 && result.scans.size() >= 2)
+        report_poor_result("no two scans were joined (1 of " + std::to_string(result.scans.size()) +
+                           " placed): the scans need overlapping views; see the reasons above");
 }
 
 }  // namespace
@@ -228,6 +246,7 @@ void add_register_command(CLI::App& app) {
     cmd->add_option("--merged", opts->merged, "Merged placed scans, world frame (.ply)");
     cmd->add_option("--stats", opts->stats, "Figures per stage, pair and scan (.json)");
     add_sensor_options(cmd, opts->sensor);
+    add_region_options(cmd, opts->region);
     cmd->callback([opts] { run_register(*opts); });
 }
 

@@ -1,15 +1,18 @@
-// anascan session export DIR --out MODEL.ply: the registered scans merged in their group's
-// frame, optionally with their poses as a Stanford .conf; --truth-poses writes the
+// anascan session export DIR --out MODEL.ply: the registered scans of the largest group
+// merged, in a stone-centred frame (--frame stone, the default) or their group's frame,
+// optionally with their poses as a Stanford .conf; --truth-poses writes the
 // simulator's true poses of a simulated session as a .conf (for `anascan eval`).
 #include <spdlog/spdlog.h>
 
 #include <cstdio>
-#include <map>
 
 #include "anascan/acquisition/assembly/assembly.hpp"
+#include "anascan/acquisition/assembly/stone_frame.hpp"
+#include "anascan/acquisition/store/groups.hpp"
 #include "anascan/processing/io/ply.hpp"
 #include "anascan/processing/io/stanford_conf.hpp"
 #include "commands.hpp"
+#include "point_files.hpp"
 #include "session_cli.hpp"
 
 namespace anascan::cli {
@@ -27,20 +30,8 @@ struct ExportOptions {
     double voxel_mm = 0.0;
     bool include_failed = false;
     std::optional<int> group;
+    std::string frame = "stone";  ///< "stone" (stone_frame) or "group" (its first scan's).
 };
-
-// The group with the most registered, non-excluded scans (lowest id on a tie).
-int largest_group(const std::vector<ScanRecord>& scans) {
-    std::map<int, int> counts;
-    for (const ScanRecord& r : scans) {
-        if (r.state == ScanState::kRegistered && r.pose) ++counts[r.group];
-    }
-    int best = -1, best_count = 0;
-    for (const auto& [group, count] : counts) {
-        if (count > best_count) best = group, best_count = count;
-    }
-    return best;
-}
 
 std::optional<Pose> export_pose(const ScanRecord& r, int group, bool include_failed) {
     if (r.excluded) return std::nullopt;
@@ -99,33 +90,53 @@ void write_truth_poses(const ExportOptions& o) {
     write_poses(o.truth_poses, o.dir, entries, "true poses");
 }
 
-void run_export(const ExportOptions& o) {
-    if (o.out.empty() && o.truth_poses.empty()) {
-        throw CommandFailed("session export: give --out MODEL.ply and/or --truth-poses TRUTH.conf");
-    }
-    if (!o.truth_poses.empty()) write_truth_poses(o);
-    if (o.out.empty()) return;
-    auto store = open_session(o.dir, acquisition::SessionOpenMode::kReadOnly);
-    auto scans = store->scans();
-    if (!scans) fail_command(scans.error());
-    const int group = o.group.value_or(largest_group(*scans));
-    const auto entries = select_scans(*scans, group, o.include_failed);
+/// The entries of the group to export, warning about registered scans left out.
+std::vector<io::ConfEntry> group_entries(const ExportOptions& o,
+                                         const std::vector<ScanRecord>& scans, int group) {
+    auto entries = select_scans(scans, group, o.include_failed);
     if (entries.empty()) {
         throw CommandFailed(o.dir + ": no registered scan" +
                             (o.group ? " in group " + std::to_string(group) : "") +
                             " to export (see `anascan session info " + o.dir + "`)");
     }
-    for (const ScanRecord& r : *scans) {
-        if (r.state == ScanState::kRegistered && !r.excluded && r.group != group)
+    for (const ScanRecord& r : scans) {
+        if (acquisition::counts_in_group(r) && r.group != group)
             spdlog::warn("scan {} is in group {}, not exported (use --group)", r.seq, r.group);
     }
+    return entries;
+}
+
+/// Moves the model and the poses into the stone frame (--frame stone).
+void to_stone_frame(PointCloud& model, std::vector<io::ConfEntry>& entries) {
+    const acquisition::StoneFrame frame = acquisition::stone_frame(model);
+    model = transformed(model, frame.T_stone_model);
+    for (io::ConfEntry& e : entries) e.T_world_scan = frame.T_stone_model * e.T_world_scan;
+    std::printf("%s\n", frame.description.c_str());
+}
+
+void run_export(const ExportOptions& o) {
+    if (o.out.empty() && o.truth_poses.empty()) {
+        throw CommandFailed("session export: give --out MODEL.ply and/or --truth-poses TRUTH.conf");
+    }
+    if (!o.out.empty()) check_point_output(o.out);
+    check_output_writable(o.out, "--out");
+    check_output_writable(o.poses, "--poses");
+    check_output_writable(o.truth_poses, "--truth-poses");
+    if (!o.truth_poses.empty()) write_truth_poses(o);
+    if (o.out.empty()) return;
+    auto store = open_session(o.dir, acquisition::SessionOpenMode::kReadOnly);
+    auto scans = store->scans();
+    if (!scans) fail_command(scans.error());
+    const int group = o.group.value_or(acquisition::largest_group(*scans));
+    auto entries = group_entries(o, *scans, group);
     acquisition::AssemblyConfig config{.model_voxel_m = o.voxel_mm * 1e-3, .measure_pairs = false};
     auto report = acquisition::assemble_entries(o.dir, entries, config,
                                                 [](std::string_view m) { spdlog::debug("{}", m); });
     if (!report) fail_command(report.error());
-    if (auto ok = io::write_ply(o.out, report->model); !ok) fail_command(ok.error());
-    std::printf("model: %s (%zu points from %zu scans of group %d)\n", o.out.c_str(),
-                report->model.size(), entries.size(), group);
+    if (o.frame == "stone") to_stone_frame(report->model, entries);
+    write_points(o.out, report->model);
+    std::printf("model: %s (%zu points from %zu scans of group %d, %s frame)\n", o.out.c_str(),
+                report->model.size(), entries.size(), group, o.frame.c_str());
     if (!o.poses.empty()) write_poses(o.poses, o.dir, entries);
 }
 
@@ -135,10 +146,15 @@ void add_session_export_command(CLI::App& session) {
     auto o = std::make_shared<ExportOptions>();
     auto* cmd = session.add_subcommand(
         "export",
-        "Merge the registered, non-excluded scans of a session (placed by their poses, in the "
-        "frame of their group) into one model");
+        "Merge the registered, non-excluded scans of a session (placed by their poses) into "
+        "one model, in a stone-centred, ground-aligned frame by default");
     cmd->add_option("dir", o->dir, "Session folder")->required();
-    cmd->add_option("--out", o->out, "Merged model (.ply)");
+    cmd->add_option("--out", o->out, "Merged model (.ply, or .xyz/.txt/.asc for XYZ text)");
+    cmd->add_option("--frame", o->frame,
+                    "Frame of the model and poses: stone (default: upright on the ground at "
+                    "the origin, as MeshLab or CloudCompare users expect) or group (the "
+                    "frame of the group's first scan, as registered)")
+        ->check(CLI::IsMember({"stone", "group"}));
     cmd->add_option("--poses", o->poses,
                     "Also write the poses as a Stanford .conf (scan files named relative to it)");
     cmd->add_option("--truth-poses", o->truth_poses,

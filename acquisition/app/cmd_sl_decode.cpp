@@ -1,4 +1,5 @@
 // anascan sl decode: a captured Gray-code stereo sequence -> point cloud (PLY).
+#include <spdlog/fmt/fmt.h>
 #include <spdlog/spdlog.h>
 #include <tbb/global_control.h>
 
@@ -14,6 +15,7 @@
 #include "anascan/processing/core/stopwatch.hpp"
 #include "anascan/processing/io/ply.hpp"
 #include "commands.hpp"
+#include "point_files.hpp"
 
 namespace anascan::cli {
 namespace {
@@ -106,6 +108,8 @@ SlDecodeOptions with_recorded_layout(SlDecodeOptions o) {
 
 void run_sl_decode(const SlDecodeOptions& options) {
     const SlDecodeOptions o = with_recorded_layout(options);
+    check_point_output(o.output);
+    check_output_writable(o.output, "--out");
     const auto t0 = Clock::now();
     std::unique_ptr<tbb::global_control> thread_limit;
     if (o.threads > 0) {
@@ -128,12 +132,16 @@ void run_sl_decode(const SlDecodeOptions& options) {
     if (!result) fail_command(result.error());
     const double decode_s = seconds_since(t0) - load_s;
     if (2 * result->rejected_ray_gap > result->matched) {
-        spdlog::warn(
-            "{} of {} matches miss by more than {} mm: wrong camera order "
-            "(--swap-cameras), calibration unit or calibration?",
-            result->rejected_ray_gap, result->matched, o.max_ray_gap_mm);
+        report_poor_result(
+            fmt::format("{} of {} matches miss by more than {} mm: wrong camera order "
+                        "(--swap-cameras), calibration unit or calibration?",
+                        result->rejected_ray_gap, result->matched, o.max_ray_gap_mm));
+    } else if (result->cloud.empty()) {
+        report_poor_result(
+            "no point triangulated: check the images, --min-contrast and the "
+            "calibration");
     }
-    if (auto ok = io::write_ply(o.output, result->cloud); !ok) fail_command(ok.error());
+    write_points(o.output, result->cloud);
     const double total_s = seconds_since(t0);
     const auto& r = *result;
     std::printf(

@@ -1,7 +1,9 @@
 #pragma once
 // Sub-commands of the `anascan` command line. Each registers itself on the app; its
 // callback prints results on stdout, progress on stderr, and throws CommandFailed with a
-// message for the user on error (main turns it into exit code 1).
+// message for the user on error (main turns it into exit code 1). A result that is written
+// but clearly unusable is reported with report_poor_result (exit code 3). The exit codes
+// and result states are in docs/exit-codes.md.
 
 #include <CLI/CLI.hpp>
 #include <stdexcept>
@@ -17,6 +19,30 @@ struct CommandFailed : std::runtime_error {
 
 /// Throws CommandFailed carrying the error's message.
 [[noreturn]] inline void fail_command(const Error& error) { throw CommandFailed(error.message); }
+
+/// Exit codes of the command line (docs/exit-codes.md).
+enum ExitCode : int {
+    kExitOk = 0,
+    kExitError = 1,         ///< CommandFailed: bad input, device, output; nothing usable.
+    kExitUsage = 2,         ///< The command line itself is wrong.
+    kExitPoor = 3,          ///< Outputs written, but the result is clearly unusable.
+    kExitInterrupted = 130  ///< Stopped cleanly by Ctrl-C (SIGINT).
+};
+
+/// The command ran to the end and wrote its outputs, but the result is clearly unusable:
+/// warns with `what` (say why and what to try); the process exits with kExitPoor unless
+/// --accept-poor was given.
+void report_poor_result(const std::string& what);
+/// --accept-poor: a poor result exits 0 (the warning is still printed).
+void set_accept_poor(bool accept);
+/// kExitPoor after report_poor_result (unless accepted), else kExitOk.
+int result_exit_code();
+
+/// A command stopped by the operator (Ctrl-C) after leaving everything consistent; main
+/// prints the message and exits with kExitInterrupted.
+struct CommandInterrupted : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
 
 void add_info_command(CLI::App& app);
 void add_convert_command(CLI::App& app);

@@ -28,6 +28,10 @@ int main(int argc, char** argv) {
     bool quiet = false;
     app.add_flag("-v,--verbose", verbose, "Print debug detail on stderr");
     app.add_flag("-q,--quiet", quiet, "Print only warnings and errors on stderr");
+    bool accept_poor = false;
+    app.add_flag("--accept-poor", accept_poor,
+                 "Exit 0 even when a result is clearly unusable (default: exit code 3; "
+                 "docs/exit-codes.md)");
     app.set_version_flag("--version", "anascan 0.1.0");
     anascan::cli::add_info_command(app);
     anascan::cli::add_convert_command(app);
@@ -42,14 +46,21 @@ int main(int argc, char** argv) {
     anascan::cli::add_capture_command(app);
     anascan::cli::add_coverage_command(app);
     anascan::cli::add_session_command(app);
-    app.parse_complete_callback([&] { configure_logging(verbose, quiet); });
+    app.parse_complete_callback([&] {
+        configure_logging(verbose, quiet);
+        anascan::cli::set_accept_poor(accept_poor);
+    });
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
-        return app.exit(e);
+        const int code = app.exit(e);
+        return code == 0 ? anascan::cli::kExitOk : anascan::cli::kExitUsage;
     } catch (const anascan::cli::CommandFailed& e) {
         std::fprintf(stderr, "anascan: error: %s\n", e.what());
-        return 1;
+        return anascan::cli::kExitError;
+    } catch (const anascan::cli::CommandInterrupted& e) {
+        std::fprintf(stderr, "anascan: %s\n", e.what());
+        return anascan::cli::kExitInterrupted;
     }
-    return 0;
+    return anascan::cli::result_exit_code();
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <map>
 
+#include "anascan/acquisition/store/groups.hpp"
 #include "anascan/gui/field_view_state.hpp"
 
 namespace anascan::gui {
@@ -37,10 +38,11 @@ std::string format_scan_list(const std::vector<std::int64_t>& seqs) {
 std::optional<FailureBanner> split_banner(const FieldViewState& state) {
     const auto groups = registered_groups(state);
     if (groups.size() < 2) return std::nullopt;
-    // The view's group: the most scans, the lowest id on a tie (map order).
-    auto shown = groups.begin();
-    for (auto it = groups.begin(); it != groups.end(); ++it)
-        if (it->second.size() > shown->second.size()) shown = it;
+    // The view's group, by the session's one largest-group rule.
+    std::vector<int> member_groups;
+    for (const auto& [group, seqs] : groups)
+        member_groups.insert(member_groups.end(), seqs.size(), group);
+    const auto shown = groups.find(acquisition::largest_group_id(member_groups));
     std::vector<std::int64_t> apart;
     for (const auto& [group, seqs] : groups)
         if (group != shown->first) apart.insert(apart.end(), seqs.begin(), seqs.end());

@@ -2,4 +2,5 @@
 list(APPEND ANASCAN_ACQUISITION_SOURCES
     src/assembly/assembly.cpp
     src/assembly/json.cpp
+    src/assembly/stone_frame.cpp
 )

@@ -187,14 +187,11 @@ void CaptureSession::Impl::update_coverage() {
     coverage_due = false;
     // Coverage sees the whole scans (it removes the ground itself), reduced as
     // session_coverage reduces them, placed by the registrar's current poses.
-    // The largest group (lowest id on a tie), as session_coverage and the field app choose.
+    // The largest group, by the rule session_coverage and the field app use.
     const std::vector<LiveModelScan> model = registrar.model();
-    std::map<int, std::size_t> group_sizes;
-    for (const LiveModelScan& m : model) ++group_sizes[m.group];
-    int group = -1;
-    std::size_t group_size = 0;
-    for (const auto& [g, size] : group_sizes)
-        if (size > group_size) group = g, group_size = size;
+    std::vector<int> member_groups;
+    for (const LiveModelScan& m : model) member_groups.push_back(m.group);
+    const int group = largest_group_id(member_groups);
     std::vector<CoverageScanView> views;
     for (const LiveModelScan& m : model) {
         const auto copy = coverage_copies.find(m.seq);
@@ -207,9 +204,12 @@ void CaptureSession::Impl::update_coverage() {
     if (views.empty()) return;
     const CoverageReport report = compute_coverage(views, config.coverage);
     (void)store->set_value("coverage", coverage_to_json(report));
-    char message[160];
-    std::snprintf(message, sizeof(message), "coverage %.1f %% of %.3f m², %zu holes",
-                  report.fraction * 100.0, report.surface_area_m2, report.holes.size());
+    char message[200];
+    std::snprintf(message, sizeof(message),
+                  "coverage %.1f %% of the %.3f m² surface estimated so far from %zu scans "
+                  "(the estimate grows until every side is seen), %zu holes",
+                  report.fraction * 100.0, report.surface_area_m2, views.size(),
+                  report.holes.size());
     emit({.kind = SessionEventKind::kCoverage,
           .message = message,
           .coverage_fraction = report.fraction,

@@ -1,21 +1,8 @@
 #include "anascan/acquisition/coverage/session_coverage.hpp"
 
-#include <map>
-
 #include "anascan/processing/spatial/voxel_grid.hpp"
 
 namespace anascan::acquisition {
-
-int largest_group(const std::vector<ScanRecord>& scans) {
-    std::map<int, std::size_t> sizes;
-    for (const ScanRecord& s : scans)
-        if (s.state == ScanState::kRegistered && !s.excluded && s.pose) ++sizes[s.group];
-    int best = -1;
-    std::size_t best_size = 0;
-    for (const auto& [group, size] : sizes)
-        if (size > best_size) best = group, best_size = size;
-    return best;
-}
 
 CoverageCopy make_coverage_copy(const Scan& scan, double voxel_size_m) {
     CoverageCopy copy;
@@ -39,8 +26,7 @@ Expected<CoverageReport> session_coverage(
     std::vector<CoverageScanView> views;
     std::vector<const ScanRecord*> members;
     for (const ScanRecord& s : *scans)
-        if (s.state == ScanState::kRegistered && !s.excluded && s.pose && s.group == group)
-            members.push_back(&s);
+        if (counts_in_group(s) && s.group == group) members.push_back(&s);
     copies.reserve(members.size());
     for (std::size_t i = 0; i < members.size(); ++i) {
         auto scan = store.load_scan(members[i]->seq);

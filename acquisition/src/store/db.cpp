@@ -36,8 +36,11 @@ Error sqlite_error(sqlite3* db, int rc, const std::filesystem::path& file, std::
     return Error{code, file.string() + ": " + std::string(what) + ": " + detail + advice(rc, file)};
 }
 
-Connection::~Connection() {
+Connection::~Connection() { close(); }
+
+void Connection::close() {
     if (db_ != nullptr) sqlite3_close_v2(db_);
+    db_ = nullptr;
 }
 
 Expected<void> Connection::open(const std::filesystem::path& file, bool create, bool read_only) {

@@ -28,6 +28,8 @@ public:
 
     /// Opens (or creates when `create`) the database; `read_only` opens it read-only.
     Expected<void> open(const std::filesystem::path& file, bool create, bool read_only);
+    /// Closes the database (open may then be called again).
+    void close();
     /// Runs SQL without results (may hold several statements).
     Expected<void> exec(std::string_view sql, std::string_view what);
     sqlite3* get() const { return db_; }

@@ -18,6 +18,9 @@ struct SessionStore::Impl {
     std::mutex save_mutex;     ///< Serialises save_scan (seq allocation + file + row).
     db::Connection db;
     int lock_fd = -1;  ///< flock'ed DIR/session.lock of a writable store.
+    /// A read-only session that SQLite cannot read in place is read from a private copy of
+    /// its database here (removed with the store); empty when read in place.
+    std::filesystem::path database_copy_dir;
     ~Impl();
 };
 

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 
 #include "store/codec.hpp"
@@ -64,6 +65,30 @@ Expected<void> configure(db::Connection& db, bool read_only) {
                    "cannot switch to WAL mode");
 }
 
+Expected<void> open_database(SessionStore::Impl& impl, const fs::path& file, bool create) {
+    if (auto ok = impl.db.open(file, create, impl.read_only); !ok) return fail(ok.error());
+    if (auto ok = configure(impl.db, impl.read_only); !ok) return fail(ok.error());
+    return db::migrate(impl.db, impl.read_only);
+}
+
+/// Copies DIR/session.sqlite and its -wal (if any) into a new private temporary folder.
+Expected<fs::path> copy_database(const fs::path& dir) {
+    std::string pattern = (fs::temp_directory_path() / "anascan-readonly-XXXXXX").string();
+    if (::mkdtemp(pattern.data()) == nullptr)
+        return fail(ErrorCode::kIo, pattern + ": cannot create a folder to read the session");
+    const fs::path copy(pattern);
+    std::error_code ec;
+    for (const char* name : {"session.sqlite", "session.sqlite-wal"}) {
+        if (!fs::exists(dir / name, ec)) continue;
+        fs::copy_file(dir / name, copy / name, ec);
+        if (ec) {
+            fs::remove_all(copy, ec);
+            return fail(ErrorCode::kIo, (dir / name).string() + ": cannot copy to read it");
+        }
+    }
+    return copy;
+}
+
 }  // namespace
 
 Error session_error(const fs::path& dir, ErrorCode code, std::string_view message) {
@@ -76,6 +101,9 @@ Error read_only_error(const fs::path& dir) {
 
 SessionStore::Impl::~Impl() {
     if (lock_fd >= 0) ::close(lock_fd);
+    db.close();
+    std::error_code ec;
+    if (!database_copy_dir.empty()) fs::remove_all(database_copy_dir, ec);
 }
 
 SessionStore::SessionStore(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
@@ -93,11 +121,17 @@ Expected<std::unique_ptr<SessionStore>> SessionStore::open(const fs::path& dir,
         impl->lock_fd = *fd;
     }
     const bool create = mode == SessionOpenMode::kCreateOrOpen;
-    if (auto ok = impl->db.open(dir / "session.sqlite", create, impl->read_only); !ok) {
-        return fail(ok.error());
+    auto opened = open_database(*impl, dir / "session.sqlite", create);
+    if (!opened && impl->read_only) {
+        // A read-only folder (archive, CD, network copy) whose write-ahead log SQLite cannot
+        // use in place: read a private copy of the database and its log instead.
+        impl->db.close();
+        auto copy = copy_database(dir);
+        if (!copy) return fail(opened.error());
+        impl->database_copy_dir = *copy;
+        opened = open_database(*impl, *copy / "session.sqlite", false);
     }
-    if (auto ok = configure(impl->db, impl->read_only); !ok) return fail(ok.error());
-    if (auto ok = db::migrate(impl->db, impl->read_only); !ok) return fail(ok.error());
+    if (!opened) return fail(opened.error());
     return std::unique_ptr<SessionStore>(new SessionStore(std::move(impl)));
 }
 

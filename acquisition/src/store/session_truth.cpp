@@ -1,6 +1,6 @@
 #include "anascan/acquisition/store/session_truth.hpp"
 
-#include "anascan/acquisition/coverage/session_coverage.hpp"
+#include "anascan/acquisition/store/groups.hpp"
 
 namespace anascan::acquisition {
 namespace {
@@ -25,7 +25,7 @@ Expected<std::optional<PoseEvaluation>> evaluate_session_truth(const SessionStor
         if (!s.true_pose || s.excluded) continue;
         const std::string name = std::to_string(s.seq);
         NamedPose t{.name = name, .T_world_scan = *s.true_pose};
-        if (s.state == ScanState::kRegistered && s.pose && s.group == group) {
+        if (counts_in_group(s) && s.group == group) {
             estimated.push_back({.name = name, .T_world_scan = *s.pose});
             auto scan = store.load_scan(s.seq);
             if (!scan) return fail(scan.error());

@@ -2,6 +2,7 @@
 list(APPEND ANASCAN_ACQUISITION_SOURCES
     src/store/codec.cpp
     src/store/db.cpp
+    src/store/groups.cpp
     src/store/scan_files.cpp
     src/store/scans.cpp
     src/store/schema.cpp
@@ -9,4 +10,5 @@ list(APPEND ANASCAN_ACQUISITION_SOURCES
     src/store/session_json.cpp
     src/store/session_store.cpp
     src/store/session_truth.cpp
+    src/store/stone_check.cpp
 )

@@ -290,6 +290,8 @@ std::size_t PlyElement::fixed_record_bytes() const {
 }
 
 Expected<PlyHeader> parse_ply_header(std::span<const char> bytes, std::string_view source_name) {
+    if (bytes.empty())
+        return fail(ErrorCode::kEmpty, std::string(source_name) + ": empty file (0 bytes)");
     LineReader lines(bytes);
     std::string_view line;
     if (!lines.next(line) || line != "ply") {

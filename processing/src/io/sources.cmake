@@ -11,6 +11,7 @@ list(APPEND ANASCAN_PROCESSING_SOURCES
     src/io/stanford_conf.cpp
     src/io/text_lines.cpp
     src/io/text_points.cpp
+    src/io/text_points_writer.cpp
     src/io/xf.cpp
 )
 include(${CMAKE_CURRENT_LIST_DIR}/e57/sources.cmake)

@@ -228,8 +228,7 @@ Expected<PointCloud> read_text_points(const std::filesystem::path& path) {
     const bool is_pts = extension == ".pts";
     if (!is_pts && extension != ".xyz" && extension != ".txt" && extension != ".asc") {
         return fail(ErrorCode::kUnsupported,
-                    path.filename().string() +
-                        ": unknown point-list extension (expected .xyz, .txt, .asc or .pts)");
+                    path.string() + ": not a point-list extension (.xyz, .txt, .asc or .pts)");
     }
     const Expected<std::vector<char>> bytes = read_file_bytes(path);
     if (!bytes) return fail(bytes.error());

@@ -53,11 +53,14 @@ TEST_F(CliCapture, DeviceThatComesBackLetsTheSessionGoOn) {
     EXPECT_EQ(j["scans"].size(), 3u);
 }
 
+// A session in which no two scans joined is no model: exit code 3 (docs/exit-codes.md).
 TEST_F(CliCapture, ScansThatRegisterNowhereAreReportedAndKept) {
     // Only the ground near the tripod is in range: no stone to register.
     const std::string session = (dir_ / "s").string();
     const auto run = run_cli(capture(session, "--views 2 --max-range-m 2.2"));
-    EXPECT_EQ(run.exit_code, 0) << run.output;
+    EXPECT_EQ(run.exit_code, 3) << run.output;
+    EXPECT_NE(run.output.find("poor result: no two of the 2 scans were joined"), std::string::npos)
+        << run.output;
     EXPECT_NE(run.output.find("NOT registered"), std::string::npos) << run.output;
     const auto j = info(session);
     ASSERT_TRUE(j.is_object());

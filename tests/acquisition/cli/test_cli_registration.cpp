@@ -62,6 +62,29 @@ TEST_F(CliRegistration, AlignWritesTheTransformAndStatsWithUnits) {
     EXPECT_GT(stats["fine"]["overlap"].get<double>(), 0.25);
 }
 
+/// The figure of the "rms: X mm (agreement..." line, or -1.
+double reported_rms_mm(const std::string& output) {
+    const std::size_t at = output.find("\nrms: ");
+    if (at == std::string::npos || output.find(" mm (agreement", at) == std::string::npos)
+        return -1.0;
+    return std::stod(output.substr(at + 6));
+}
+
+// Global + fine, then fine only from that result: nearly the same pose, so the same RMS
+// (one definition, named, whatever gates each run used).
+TEST_F(CliRegistration, AlignReportsOneRmsDefinition) {
+    const CliRun global =
+        run_cli("align " + path("b.ply") + " " + path("a.ply") + " --out " + path("T.xf"));
+    ASSERT_EQ(global.exit_code, 0) << global.output;
+    const CliRun again =
+        run_cli("align " + path("b.ply") + " " + path("a.ply") + " --init " + path("T.xf"));
+    ASSERT_EQ(again.exit_code, 0) << again.output;
+    const double first = reported_rms_mm(global.output), second = reported_rms_mm(again.output);
+    ASSERT_GT(first, 0.0) << global.output;
+    ASSERT_GT(second, 0.0) << again.output;
+    EXPECT_NEAR(second, first, 0.03 * first) << global.output << again.output;
+}
+
 TEST_F(CliRegistration, AlignOfUnrelatedScansFailsVerification) {
     PointCloud line;
     for (int i = 0; i < 2000; ++i) line.positions.push_back({0.0001f * i, 0.0f, 0.0f});

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "anascan/acquisition/store/session_store.hpp"
+#include "anascan/processing/core/pose.hpp"
 #include "anascan/processing/io/ply.hpp"
 #include "anascan/processing/io/stanford_conf.hpp"
 #include "cli_runner.hpp"
@@ -152,8 +153,8 @@ TEST_F(SessionCli, ExportMergesRegisteredScansAndWritesAConf) {
     const fs::path out = dir_ / "model.ply";
     const fs::path conf = dir_ / "out" / "poses.conf";
     fs::create_directories(conf.parent_path());
-    const auto run = run_cli("session export " + quoted() + " --out " + out.string() + " --poses " +
-                             conf.string());
+    const auto run = run_cli("session export " + quoted() + " --frame group --out " + out.string() +
+                             " --poses " + conf.string());
     ASSERT_EQ(run.exit_code, 0) << run.output;
     auto model = io::read_ply(out);
     ASSERT_TRUE(model) << model.error().message;
@@ -166,6 +167,52 @@ TEST_F(SessionCli, ExportMergesRegisteredScansAndWritesAConf) {
     EXPECT_TRUE(fs::exists(conf.parent_path() / poses->entries[0].file));
     // The conf is usable by `assemble`.
     EXPECT_EQ(run_cli("-q assemble " + conf.string()).exit_code, 0);
+}
+
+// The default export frame: the stone upright on its ground at the origin, the poses moved
+// with the model (the .conf still assembles the same model).
+TEST_F(SessionCli, ExportDefaultsToAStoneCentredGroundAlignedFrame) {
+    // A 0.3 m box-like stone on a 2 x 2 m ground plane, tilted and 1 m away in scan 1's frame.
+    PointCloud ground_and_stone;
+    for (int i = 0; i < 80; ++i)
+        for (int j = 0; j < 80; ++j)
+            ground_and_stone.positions.emplace_back(-1.0f + 0.025f * i, -1.0f + 0.025f * j, 0.0f);
+    for (int i = 0; i < 30; ++i)
+        for (int j = 0; j < 20; ++j) {
+            ground_and_stone.positions.emplace_back(-0.15f + 0.01f * i, -0.1f + 0.01f * j, 0.2f);
+            ground_and_stone.positions.emplace_back(-0.15f + 0.01f * i, -0.1f, 0.01f * j);
+        }
+    const Pose T_scan_true = Pose(Eigen::Translation3d(0.3, -0.2, 1.0) *
+                                  Eigen::AngleAxisd(0.5, Eigen::Vector3d(1, 2, 0).normalized()));
+    const fs::path session = dir_ / "tilted";
+    {
+        auto store = SessionStore::open(session, SessionOpenMode::kCreateOrOpen);
+        ASSERT_TRUE(store) << store.error().message;
+        Scan scan;
+        scan.cloud = transformed(ground_and_stone, T_scan_true);
+        scan.meta.device_id = "sim:test#0";
+        ASSERT_TRUE((*store)->save_scan(scan, std::nullopt));
+        ASSERT_TRUE((*store)->record_registration(
+            1, {ScanState::kRegistered, 0, Pose::Identity(), "{}", 0.01}));
+    }
+    const fs::path out = dir_ / "stone.ply";
+    const auto run = run_cli("session export " + session.string() + " --out " + out.string());
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    EXPECT_TRUE(contains(run.output, "stone frame: +z up")) << run.output;
+    auto model = io::read_ply(out);
+    ASSERT_TRUE(model) << model.error().message;
+    Eigen::Vector3d top_sum = Eigen::Vector3d::Zero();
+    std::size_t top = 0, below = 0;
+    for (std::size_t i = 0; i < model->cloud.size(); ++i) {
+        const Eigen::Vector3d p = model->cloud.world_position(i);
+        if (p.z() < -0.005) ++below;
+        if (p.z() > 0.195) top_sum += p, ++top;
+    }
+    EXPECT_EQ(below, 0u) << "the ground is not at z = 0 with the stone above it";
+    ASSERT_EQ(top, 600u) << "the stone's top face is not at z = 0.2 m";
+    // The origin is under the centroid of the stone's points (top and one side face here),
+    // within the stone's half-width of its top's centre.
+    EXPECT_LT((top_sum / double(top)).head<2>().norm(), 0.08) << "not centred on the stone";
 }
 
 TEST_F(SessionCli, ExportTruthPosesWritesTheTruePosesForEval) {
@@ -196,6 +243,53 @@ TEST_F(SessionCli, ExportTruthPosesOfARealSessionIsAnError) {
     EXPECT_EQ(run.exit_code, 1);
     EXPECT_TRUE(contains(run.output, "no scan has a true pose")) << run.output;
     EXPECT_FALSE(fs::exists(dir_ / "t.conf"));
+}
+
+// An archived session copied while it was open (its log not yet merged into the database)
+// and then made read-only, as on a CD or a read-only network share: inspection works.
+TEST_F(SessionCli, InfoReadsAReadOnlyCopyWithAnUnmergedLog) {
+    const fs::path copy = dir_ / "archive";
+    {
+        auto store = SessionStore::open(dir_ / "open", SessionOpenMode::kCreateOrOpen);
+        ASSERT_TRUE(store) << store.error().message;
+        for (unsigned i = 1; i <= 3; ++i) ASSERT_TRUE((*store)->save_scan(make_scan(50u, i), {}));
+        ASSERT_TRUE(fs::exists(dir_ / "open" / "session.sqlite-wal"));
+        fs::copy(dir_ / "open", copy, fs::copy_options::recursive);
+        fs::remove(copy / "session.sqlite-shm");
+    }
+    const fs::path mount = dir_ / "read-only";
+    fs::create_directories(mount);
+    const std::string bind = "unshare -m sh -c 'mount --bind " + copy.string() + " " +
+                             mount.string() + " && mount -o remount,bind,ro " + mount.string() +
+                             " && touch " + mount.string() + "/x 2>/dev/null; test ! -e " +
+                             mount.string() + "/x && " + std::string(ANASCAN_CLI) +
+                             " session info " + mount.string() + " 2>&1; echo exit=$?'";
+    const auto probe = testing_util::run_shell("unshare -m sh -c 'mount --bind " + copy.string() +
+                                               " " + mount.string() + "' 2>&1");
+    if (probe.exit_code != 0)
+        GTEST_SKIP() << "cannot make a read-only mount here: " << probe.output;
+    const auto run = testing_util::run_shell(bind);
+    EXPECT_TRUE(contains(run.output, "exit=0")) << run.output;
+    EXPECT_TRUE(contains(run.output, "3 scans (0 registered, 0 failed, 3 queued")) << run.output;
+}
+
+TEST_F(SessionCli, ExportLeavesExcludedScansOutOfTheGroupChoice) {
+    // Group 0: scans 1-3, group 5: scans 5 and 6. With two of group 0 excluded, group 5
+    // is the largest: the export picks it.
+    {
+        auto store = SessionStore::open(session_, SessionOpenMode::kOpenExisting);
+        ASSERT_TRUE(store) << store.error().message;
+        for (int i = 5; i <= 6; ++i) {
+            ASSERT_TRUE((*store)->save_scan(make_scan(10u * i, i), std::nullopt));
+            RegistrationUpdate u{ScanState::kRegistered, 5, make_test_pose(i), "{}", 0.01};
+            ASSERT_TRUE((*store)->record_registration(i, u));
+        }
+    }
+    ASSERT_EQ(run_cli("session exclude " + quoted() + " 1").exit_code, 0);
+    ASSERT_EQ(run_cli("session exclude " + quoted() + " 2").exit_code, 0);
+    const auto run = run_cli("session export " + quoted() + " --out " + (dir_ / "m.ply").string());
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    EXPECT_TRUE(contains(run.output, "from 2 scans of group 5")) << run.output;
 }
 
 TEST_F(SessionCli, ErrorsNameTheFolder) {

@@ -62,17 +62,20 @@ protected:
     }
     static void TearDownTestSuite() { fs::remove_all(dir_); }
 
-    /// The command on a copy of the capture that `damage` may break first.
-    static CliRun decode(const std::string& extra = "",
-                         const std::function<void(const fs::path&)>& damage = {}) {
+    /// The command's arguments on a copy of the capture that `damage` may break first.
+    static std::string decode_args(const std::string& extra = "",
+                                   const std::function<void(const fs::path&)>& damage = {}) {
         const fs::path work = dir_ / ("run" + std::to_string(++runs_));
         fs::copy(dir_ / "capture", work);
         if (damage) damage(work);
-        return run_cli("sl decode --calibration " + (dir_ / "calibration.yml").string() +
-                       " --projector-width 320 --projector-height 200 --cam1 '" +
-                       (work / "cam1_im*.png").string() + "' --cam2 '" +
-                       (work / "cam2_im*.png").string() + "' --out " +
-                       (work / "cloud.ply").string() + " " + extra);
+        return "sl decode --calibration " + (dir_ / "calibration.yml").string() +
+               " --projector-width 320 --projector-height 200 --cam1 '" +
+               (work / "cam1_im*.png").string() + "' --cam2 '" + (work / "cam2_im*.png").string() +
+               "' --out " + (work / "cloud.ply").string() + " " + extra;
+    }
+    static CliRun decode(const std::string& extra = "",
+                         const std::function<void(const fs::path&)>& damage = {}) {
+        return run_cli(decode_args(extra, damage));
     }
 
     static inline fs::path dir_;
@@ -88,6 +91,19 @@ TEST_F(SlDecodeCli, WritesACloudWithUnits) {
     auto ply = io::read_ply(dir_ / ("run" + std::to_string(runs_)) / "cloud.ply");
     ASSERT_TRUE(ply) << ply.error().message;
     EXPECT_GT(ply->cloud.size(), 50000u);
+}
+
+// Cameras in the wrong order: most matches miss, the cloud is a fraction of what it should
+// be. The result is written but clearly unusable: exit code 3 unless --accept-poor.
+TEST_F(SlDecodeCli, CamerasInTheWrongOrderArePoorResult) {
+    const CliRun run = decode("--swap-cameras");
+    EXPECT_EQ(run.exit_code, 3) << run.output;
+    EXPECT_NE(run.output.find("poor result: "), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find("--swap-cameras"), std::string::npos) << run.output;
+    EXPECT_TRUE(fs::exists(dir_ / ("run" + std::to_string(runs_)) / "cloud.ply"));
+    const CliRun accepted = run_cli("--accept-poor " + decode_args("--swap-cameras"));
+    EXPECT_EQ(accepted.exit_code, 0) << accepted.output;
+    EXPECT_NE(accepted.output.find("poor result: "), std::string::npos) << accepted.output;
 }
 
 TEST_F(SlDecodeCli, MissingImages) {

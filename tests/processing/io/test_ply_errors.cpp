@@ -44,7 +44,14 @@ std::string floats(std::initializer_list<float> values) {
 TEST(PlyErrors, MissingMagic) {
     expect_error(parse("PLY\nformat ascii 1.0\nend_header\n"), ErrorCode::kFormat, "line 1",
                  "not a PLY file");
-    expect_error(parse(""), ErrorCode::kFormat, "line 1", "not a PLY file");
+}
+
+// A 0-byte file is named as what it is, not as a file of another format.
+TEST(PlyErrors, EmptyFile) {
+    const auto result = parse("");
+    ASSERT_FALSE(result);
+    EXPECT_EQ(result.error().code, ErrorCode::kEmpty);
+    EXPECT_EQ(result.error().message, std::string(kName) + ": empty file (0 bytes)");
 }
 
 TEST(PlyErrors, UnknownFormat) {

@@ -6,6 +6,7 @@
 #include <functional>
 #include <optional>
 
+#include "anascan/acquisition/store/groups.hpp"
 #include "anascan/acquisition/store/session_store.hpp"
 #include "anascan/processing/coverage/coverage.hpp"
 
@@ -25,10 +26,6 @@ struct CoverageCopy {
     double points_per_point = 1.0;
     std::optional<Eigen::Vector3d> sensor_origin_scan_m;
 };
-
-/// The group with the most registered, non-excluded scans (lowest id on a tie); -1: none.
-/// Coverage, the truth comparison and the field app all show this group.
-int largest_group(const std::vector<ScanRecord>& scans);
 
 CoverageCopy make_coverage_copy(const Scan& scan, double voxel_size_m);
 

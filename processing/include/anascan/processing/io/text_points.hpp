@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <span>
+#include <string>
 #include <string_view>
 
 #include "anascan/processing/core/expected.hpp"
@@ -27,5 +28,13 @@ Expected<PointCloud> parse_pts(std::span<const char> bytes, std::string_view sou
 
 /// Reads `.xyz`/`.txt`/`.asc` as XYZ and `.pts` as PTS (by extension).
 Expected<PointCloud> read_text_points(const std::filesystem::path& path);
+
+/// XYZ text, one point per line: `x y z` in world metres (`origin_m` added, 6 decimals),
+/// then `nx ny nz` when the cloud has normals, or else the intensity, then `r g b`; the
+/// layout parse_xyz reads back. Confidence is not written.
+std::string serialize_xyz(const PointCloud& cloud);
+
+/// Writes serialize_xyz(cloud) to `path` atomically (errors name the file).
+Expected<void> write_xyz(const std::filesystem::path& path, const PointCloud& cloud);
 
 }  // namespace anascan::io

@@ -1,0 +1,96 @@
+// `anascan capture` as an operator meets it: a device or scene that does not open fails
+// before anything is written or asked; another stone is not mixed in without asking;
+// Ctrl-C stops cleanly and says how to resume.
+#include <nlohmann/json.hpp>
+
+#include "cli_runner.hpp"
+#include "text_match.hpp"
+
+namespace anascan {
+namespace {
+
+namespace fs = std::filesystem;
+using testing_util::contains;
+using testing_util::occurrences;
+using testing_util::run_cli;
+using testing_util::run_shell;
+
+class OperatorCapture : public testing_util::Cli {
+protected:
+    /// Quick simulated structured-light views, saved only.
+    std::string capture(const std::string& scene, const std::string& extra) {
+        return "capture --device sim:structured-light --scene " + scene + " --session " +
+               session().string() + " --no-register --no-coverage " + extra + " </dev/null";
+    }
+    fs::path session() const { return dir_ / "stone"; }
+    std::size_t scans() {
+        const auto run =
+            testing_util::run_cli_stdout("session info " + session().string() + " --json");
+        const auto j = nlohmann::json::parse(run.output, nullptr, false);
+        return j.is_object() ? j["scans"].size() : 0;
+    }
+};
+
+TEST_F(OperatorCapture, UnknownSceneFailsOnceAndLeavesNoFolder) {
+    const auto run = run_cli(capture("no-such-scene", "--views 2"));
+    EXPECT_EQ(run.exit_code, 1) << run.output;
+    EXPECT_EQ(occurrences(run.output, "unknown scene 'no-such-scene'"), 1u) << run.output;
+    EXPECT_TRUE(contains(run.output, "small-block")) << "the known scenes: " << run.output;
+    EXPECT_FALSE(contains(run.output, "0 scans")) << run.output;
+    EXPECT_FALSE(fs::exists(session())) << "an empty session folder was left behind";
+}
+
+TEST_F(OperatorCapture, MissingCameraFailsBeforeThePrompt) {
+    const std::string device = "v4l2:" + (dir_ / "video-none").string();
+    const auto run = run_cli("capture --device " + device + " --session " + session().string() +
+                             " --views 2 </dev/null");
+    EXPECT_EQ(run.exit_code, 1) << run.output;
+    EXPECT_FALSE(contains(run.output, "place the scanner")) << run.output;
+    EXPECT_TRUE(contains(run.output, "video-none")) << run.output;
+    EXPECT_FALSE(contains(run.output, "warning")) << run.output;
+    EXPECT_FALSE(fs::exists(session()));
+}
+
+TEST_F(OperatorCapture, AnotherStoneIsNotMixedInWithoutAsking) {
+    ASSERT_EQ(run_cli(capture("small-block", "--views 1")).exit_code, 0);
+    // The same stone turned over is the same stone.
+    const auto turned = run_cli(capture("small-block-turned", "--views 2"));
+    EXPECT_EQ(turned.exit_code, 0) << turned.output;
+    ASSERT_EQ(scans(), 2u);
+    const auto other = run_cli(capture("large-block", "--views 3"));
+    EXPECT_EQ(other.exit_code, 1) << other.output;
+    EXPECT_TRUE(contains(other.output, "another stone?")) << other.output;
+    EXPECT_TRUE(contains(other.output, "--mix-stones")) << other.output;
+    EXPECT_EQ(scans(), 2u) << "scans of another stone were added";
+    const auto mixed = run_cli(capture("large-block", "--views 3 --mix-stones"));
+    EXPECT_EQ(mixed.exit_code, 0) << mixed.output;
+    EXPECT_EQ(scans(), 3u);
+}
+
+TEST_F(OperatorCapture, CtrlCStopsAfterTheScanInFlightAndSaysHowToResume) {
+    const fs::path log = dir_ / "log";
+    // The simulated operator walks 30 s between views: SIGINT comes during the walk.
+    const std::string command =
+        "( " + std::string(ANASCAN_CLI) + " " +
+        capture("small-block", "--views 5 --operator-pause-s 30") + " >" + log.string() +
+        " 2>&1 & pid=$!; for i in $(seq 300); do " + "grep -q 'saved scan 1 ' " + log.string() +
+        " && break; sleep 0.1; done; kill -INT $pid; wait $pid; echo " + "exit=$? )";
+    const auto run = run_shell(command);
+    std::string output;
+    {
+        std::FILE* f = std::fopen(log.c_str(), "r");
+        ASSERT_NE(f, nullptr);
+        for (int c; (c = std::fgetc(f)) != EOF;) output += static_cast<char>(c);
+        std::fclose(f);
+    }
+    EXPECT_TRUE(contains(run.output, "exit=130")) << run.output << output;
+    EXPECT_TRUE(contains(output, "stopped (Ctrl-C) after scan 1")) << output;
+    EXPECT_TRUE(contains(output, "resume with: anascan capture --device sim:structured-light"))
+        << output;
+    EXPECT_EQ(scans(), 1u);
+    const auto check = run_cli("session check " + session().string());
+    EXPECT_EQ(check.exit_code, 0) << check.output;
+}
+
+}  // namespace
+}  // namespace anascan
