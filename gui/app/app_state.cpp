@@ -10,6 +10,7 @@
 
 #include "anascan/gui/panels.hpp"
 #include "anascan/gui/scan_colors.hpp"
+#include "anascan/gui/view_overlay.hpp"
 #include "demo_clouds.hpp"
 #include "field_app.hpp"
 #include "field_window.hpp"
@@ -149,6 +150,11 @@ gui::DrawStats build_and_draw(const FrameDraw& frame, FieldWindow& window, AppSt
     gui::draw_field_panels(app.view, layout, actions);
     apply_actions(actions, app, window.font_scaled());
     update_styles(app);
+    gui::draw_view_overlay(app.view, app.camera,
+                           {.x_px = layout.view_x_px(),
+                            .y_px = 0.0f,
+                            .width_px = layout.view_width_px(),
+                            .height_px = layout.view_height_px()});
     int fb_w = 0, fb_h = 0;
     window.framebuffer_size(fb_w, fb_h);
     const gui::DrawStats stats = draw_scene(app, layout, fb_w, fb_h,

@@ -16,7 +16,8 @@ namespace anascan::field {
 
 /// The window and how the view draws.
 struct ViewOptions {
-    int width_px = 1280, height_px = 800;
+    /// Window size, pixels; absent: the screen's.
+    std::optional<int> width_px, height_px;
     float font_scale = 1.5f;
     bool high_contrast = false;
     gui::ColorMode color_mode = gui::ColorMode::kByScan;
@@ -35,7 +36,9 @@ struct CloudInputs {
 /// The session and the scanner the capture action uses.
 struct SessionOptions {
     std::optional<std::filesystem::path> dir;  ///< Session folder (opened or created).
-    std::string device = "sim:structured-light/small-block";  ///< Active device at start.
+    /// Active device at start; empty: the session's own (its newest scan's device), else
+    /// the simulated small block.
+    std::string device;
     int tour_views = 24;  ///< The simulated operator's tour around the block.
     int flip_after = -1;  ///< Turned over after this many views (-1: half the tour).
     std::optional<double> angular_step_deg;  ///< Terrestrial scanner setting, degrees.

@@ -13,8 +13,8 @@ void add_session_options(CLI::App& app, anascan::field::FieldAppConfig& config) 
                    "Session folder: shows its scans; the capture action records into it "
                    "(created at the first capture when absent)");
     app.add_option("--device", config.session.device,
-                   "Device chosen at start (default sim:structured-light/small-block; "
-                   "anascan devices lists them)");
+                   "Device chosen at start (default: the device of the session's newest scan, "
+                   "else sim:structured-light/small-block; anascan devices lists them)");
     app.add_option("--capture-views", config.headless.capture_views,
                    "Headless: this many captures through the capture action, rendering while "
                    "they run, then wait for registration (needs --session and --frames)")
@@ -82,9 +82,10 @@ void add_options(CLI::App& app, anascan::field::FieldAppConfig& config) {
     app.add_option("--orbit-per-frame", config.headless.orbit_px_per_frame,
                    "Turn the view by this many pixels of mouse motion every frame (to measure "
                    "frame times while the operator moves the view)");
-    app.add_option("--width", config.view.width_px, "Window width, pixels")
+    app.add_option("--width", config.view.width_px, "Window width, pixels (default: the screen's)")
         ->check(CLI::PositiveNumber);
-    app.add_option("--height", config.view.height_px, "Window height, pixels")
+    app.add_option("--height", config.view.height_px,
+                   "Window height, pixels (default: the screen's)")
         ->check(CLI::PositiveNumber);
     app.add_option("--font-scale", config.view.font_scale, "Size of text and widgets (1 = small)")
         ->check(CLI::Range(0.5f, 4.0f));

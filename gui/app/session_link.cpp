@@ -43,24 +43,15 @@ const acquisition::SessionStore* SessionLink::store() const {
 
 void SessionLink::open(gui::FieldViewState& view) {
     view.session_dir = config_.dir.string();
-    for (const scanner_sources::ScannerListing& s : scanner_sources::list_scanners()) {
-        view.device.devices.push_back({.id = s.uri,
-                                       .kind = s.model,
-                                       .connected = true,
-                                       .status = s.simulated ? "simulated, ready" : "ready"});
-    }
-    auto active = std::find_if(view.device.devices.begin(), view.device.devices.end(),
-                               [&](const gui::DeviceRow& d) { return d.id == config_.device_uri; });
-    if (active == view.device.devices.end()) {
-        view.device.devices.push_back(
-            {.id = config_.device_uri, .kind = "scanner", .connected = true, .status = "ready"});
-        active = view.device.devices.end() - 1;
-    }
-    view.device.active_device = static_cast<int>(active - view.device.devices.begin());
-    if (!std::filesystem::exists(config_.dir / "session.sqlite")) {
+    if (std::filesystem::exists(config_.dir / "session.sqlite")) {
+        open_store(view);
+    } else {
         view.session_check = "new session: created at the first capture";
-        return;
     }
+    list_devices(view, active_device_uri());
+}
+
+void SessionLink::open_store(gui::FieldViewState& view) {
     auto store =
         acquisition::SessionStore::open(config_.dir, acquisition::SessionOpenMode::kReadOnly);
     if (!store) {
@@ -72,6 +63,35 @@ void SessionLink::open(gui::FieldViewState& view) {
         lower_this_thread_priority(n);
         return acquisition::check_session(dir);
     });
+}
+
+/// The device asked for, else the one that took the session's newest scan (a capture adds
+/// to the same stone, seen by the same scanner), else the default.
+std::string SessionLink::active_device_uri() const {
+    if (!config_.device_uri.empty()) return config_.device_uri;
+    if (read_store_) {
+        auto scans = read_store_->scans();
+        if (scans && !scans->empty() && !scans->back().device_id.empty())
+            return scans->back().device_id;
+    }
+    return kDefaultDeviceUri;
+}
+
+void SessionLink::list_devices(gui::FieldViewState& view, const std::string& uri) {
+    for (const scanner_sources::ScannerListing& s : scanner_sources::list_scanners()) {
+        view.device.devices.push_back({.id = s.uri,
+                                       .kind = s.model,
+                                       .connected = true,
+                                       .status = s.simulated ? "simulated, ready" : "ready"});
+    }
+    auto active = std::find_if(view.device.devices.begin(), view.device.devices.end(),
+                               [&](const gui::DeviceRow& d) { return d.id == uri; });
+    if (active == view.device.devices.end()) {
+        view.device.devices.push_back(
+            {.id = uri, .kind = "scanner", .connected = true, .status = "ready"});
+        active = view.device.devices.end() - 1;
+    }
+    view.device.active_device = static_cast<int>(active - view.device.devices.begin());
 }
 
 void SessionLink::poll(gui::FieldViewState& view, gui::PointRenderer& renderer) {
@@ -196,6 +216,7 @@ void SessionLink::refresh(gui::FieldViewState& view, gui::PointRenderer& rendere
         }
         if (row.state == gui::ScanRowState::kQueued) ++view.status.queued_registrations;
     }
+    gui::mark_unjoined(view.scans);
     chunks_.update(*scans, renderer);
 }
 

@@ -34,10 +34,15 @@
 
 namespace anascan::field {
 
+/// The device of a new session when none is asked for.
+inline constexpr const char* kDefaultDeviceUri = "sim:structured-light/small-block";
+
 struct SessionLinkConfig {
     std::filesystem::path dir;
-    std::string device_uri = "sim:structured-light/small-block";  ///< Active at start.
-    scanner_sources::SimulatedTour tour;                          ///< For simulated scanners.
+    /// Active at start; empty: the device of the session's newest scan, else
+    /// kDefaultDeviceUri.
+    std::string device_uri;
+    scanner_sources::SimulatedTour tour;  ///< For simulated scanners.
     scanner_sources::ScannerSettings settings;
     int sim_unplug_after = -1;  ///< Fault injection (simulated scanners), -1: never.
     /// Nice increment of the capture session's threads and the scan loads over the UI
@@ -94,6 +99,9 @@ public:
 
 private:
     const acquisition::SessionStore* store() const;
+    void open_store(gui::FieldViewState& view);
+    std::string active_device_uri() const;
+    void list_devices(gui::FieldViewState& view, const std::string& uri);
     bool start_session(gui::FieldViewState& view);
     void capture(gui::FieldViewState& view);
     bool attach(const std::string& uri, gui::FieldViewState& view);
