@@ -184,7 +184,9 @@ TEST_F(FieldSession, CaptureUsesTheSessionsOwnDeviceAndLoneScansAreUnjoined) {
         if (row["state"] != "registered") continue;
         const bool alone = members[row["group"].get<int>()] == 1;
         EXPECT_EQ(row["list_state"], alone ? "unjoined" : "ok") << row.dump();
-        if (alone) EXPECT_TRUE(row["rms_mm"].is_null()) << row.dump();
+        if (alone) {
+            EXPECT_TRUE(row["rms_mm"].is_null()) << row.dump();
+        }
     }
 }
 
