@@ -8,6 +8,7 @@
 #include <imgui.h>
 
 #include <cstdint>
+#include <utility>
 
 #include "anascan/gui/theme.hpp"
 
@@ -19,6 +20,18 @@ thread_local std::string last_glfw_error;
 
 void on_glfw_error(int code, const char* description) {
     last_glfw_error = "GLFW error " + std::to_string(code) + ": " + description;
+}
+
+/// The size asked for, else the screen's (1280 × 800 when GLFW knows no monitor).
+std::pair<int, int> window_size(const WindowConfig& config) {
+    int width = 1280, height = 800;
+    if (GLFWmonitor* monitor = glfwGetPrimaryMonitor()) {
+        if (const GLFWvidmode* mode = glfwGetVideoMode(monitor)) {
+            width = mode->width;
+            height = mode->height;
+        }
+    }
+    return {config.width_px.value_or(width), config.height_px.value_or(height)};
 }
 
 }  // namespace
@@ -34,8 +47,8 @@ Expected<std::unique_ptr<FieldWindow>> FieldWindow::open(const WindowConfig& con
     glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
     glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
     glfwWindowHint(GLFW_VISIBLE, config.visible ? GLFW_TRUE : GLFW_FALSE);
-    GLFWwindow* window =
-        glfwCreateWindow(config.width_px, config.height_px, "anascan-field", nullptr, nullptr);
+    const auto [width_px, height_px] = window_size(config);
+    GLFWwindow* window = glfwCreateWindow(width_px, height_px, "anascan-field", nullptr, nullptr);
     if (window == nullptr) {
         glfwTerminate();
         return fail(ErrorCode::kUnsupported,

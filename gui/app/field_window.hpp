@@ -5,6 +5,7 @@
 /// in reverse (as Dear ImGui's example). Use on the main thread only (GLFW's rule).
 
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "anascan/processing/core/expected.hpp"
@@ -14,8 +15,8 @@ struct GLFWwindow;
 namespace anascan::field {
 
 struct WindowConfig {
-    int width_px = 1280;
-    int height_px = 800;
+    /// Window size; absent: the screen's (the primary monitor's video mode; Xvfb's -screen).
+    std::optional<int> width_px, height_px;
     bool visible = true;  ///< Hidden windows still render (used for screenshots).
     bool vsync = false;   ///< On when interactive; off when measuring frame times (--frames).
     float font_scale = 1.5f;

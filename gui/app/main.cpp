@@ -9,90 +9,93 @@ namespace {
 
 /// The session: open or create, capture from the GUI (and headless, --capture-views).
 void add_session_options(CLI::App& app, anascan::field::FieldAppConfig& config) {
-    app.add_option("--session", config.session,
+    app.add_option("--session", config.session.dir,
                    "Session folder: shows its scans; the capture action records into it "
                    "(created at the first capture when absent)");
-    app.add_option("--device", config.device,
-                   "Device chosen at start (default sim:structured-light/small-block; "
-                   "anascan devices lists them)");
-    app.add_option("--capture-views", config.capture_views,
+    app.add_option("--device", config.session.device,
+                   "Device chosen at start (default: the device of the session's newest scan, "
+                   "else sim:structured-light/small-block; anascan devices lists them)");
+    app.add_option("--capture-views", config.headless.capture_views,
                    "Headless: this many captures through the capture action, rendering while "
                    "they run, then wait for registration (needs --session and --frames)")
         ->check(CLI::NonNegativeNumber);
-    app.add_option("--tour-views", config.tour_views,
+    app.add_option("--tour-views", config.session.tour_views,
                    "Simulated operator: views of the walk around the block (default 24)")
         ->check(CLI::Range(1, 10000));
-    app.add_option("--flip-after", config.flip_after,
+    app.add_option("--flip-after", config.session.flip_after,
                    "Simulated operator turns the stone over after this many views "
                    "(default: half the tour; 0: never)")
         ->check(CLI::Range(0, 10000));
-    app.add_option("--angular-step-deg", config.angular_step_deg,
+    app.add_option("--angular-step-deg", config.session.angular_step_deg,
                    "Terrestrial scanner angular step, degrees")
         ->check(CLI::PositiveNumber);
     app.add_option("--dump-state", config.dump_state_json,
                    "Write the view state (scan rows, coverage, status) as JSON at the end");
-    app.add_option("--session-timeout-s", config.session_timeout_s,
+    app.add_option("--session-timeout-s", config.headless.session_timeout_s,
                    "Headless: give up when the session has not settled after this long, s")
         ->check(CLI::PositiveNumber);
-    app.add_option("--worker-nice", config.worker_nice,
+    app.add_option("--worker-nice", config.session.worker_nice,
                    "Capture, persistence and registration threads run this much nicer than the "
                    "drawing thread (0-19, default 10; 0: same priority)")
         ->check(CLI::Range(0, 19));
-    app.add_option("--reregister-scan", config.reregister_seq,
+    app.add_option("--reregister-scan", config.headless.reregister_seq,
                    "Headless: once the session has settled, re-register this scan through the "
                    "scan list's action and wait for its result (needs --session and --frames)")
         ->check(CLI::PositiveNumber);
-    app.add_flag("--connect", config.connect_device,
+    app.add_flag("--connect", config.headless.connect_device,
                  "Headless: press the device panel's Connect at start (reads the device's "
                  "settings, starts the camera preview; needs --session)");
-    app.add_option("--apply-setting", config.apply_settings,
+    app.add_option("--apply-setting", config.headless.apply_settings,
                    "Headless: once settled, type KEY=VALUE into the device panel's settings "
                    "(e.g. exposure_us=20000, max_range_m=2.5) and press Apply; repeatable");
-    app.add_option("--upload-points-per-frame", config.upload_points_per_frame,
+    app.add_option("--upload-points-per-frame", config.session.upload_points_per_frame,
                    "A loaded scan goes to the GPU in steps of this many points a frame "
                    "(default 20000); 0: all in one frame, shuffled on the drawing thread")
         ->group("");  // hidden: for the before/after measurement
     // Fault injection for the tests: hidden (empty group).
-    app.add_option("--sim-unplug-after", config.sim_unplug_after,
+    app.add_option("--sim-unplug-after", config.session.sim_unplug_after,
                    "Simulated device unplugged during the capture after this many")
         ->group("");
 }
 
 void add_options(CLI::App& app, anascan::field::FieldAppConfig& config) {
-    app.add_option("--cloud", config.clouds, "PLY file(s) to show, one scan each")
+    app.add_option("--cloud", config.inputs.clouds, "PLY file(s) to show, one scan each")
         ->check(CLI::ExistingFile);
-    app.add_option("--synthetic-points", config.synthetic_points,
+    app.add_option("--synthetic-points", config.inputs.synthetic_points,
                    "Add a synthetic stone of this many points (renderer measurements)");
-    app.add_option("--synthetic-scans", config.synthetic_scans,
+    app.add_option("--synthetic-scans", config.inputs.synthetic_scans,
                    "Split the synthetic stone into this many scans")
         ->check(CLI::PositiveNumber);
-    app.add_option("--screenshot", config.screenshot_png,
+    app.add_option("--screenshot", config.headless.screenshot_png,
                    "Write the last frame as PNG (default --frames 5)");
-    app.add_option("--frames", config.frames,
+    app.add_option("--frames", config.headless.frames,
                    "Draw this many frames, then exit and print frame times (ms) on stderr")
         ->check(CLI::NonNegativeNumber);
-    app.add_option("--point-budget", config.point_budget,
+    app.add_option("--point-budget", config.view.point_budget,
                    "Points drawn per frame at most (0: adapt to --target-frame-ms)");
-    app.add_option("--target-frame-ms", config.target_frame_ms,
+    app.add_option("--target-frame-ms", config.view.target_frame_ms,
                    "Frame time in ms the adaptive level of detail aims for")
         ->check(CLI::PositiveNumber);
-    app.add_option("--point-size", config.point_size_px,
+    app.add_option("--point-size", config.view.point_size_px,
                    "Point size in pixels at full density (grows when thinned)")
         ->check(CLI::Range(1.0f, 16.0f));
-    app.add_option("--orbit-per-frame", config.orbit_px_per_frame,
+    app.add_option("--orbit-per-frame", config.headless.orbit_px_per_frame,
                    "Turn the view by this many pixels of mouse motion every frame (to measure "
                    "frame times while the operator moves the view)");
-    app.add_option("--width", config.width_px, "Window width, pixels")->check(CLI::PositiveNumber);
-    app.add_option("--height", config.height_px, "Window height, pixels")
+    app.add_option("--width", config.view.width_px, "Window width, pixels (default: the screen's)")
         ->check(CLI::PositiveNumber);
-    app.add_option("--font-scale", config.font_scale, "Size of text and widgets (1 = small)")
+    app.add_option("--height", config.view.height_px,
+                   "Window height, pixels (default: the screen's)")
+        ->check(CLI::PositiveNumber);
+    app.add_option("--font-scale", config.view.font_scale, "Size of text and widgets (1 = small)")
         ->check(CLI::Range(0.5f, 4.0f));
-    app.add_flag("--high-contrast", config.high_contrast, "High-contrast theme (bright light)");
+    app.add_flag("--high-contrast", config.view.high_contrast,
+                 "High-contrast theme (bright light)");
     const std::map<std::string, anascan::gui::ColorMode> modes{
         {"scan", anascan::gui::ColorMode::kByScan},
         {"quality", anascan::gui::ColorMode::kByQuality},
         {"coverage", anascan::gui::ColorMode::kByCoverage}};
-    app.add_option("--color-by", config.color_mode, "Colour points by scan|quality|coverage")
+    app.add_option("--color-by", config.view.color_mode, "Colour points by scan|quality|coverage")
         ->transform(CLI::CheckedTransformer(modes, CLI::ignore_case));
 }
 
@@ -107,8 +110,9 @@ int main(int argc, char** argv) {
     add_options(app, config);
     add_session_options(app, config);
     CLI11_PARSE(app, argc, argv);
-    if (config.screenshot_png && config.frames == 0) config.frames = 5;
-    if (config.capture_views > 0 && (!config.session || config.frames == 0)) {
+    anascan::field::HeadlessConfig& headless = config.headless;
+    if (headless.screenshot_png && headless.frames == 0) headless.frames = 5;
+    if (headless.capture_views > 0 && (!config.session.dir || headless.frames == 0)) {
         std::fprintf(stderr,
                      "anascan-field: error: --capture-views needs --session and --frames "
                      "(or --screenshot)\n");

@@ -5,17 +5,13 @@
 #include <algorithm>
 
 #include "anascan/gui/session_view.hpp"
+#include "future_ready.hpp"
 #include "thread_priority.hpp"
 
 namespace anascan::field {
 namespace {
 
 using acquisition::SessionEventKind;
-
-template <typename T>
-bool ready(const std::optional<std::future<T>>& future) {
-    return future && future->wait_for(std::chrono::seconds(0)) == std::future_status::ready;
-}
 
 }  // namespace
 
@@ -29,7 +25,11 @@ std::deque<acquisition::SessionEvent> EventQueue::take() {
     return std::exchange(events_, {});
 }
 
-SessionLink::SessionLink(SessionLinkConfig config) : config_(std::move(config)) {}
+SessionLink::SessionLink(SessionLinkConfig config)
+    : config_(std::move(config)),
+      chunks_({.worker_nice = config_.worker_nice,
+               .upload_points_per_frame = config_.upload_points_per_frame}),
+      preview_(config_.worker_nice) {}
 
 SessionLink::~SessionLink() = default;
 
@@ -43,24 +43,15 @@ const acquisition::SessionStore* SessionLink::store() const {
 
 void SessionLink::open(gui::FieldViewState& view) {
     view.session_dir = config_.dir.string();
-    for (const scanner_sources::ScannerListing& s : scanner_sources::list_scanners()) {
-        view.device.devices.push_back({.id = s.uri,
-                                       .kind = s.model,
-                                       .connected = true,
-                                       .status = s.simulated ? "simulated, ready" : "ready"});
-    }
-    auto active = std::find_if(view.device.devices.begin(), view.device.devices.end(),
-                               [&](const gui::DeviceRow& d) { return d.id == config_.device_uri; });
-    if (active == view.device.devices.end()) {
-        view.device.devices.push_back(
-            {.id = config_.device_uri, .kind = "scanner", .connected = true, .status = "ready"});
-        active = view.device.devices.end() - 1;
-    }
-    view.device.active_device = static_cast<int>(active - view.device.devices.begin());
-    if (!std::filesystem::exists(config_.dir / "session.sqlite")) {
+    if (std::filesystem::exists(config_.dir / "session.sqlite")) {
+        open_store(view);
+    } else {
         view.session_check = "new session: created at the first capture";
-        return;
     }
+    list_devices(view, active_device_uri());
+}
+
+void SessionLink::open_store(gui::FieldViewState& view) {
     auto store =
         acquisition::SessionStore::open(config_.dir, acquisition::SessionOpenMode::kReadOnly);
     if (!store) {
@@ -74,45 +65,58 @@ void SessionLink::open(gui::FieldViewState& view) {
     });
 }
 
+/// The device asked for, else the one that took the session's newest scan (a capture adds
+/// to the same stone, seen by the same scanner), else the default.
+std::string SessionLink::active_device_uri() const {
+    if (!config_.device_uri.empty()) return config_.device_uri;
+    if (read_store_) {
+        auto scans = read_store_->scans();
+        if (scans && !scans->empty() && !scans->back().device_id.empty())
+            return scans->back().device_id;
+    }
+    return kDefaultDeviceUri;
+}
+
+void SessionLink::list_devices(gui::FieldViewState& view, const std::string& uri) {
+    for (const scanner_sources::ScannerListing& s : scanner_sources::list_scanners()) {
+        view.device.devices.push_back({.id = s.uri,
+                                       .kind = s.model,
+                                       .connected = true,
+                                       .status = s.simulated ? "simulated, ready" : "ready"});
+    }
+    auto active = std::find_if(view.device.devices.begin(), view.device.devices.end(),
+                               [&](const gui::DeviceRow& d) { return d.id == uri; });
+    if (active == view.device.devices.end()) {
+        view.device.devices.push_back(
+            {.id = uri, .kind = "scanner", .connected = true, .status = "ready"});
+        active = view.device.devices.end() - 1;
+    }
+    view.device.active_device = static_cast<int>(active - view.device.devices.begin());
+}
+
 void SessionLink::poll(gui::FieldViewState& view, gui::PointRenderer& renderer) {
     drain_events(view);
     poll_futures(view);
-    const auto now = std::chrono::steady_clock::now();
-    if (now >= next_timed_refresh_) {
-        // Another process may be capturing into the session (no events then): look again.
-        if (!session_) dirty_ = coverage_dirty_ = true;
-        std::error_code ec;
-        const auto space = std::filesystem::space(
-            std::filesystem::exists(config_.dir) ? config_.dir : config_.dir.parent_path(), ec);
-        if (!ec) view.status.disk_free_bytes = space.available;
-        next_timed_refresh_ = now + std::chrono::seconds(1);
-    }
+    timed_refresh(view);
     if (dirty_) refresh(view, renderer);
-    if (!load_error_.empty()) view.status.last_error = std::exchange(load_error_, {});
+    if (std::string error = chunks_.take_error(); !error.empty()) view.status.last_error = error;
     if (coverage_dirty_) refresh_coverage(view, renderer);
-    poll_load(renderer);
-    poll_preview(view);
-    poll_device(view);
+    if (chunks_.poll(store(), renderer)) dirty_ = true;  // the pose may have moved meanwhile
+    preview_.poll(store(), view.device);
+    device_.poll(device_inputs(), view.device);
 }
 
-/// The newest scan's preview, read and projected off the UI thread (its points are freed
-/// there), uploaded here; a newer scan waits for the read in progress.
-void SessionLink::poll_preview(gui::FieldViewState& view) {
-    if (ready(pending_preview_)) {
-        const Expected<gui::ScanPreview> preview = pending_preview_->get();
-        pending_preview_.reset();
-        if (preview) preview_texture_.show(*preview, view.device);
-    }
-    if (pending_preview_ || newest_seq_ <= preview_seq_ || store() == nullptr) return;
-    preview_seq_ = newest_seq_;
-    pending_preview_ = std::async(std::launch::async,
-                                  [store = store(), seq = preview_seq_,
-                                   n = config_.worker_nice]() -> Expected<gui::ScanPreview> {
-                                      lower_this_thread_priority(n);
-                                      auto scan = store->load_scan(seq);
-                                      if (!scan) return fail(scan.error());
-                                      return gui::make_scan_preview(*scan);
-                                  });
+/// Once a second: another process may be capturing into the session (no events then), and
+/// the free disk space.
+void SessionLink::timed_refresh(gui::FieldViewState& view) {
+    const auto now = std::chrono::steady_clock::now();
+    if (now < next_timed_refresh_) return;
+    if (!session_) dirty_ = coverage_dirty_ = true;
+    std::error_code ec;
+    const auto space = std::filesystem::space(
+        std::filesystem::exists(config_.dir) ? config_.dir : config_.dir.parent_path(), ec);
+    if (!ec) view.status.disk_free_bytes = space.available;
+    next_timed_refresh_ = now + std::chrono::seconds(1);
 }
 
 void SessionLink::drain_events(gui::FieldViewState& view) {
@@ -146,26 +150,29 @@ void SessionLink::drain_events(gui::FieldViewState& view) {
     }
 }
 
-void SessionLink::poll_futures(gui::FieldViewState& view) {
-    if (ready(pending_capture_)) {
-        const Expected<std::int64_t> acknowledged = pending_capture_->get();
-        pending_capture_.reset();
-        ++captures_finished_;
-        if (acknowledged) {
-            ++acknowledged_;
-            view.capture_problem.reset();  // recovered: the banner goes
-            set_device_status(view, true, "ready");
-        } else {
-            const Error& error = acknowledged.error();
-            view.capture_problem = gui::capture_problem(error);
-            view.status.last_error = view.capture_problem->line();
-            if (error.code == ErrorCode::kDisconnected || error.code == ErrorCode::kTimeout)
-                set_device_status(view, false, "unplugged or silent");
-            else
-                set_device_status(view, true, "ready; " + view.capture_problem->headline);
-        }
-        dirty_ = true;
+void SessionLink::poll_capture(gui::FieldViewState& view) {
+    if (!ready(pending_capture_)) return;
+    const Expected<std::int64_t> acknowledged = pending_capture_->get();
+    pending_capture_.reset();
+    ++captures_finished_;
+    dirty_ = true;
+    if (acknowledged) {
+        ++acknowledged_;
+        view.capture_problem.reset();  // recovered: the banner goes
+        set_device_status(view, true, "ready");
+        return;
     }
+    const Error& error = acknowledged.error();
+    view.capture_problem = gui::capture_problem(error);
+    view.status.last_error = view.capture_problem->line();
+    if (error.code == ErrorCode::kDisconnected || error.code == ErrorCode::kTimeout)
+        set_device_status(view, false, "unplugged or silent");
+    else
+        set_device_status(view, true, "ready; " + view.capture_problem->headline);
+}
+
+void SessionLink::poll_futures(gui::FieldViewState& view) {
+    poll_capture(view);
     view.device.capturing = pending_capture_.has_value();
     if (ready(pending_check_)) {
         const auto report = pending_check_->get();
@@ -200,7 +207,7 @@ void SessionLink::refresh(gui::FieldViewState& view, gui::PointRenderer& rendere
     view.scans.clear();
     view.status.queued_registrations = 0;
     for (const acquisition::ScanRecord& record : *scans) {
-        newest_seq_ = std::max(newest_seq_, record.seq);
+        preview_.saw_scan(record.seq);
         view.scans.push_back(gui::scan_row(record));
         gui::ScanRow& row = view.scans.back();
         if (reregistering_.contains(record.seq) && row.state != gui::ScanRowState::kExcluded) {
@@ -209,77 +216,8 @@ void SessionLink::refresh(gui::FieldViewState& view, gui::PointRenderer& rendere
         }
         if (row.state == gui::ScanRowState::kQueued) ++view.status.queued_registrations;
     }
-    update_chunks(*scans, renderer);
-}
-
-/// Registered scans of the model's group are drawn at their poses; others are removed.
-void SessionLink::update_chunks(const std::vector<acquisition::ScanRecord>& scans,
-                                gui::PointRenderer& renderer) {
-    const int group = gui::model_group(scans);
-    std::map<std::int64_t, Pose>& wanted = wanted_;
-    wanted.clear();
-    for (const auto& record : scans)
-        if (gui::drawn_in_view(record, group)) wanted.emplace(record.seq, *record.pose);
-    for (auto it = shown_.begin(); it != shown_.end();) {
-        const auto w = wanted.find(it->first);
-        if (w == wanted.end()) {
-            renderer.remove_chunk(it->first);
-            it = shown_.erase(it);
-            continue;
-        }
-        if (!w->second.isApprox(it->second, 1e-12)) {
-            renderer.set_pose(it->first, w->second);
-            it->second = w->second;
-        }
-        ++it;
-    }
-    to_load_.clear();
-    for (const auto& [seq, pose] : wanted)
-        if (!shown_.contains(seq) && seq != loading_seq_ && !unloadable_.contains(seq))
-            to_load_.push_back(seq);
-}
-
-/// One scan read at a time, off the UI thread; its points go to the renderer (the only
-/// copy) and the cloud is freed.
-void SessionLink::poll_load(gui::PointRenderer& renderer) {
-    uploaded_in_last_poll_ = uploading_;  // a step below
-    const auto started = std::chrono::steady_clock::now();
-    if (ready(pending_load_)) {
-        Expected<Scan> scan = pending_load_->get();
-        pending_load_.reset();
-        const std::int64_t seq = std::exchange(loading_seq_, -1);
-        const auto wanted = wanted_.find(seq);
-        if (scan && wanted != wanted_.end()) {
-            // Shuffled on the load thread; uploaded over the next frames (upload_step): 20 000
-            // points a frame are 240 kB of positions and 60 kB of colours.
-            const std::size_t step = config_.upload_points_per_frame;
-            renderer.add_chunk(seq, std::move(scan->cloud), wanted->second,
-                               {.shuffled = step > 0, .points_per_step = step});
-            uploaded_in_last_poll_ = true;
-            shown_[seq] = wanted->second;
-        } else if (!scan) {
-            load_error_ = scan.error().message;
-            unloadable_.insert(seq);
-        }
-        dirty_ = true;  // the pose may have moved meanwhile; the row may have gone
-    }
-    uploading_ = renderer.upload_step();
-    if (uploaded_in_last_poll_)
-        upload_work_ms_.push_back(
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started)
-                .count());
-    // One scan's points in CPU memory at a time: the next is read once this one is uploaded.
-    if (pending_load_ || uploading_ || to_load_.empty() || store() == nullptr) return;
-    loading_seq_ = to_load_.front();
-    to_load_.erase(to_load_.begin());
-    pending_load_ = std::async(std::launch::async,
-                               [store = store(), seq = loading_seq_, n = config_.worker_nice,
-                                shuffle = config_.upload_points_per_frame > 0] {
-                                   lower_this_thread_priority(n);
-                                   auto scan = store->load_scan(seq);
-                                   if (scan && shuffle) gui::shuffle_chunk_points(scan->cloud, seq);
-                                   return scan;
-                               });
+    gui::mark_unjoined(view.scans);
+    chunks_.update(*scans, renderer);
 }
 
 void SessionLink::refresh_coverage(gui::FieldViewState& view, gui::PointRenderer& renderer) {
@@ -296,10 +234,8 @@ void SessionLink::refresh_coverage(gui::FieldViewState& view, gui::PointRenderer
 }
 
 bool SessionLink::settled() const {
-    return !pending_capture_ && !pending_load_ && !uploading_ && !pending_check_ &&
-           !pending_idle_ && !dirty_ && to_load_.empty() && reregistering_.empty() &&
-           !pending_preview_ && newest_seq_ <= preview_seq_ && !pending_settings_ &&
-           !(cameras_wanted_ && cameras_due_);
+    return !pending_capture_ && !pending_check_ && !pending_idle_ && !dirty_ &&
+           reregistering_.empty() && chunks_.settled() && preview_.settled() && device_.settled();
 }
 
 bool SessionLink::busy(const gui::FieldViewState& view) const {

@@ -5,14 +5,16 @@
 /// capture opens it for writing and runs a CaptureSession inside the app. Session events
 /// arrive on acquisition's threads and go into a queue that the UI thread drains each frame;
 /// captures, scan loads, the crash check and "wait until idle" are futures the UI polls, so
-/// the UI thread never waits for capture, registration or disk.
+/// the UI thread never waits for capture, registration or disk. Its parts, by concern: the
+/// scans' points in the renderer (ScanChunks), the newest scan's picture (LastScanPreview)
+/// and the attached device's settings and cameras (DeviceLink); the link itself holds the
+/// session, the operator's actions and the rows.
 
 #include <chrono>
 #include <cstdint>
 #include <deque>
 #include <filesystem>
 #include <future>
-#include <map>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -24,17 +26,23 @@
 #include "anascan/acquisition/store/session_check.hpp"
 #include "anascan/gui/field_view_state.hpp"
 #include "anascan/gui/point_renderer.hpp"
-#include "anascan/gui/scan_preview.hpp"
 #include "anascan/gui/ui_action.hpp"
 #include "anascan/scanner_sources/scanner_source.hpp"
-#include "preview_texture.hpp"
+#include "device_link.hpp"
+#include "last_scan_preview.hpp"
+#include "scan_chunks.hpp"
 
 namespace anascan::field {
 
+/// The device of a new session when none is asked for.
+inline constexpr const char* kDefaultDeviceUri = "sim:structured-light/small-block";
+
 struct SessionLinkConfig {
     std::filesystem::path dir;
-    std::string device_uri = "sim:structured-light/small-block";  ///< Active at start.
-    scanner_sources::SimulatedTour tour;                          ///< For simulated scanners.
+    /// Active at start; empty: the device of the session's newest scan, else
+    /// kDefaultDeviceUri.
+    std::string device_uri;
+    scanner_sources::SimulatedTour tour;  ///< For simulated scanners.
     scanner_sources::ScannerSettings settings;
     int sim_unplug_after = -1;  ///< Fault injection (simulated scanners), -1: never.
     /// Nice increment of the capture session's threads and the scan loads over the UI
@@ -84,72 +92,53 @@ public:
     int captures_finished() const { return captures_finished_; }
     bool capturing() const { return pending_capture_.has_value(); }
     /// The last poll() copied points to the GPU (a new scan, or a step of it).
-    bool uploaded_in_last_poll() const { return uploaded_in_last_poll_; }
+    bool uploaded_in_last_poll() const { return chunks_.uploaded_in_last_poll(); }
     /// Time each uploading poll spent taking the loaded scan and copying points, ms.
-    const std::vector<double>& upload_work_ms() const { return upload_work_ms_; }
-    std::size_t shown_scans() const { return shown_.size(); }
+    const std::vector<double>& upload_work_ms() const { return chunks_.upload_work_ms(); }
+    std::size_t shown_scans() const { return chunks_.shown(); }
 
 private:
     const acquisition::SessionStore* store() const;
+    void open_store(gui::FieldViewState& view);
+    std::string active_device_uri() const;
+    void list_devices(gui::FieldViewState& view, const std::string& uri);
     bool start_session(gui::FieldViewState& view);
     void capture(gui::FieldViewState& view);
     bool attach(const std::string& uri, gui::FieldViewState& view);
     void set_excluded(std::int64_t seq, bool excluded, gui::FieldViewState& view);
     void reregister(std::int64_t seq, gui::FieldViewState& view);
+    void open_device(gui::FieldViewState& view);
+    DeviceLinkInputs device_inputs() const;
     void drain_events(gui::FieldViewState& view);
+    void poll_capture(gui::FieldViewState& view);
     void poll_futures(gui::FieldViewState& view);
+    void timed_refresh(gui::FieldViewState& view);
     void refresh(gui::FieldViewState& view, gui::PointRenderer& renderer);
-    void update_chunks(const std::vector<acquisition::ScanRecord>& scans,
-                       gui::PointRenderer& renderer);
-    void poll_load(gui::PointRenderer& renderer);
-    void poll_preview(gui::FieldViewState& view);
     void refresh_coverage(gui::FieldViewState& view, gui::PointRenderer& renderer);
     void set_device_status(gui::FieldViewState& view, bool connected, std::string status);
-    // The device panel's device (session_link_device.cpp).
-    void open_device(gui::FieldViewState& view);
-    void apply_settings(gui::FieldViewState& view);
-    void poll_device(gui::FieldViewState& view);
-    void take_settings(gui::DevicePanelState& device);
-    void poll_cameras(gui::DevicePanelState& device);
 
     SessionLinkConfig config_;
     std::shared_ptr<EventQueue> events_ = std::make_shared<EventQueue>();
+    // The session: the UI's reader, and the capture session once the app captures.
     std::unique_ptr<acquisition::SessionStore> read_store_;
     std::unique_ptr<acquisition::CaptureSession> session_;
     std::string attached_uri_;
+    // The operator's actions.
     int acknowledged_ = 0;  ///< Scans in the session: the tour's next view.
     int captures_finished_ = 0;
     bool turned_over_pending_ = false;
+    std::set<std::int64_t> reregistering_;  ///< Asked to register again, no result yet.
+    // What the view shows, and when to read it again.
     bool dirty_ = true, coverage_dirty_ = true;
     std::chrono::steady_clock::time_point next_timed_refresh_{};
-    std::map<std::int64_t, Pose> shown_;    ///< Chunks in the renderer and their poses.
-    std::map<std::int64_t, Pose> wanted_;   ///< Scans the view should show, at these poses.
-    std::vector<std::int64_t> to_load_;     ///< Registered scans whose points are not shown yet.
-    std::set<std::int64_t> unloadable_;     ///< Scans whose file could not be read.
-    std::set<std::int64_t> reregistering_;  ///< Asked to register again, no result yet.
-    std::string load_error_;                ///< For the status bar.
-    std::string coverage_json_;             ///< The stored coverage last shown.
-    std::int64_t newest_seq_ = -1;          ///< The newest scan in the session.
-    std::int64_t preview_seq_ = -1;         ///< The scan previewed (or being read for it).
-    PreviewTexture preview_texture_;
-    CameraTextures camera_textures_;
-    bool settings_applying_ = false;  ///< pending_settings_ is an apply (not a read).
-    bool cameras_wanted_ = false;     ///< The device has cameras (until a preview says none).
-    bool cameras_due_ = false;        ///< No preview since the device was attached or captured.
-    int captures_seen_ = 0;
-    std::chrono::steady_clock::time_point next_camera_grab_{};
-    // Futures last: destroyed (and waited for) before the session they use.
+    std::string coverage_json_;  ///< The stored coverage last shown.
+    // The parts below run futures on the session: destroyed (and waited for) before it.
+    ScanChunks chunks_;
+    LastScanPreview preview_;
+    DeviceLink device_;
     std::optional<std::future<Expected<std::int64_t>>> pending_capture_;
-    std::optional<std::future<Expected<Scan>>> pending_load_;
-    std::int64_t loading_seq_ = -1;
-    bool uploading_ = false;  ///< The renderer is still uploading a loaded scan.
-    bool uploaded_in_last_poll_ = false;
-    std::vector<double> upload_work_ms_;
     std::optional<std::future<Expected<acquisition::SessionCheckReport>>> pending_check_;
-    std::optional<std::future<Expected<gui::ScanPreview>>> pending_preview_;
     std::optional<std::future<void>> pending_idle_;
-    std::optional<std::future<Expected<acquisition::DeviceSettingsForm>>> pending_settings_;
-    std::optional<std::future<Expected<acquisition::CameraPreview>>> pending_cameras_;
 };
 
 }  // namespace anascan::field

@@ -125,6 +125,25 @@ void SessionLink::reregister(std::int64_t seq, gui::FieldViewState& view) {
     dirty_ = true;
 }
 
+/// Opens the session for capture (if it is not) and attaches the active device; its
+/// settings are then read by the device link.
+void SessionLink::open_device(gui::FieldViewState& view) {
+    const int device = view.device.active_device;
+    if (device < 0 || device >= static_cast<int>(view.device.devices.size())) {
+        view.status.last_error = "no device chosen: pick one in the device panel";
+        return;
+    }
+    if (!session_ && !start_session(view)) return;
+    (void)attach(view.device.devices[static_cast<std::size_t>(device)].id, view);
+}
+
+DeviceLinkInputs SessionLink::device_inputs() const {
+    return {.session = session_.get(),
+            .attached = !attached_uri_.empty(),
+            .capturing = pending_capture_.has_value(),
+            .captures_finished = captures_finished_};
+}
+
 bool SessionLink::apply(const gui::UiAction& action, gui::FieldViewState& view) {
     switch (action.kind) {
         case gui::UiActionKind::kCapture:
@@ -146,7 +165,7 @@ bool SessionLink::apply(const gui::UiAction& action, gui::FieldViewState& view) 
             open_device(view);
             return true;
         case gui::UiActionKind::kApplySettings:
-            apply_settings(view);
+            device_.apply_settings(device_inputs(), view.device.settings);
             return true;
         case gui::UiActionKind::kConnectDevice:
             if (action.device_index >= 0 &&

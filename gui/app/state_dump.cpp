@@ -11,6 +11,7 @@ const char* state_name(gui::ScanRowState state) {
         case gui::ScanRowState::kQueued:
             return "queued";
         case gui::ScanRowState::kRegistered:
+        case gui::ScanRowState::kUnjoined:  // registered in acquisition's terms
             return "registered";
         case gui::ScanRowState::kFailed:
             return "failed";
@@ -43,6 +44,7 @@ nlohmann::json scans_json(const gui::FieldViewState& view) {
         scans.push_back({{"seq", row.seq},
                          {"device_id", row.device_id},
                          {"state", state_name(row.state)},
+                         {"list_state", gui::to_string(row.state)},
                          {"group", row.group},
                          {"rms_mm", optional_json(row.rms_mm)},
                          {"overlap_percent", optional_json(row.overlap_percent)},

@@ -10,6 +10,8 @@ const char* to_string(ScanRowState state) {
             return "queued";
         case ScanRowState::kRegistered:
             return "ok";
+        case ScanRowState::kUnjoined:
+            return "unjoined";
         case ScanRowState::kFailed:
             return "FAILED";
         case ScanRowState::kExcluded:
@@ -19,8 +21,9 @@ const char* to_string(ScanRowState state) {
 }
 
 std::optional<FailureBanner> failure_banner(const FieldViewState& state) {
-    // The newest registration outcome decides: a later registered scan means the
-    // operator has recovered (e.g. scanned again from a closer viewpoint).
+    // The newest registration outcome decides: a later scan that joined the model means the
+    // operator has recovered (e.g. scanned again from a closer viewpoint); one that joined
+    // nothing does not.
     for (auto it = state.scans.rbegin(); it != state.scans.rend(); ++it) {
         if (it->state == ScanRowState::kRegistered) return std::nullopt;
         if (it->state != ScanRowState::kFailed) continue;

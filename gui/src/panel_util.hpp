@@ -50,6 +50,8 @@ inline const ImVec4 kColorGood{0.25f, 0.85f, 0.35f, 1.0f};
 inline const ImVec4 kColorWarn{1.0f, 0.8f, 0.1f, 1.0f};
 inline const ImVec4 kColorBad{1.0f, 0.3f, 0.25f, 1.0f};
 inline const ImVec4 kColorMuted{0.6f, 0.6f, 0.6f, 1.0f};
+/// A scan placed apart from every other (unjoined): neither good nor failed.
+inline const ImVec4 kColorApart{0.35f, 0.7f, 1.0f, 1.0f};
 
 /// "12.3" or "-" for an absent figure.
 std::string format_optional(const std::optional<double>& value, const char* format);

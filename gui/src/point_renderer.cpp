@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "anascan/gui/level_of_detail.hpp"
+#include "anascan/processing/coverage/coverage.hpp"
 #include "hole_marker_geometry.hpp"
 #include "shader_program.hpp"
 
@@ -35,7 +36,8 @@ out vec4 frag_color;
 void main() { frag_color = vec4(v_color, 1.0); }
 )";
 
-constexpr Rgb8 kHoleColor{255, 0, 255};
+/// The hole markers: red, as `anascan coverage --ply` colours unobserved samples.
+const Rgb8 kHoleColor = coverage_sample_color(SampleState::kUnobserved);
 constexpr float kNoColorGrey = 0.7f;
 
 Eigen::Vector3f to_float_rgb(Rgb8 c) { return Eigen::Vector3f(c.r, c.g, c.b) / 255.0f; }

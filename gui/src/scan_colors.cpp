@@ -61,6 +61,8 @@ Rgb8 quality_color(const ScanRow& row) {
         case ScanRowState::kQueued:
         case ScanRowState::kExcluded:
             return {120, 120, 120};
+        case ScanRowState::kUnjoined:
+            return {90, 180, 255};  // as the scan list's "unjoined"
         case ScanRowState::kRegistered:
             break;
     }

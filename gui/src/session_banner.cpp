@@ -13,8 +13,9 @@ namespace {
 std::map<int, std::vector<std::int64_t>> registered_groups(const FieldViewState& state) {
     std::map<int, std::vector<std::int64_t>> groups;
     for (const ScanRow& row : state.scans) {
-        if (row.state == ScanRowState::kRegistered && row.group >= 0)
-            groups[row.group].push_back(row.seq);
+        const bool placed =
+            row.state == ScanRowState::kRegistered || row.state == ScanRowState::kUnjoined;
+        if (placed && row.group >= 0) groups[row.group].push_back(row.seq);
     }
     for (auto& [group, seqs] : groups) std::sort(seqs.begin(), seqs.end());
     return groups;

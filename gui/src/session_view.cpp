@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "anascan/acquisition/coverage/session_coverage.hpp"
+#include "anascan/processing/coverage/coverage.hpp"
 
 namespace anascan::gui {
 namespace {
@@ -30,20 +31,18 @@ std::optional<double> number(const nlohmann::json& object, const char* key) {
     return it->get<double>();
 }
 
-std::optional<Eigen::Vector3d> vector3(const nlohmann::json& object, const char* key) {
-    const auto it = object.find(key);
-    if (it == object.end() || !it->is_array() || it->size() != 3) return std::nullopt;
-    for (const auto& v : *it)
-        if (!v.is_number()) return std::nullopt;
-    return Eigen::Vector3d((*it)[0].get<double>(), (*it)[1].get<double>(), (*it)[2].get<double>());
-}
-
 void fill_quality(const std::string& quality_json, ScanRow& row) {
     if (quality_json.empty()) return;
     const nlohmann::json q = nlohmann::json::parse(quality_json, nullptr, false);
     if (!q.is_object()) return;
-    if (const auto rms = number(q, "rms_m")) row.rms_mm = *rms * 1000.0;
-    if (const auto overlap = number(q, "overlap_fraction")) row.overlap_percent = *overlap * 100.0;
+    const auto method = q.find("method");
+    const bool placed_unmatched =
+        method != q.end() && method->is_string() && (*method == "first" || *method == "new-group");
+    if (!placed_unmatched) {  // else the figures are 0 for want of a match, not measured
+        if (const auto rms = number(q, "rms_m")) row.rms_mm = *rms * 1000.0;
+        if (const auto overlap = number(q, "overlap_fraction"))
+            row.overlap_percent = *overlap * 100.0;
+    }
     for (const char* key : {"message", "reason"}) {
         const auto it = q.find(key);
         if (it != q.end() && it->is_string() && row.message.empty()) row.message = *it;
@@ -64,21 +63,23 @@ ScanRow scan_row(const acquisition::ScanRecord& record) {
     return row;
 }
 
+void mark_unjoined(std::vector<ScanRow>& rows) {
+    std::map<int, int> members;
+    for (const ScanRow& row : rows)
+        if (row.state == ScanRowState::kRegistered && row.group >= 0) ++members[row.group];
+    for (ScanRow& row : rows)
+        if (row.state == ScanRowState::kRegistered && row.group >= 0 && members[row.group] == 1)
+            row.state = ScanRowState::kUnjoined;
+}
+
 StoredCoverage parse_coverage_json(std::string_view json) {
     StoredCoverage coverage;
-    const nlohmann::json doc = nlohmann::json::parse(json, nullptr, false);
-    if (!doc.is_object()) return coverage;
-    coverage.fraction = number(doc, "fraction");
-    const auto holes = doc.find("holes");
-    if (holes == doc.end() || !holes->is_array()) return coverage;
-    for (const auto& hole : *holes) {
-        if (!hole.is_object()) continue;
-        const auto centre = vector3(hole, "centre_m");
-        const auto normal = vector3(hole, "normal");
-        const auto area = number(hole, "area_m2");
-        if (!centre || !normal || !area) continue;
-        coverage.holes.push_back({.centre_m = *centre, .normal = *normal, .area_m2 = *area});
-    }
+    const Expected<CoverageSummary> summary = coverage_from_json(json);
+    if (!summary) return coverage;
+    coverage.fraction = summary->fraction;
+    for (const CoverageHole& hole : summary->holes)
+        coverage.holes.push_back(
+            {.centre_m = hole.centre_m, .normal = hole.normal, .area_m2 = hole.area_m2});
     return coverage;
 }
 

@@ -92,6 +92,24 @@ TEST_F(FieldApp, ScreenshotShowsThePointsAndThePanels) {
     }
 }
 
+TEST_F(FieldApp, TheWindowTakesTheScreensSizeUnlessGivenOne) {
+#ifndef ANASCAN_XVFB_RUN_PROGRAM
+    GTEST_SKIP() << "xvfb-run not found at configure time (Debian xvfb)";
+#else
+    const fs::path ply = write_sphere_ply();
+    const fs::path png = dir_ / "screen.png";
+    // A screen of its own, 1600 x 1000, unlike the 1280 x 800 one this test runs under.
+    const RunResult r = anascan::test::run_command(
+        std::string(ANASCAN_XVFB_RUN_PROGRAM) + " -a -s '-screen 0 1600x1000x24' " + ANASCAN_FIELD +
+        " --cloud " + ply.string() + " --screenshot " + png.string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const cv::Mat image = cv::imread(png.string(), cv::IMREAD_COLOR);
+    ASSERT_FALSE(image.empty()) << png;
+    EXPECT_EQ(image.cols, 1600);
+    EXPECT_EQ(image.rows, 1000);
+#endif
+}
+
 TEST_F(FieldApp, ASmallPointBudgetStillShowsTheStoneAndRefinesIt) {
     // 2 000 points per frame of 60 000: a fresh thinned image, then refinement slices.
     const fs::path ply = write_sphere_ply();

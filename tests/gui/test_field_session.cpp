@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <string>
@@ -154,6 +155,39 @@ TEST_F(FieldSession, CapturesFromTheCaptureActionRegisterLive) {
     const json stored = cli_json("session info " + session.string() + " --json");
     ASSERT_TRUE(stored.is_object());
     EXPECT_EQ(stored["scans"].size(), 3u);
+}
+
+TEST_F(FieldSession, CaptureUsesTheSessionsOwnDeviceAndLoneScansAreUnjoined) {
+    const fs::path session = dir_ / "tof";
+    const RunResult captured =
+        cli("capture " + kDevice + " --session " + session.string() + " --views 3 --flip-after 0");
+    ASSERT_EQ(captured.exit_code, 0) << captured.output;
+    const json stored = cli_json("session info " + session.string() + " --json");
+    ASSERT_TRUE(stored.is_object());
+    ASSERT_FALSE(stored["scans"].empty());
+    const std::string device = stored["scans"].back()["device_id"];
+    const fs::path state_file = dir_ / "state.json";
+    const RunResult r =
+        field("--session " + session.string() + " --frames 1 --dump-state " + state_file.string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const json state = read_json(state_file);
+    ASSERT_TRUE(state.is_object()) << state_file;
+    const int active = state["active_device"];
+    ASSERT_GE(active, 0);
+    EXPECT_EQ(state["devices"][active]["id"], device) << "Capture would add another stone";
+    // A registered scan alone in its group joined nothing: "unjoined", no RMS; the others
+    // "ok".
+    std::map<int, int> members;
+    for (const auto& row : state["scans"])
+        if (row["state"] == "registered") ++members[row["group"].get<int>()];
+    for (const auto& row : state["scans"]) {
+        if (row["state"] != "registered") continue;
+        const bool alone = members[row["group"].get<int>()] == 1;
+        EXPECT_EQ(row["list_state"], alone ? "unjoined" : "ok") << row.dump();
+        if (alone) {
+            EXPECT_TRUE(row["rms_mm"].is_null()) << row.dump();
+        }
+    }
 }
 
 TEST_F(FieldSession, AnUnpluggedScannerIsReportedAndTheAppGoesOn) {

@@ -2,6 +2,9 @@
 // operator's actions as values; the failure banner appears exactly when it must.
 #include <gtest/gtest.h>
 
+#include <string>
+#include <string_view>
+
 #include "anascan/gui/panels.hpp"
 #include "anascan/gui/theme.hpp"
 #include "headless_imgui.hpp"
@@ -266,6 +269,56 @@ TEST(ViewActions, SelectionColourModeAndContrastChangeOnlyTheViewState) {
     EXPECT_TRUE(state.high_contrast);
     EXPECT_FALSE(apply_view_action(state, {.kind = UiActionKind::kCapture}));
     EXPECT_FALSE(apply_view_action(state, {.kind = UiActionKind::kExclude, .seq = 1}));
+}
+
+}  // namespace
+}  // namespace anascan::gui
+
+namespace anascan::gui {
+namespace {
+
+/// The scan list's table, from the last frame.
+ImGuiTable* scan_table() {
+    ImGuiWindow* window = ImGui::FindWindowByName("Scans");
+    if (window == nullptr) return nullptr;
+    return ImGui::TableFindByID(window->GetID("scan_table"));
+}
+
+TEST(ScanListPanel, TheNewestScanStaysInTheListAsScansArrive) {
+    HeadlessImGui ui;
+    FieldViewState state = four_registered_scans();
+    state.scans.clear();
+    UiActions ignored;
+    for (std::int64_t seq = 1; seq <= 60; ++seq) {  // one scan a frame, then two frames
+        state.scans.push_back(row(seq, ScanRowState::kRegistered));
+        ui.frame([&] { draw_field_panels(state, kLayout, ignored); });
+    }
+    ui.frame([&] { draw_field_panels(state, kLayout, ignored); });
+    const UiActions actions =
+        sweep_clicks(ui, state, 30.0f, 0.0f, kLayout.height_px - kLayout.status_height_px);
+    const auto seqs = distinct_seqs(actions, UiActionKind::kSelectScan);
+    ASSERT_FALSE(seqs.empty());
+    EXPECT_EQ(seqs.back(), 60) << "the newest row can be clicked: it is in sight";
+}
+
+TEST(ScanListPanel, DeviceNamesAreNotCut) {
+    HeadlessImGui ui;
+    FieldViewState state = four_registered_scans();
+    const std::string name = "sim:structured-light/octagon-block";
+    for (ScanRow& r : state.scans) r.device_id = name;
+    UiActions ignored;
+    for (int pass = 0; pass < 2; ++pass) {
+        ui.frame([&] { draw_field_panels(state, kLayout, ignored); });
+        ui.frame([&] { draw_field_panels(state, kLayout, ignored); });
+        ImGuiTable* table = scan_table();
+        ASSERT_NE(table, nullptr);
+        for (int c = 0; c < table->ColumnsCount; ++c) {
+            if (std::string_view(ImGui::TableGetColumnName(table, c)) != "Device") continue;
+            EXPECT_GE(table->Columns[c].WidthGiven, ImGui::CalcTextSize(name.c_str()).x)
+                << "pass " << pass << ": the device column cuts " << name;
+        }
+        state.scans[1].device_id = "sim:tof/small-block";  // two devices: a column
+    }
 }
 
 }  // namespace

@@ -2,8 +2,10 @@
 // the group drawn, the crash-check summary.
 #include <gtest/gtest.h>
 
+#include "anascan/gui/scan_colors.hpp"
 #include "anascan/gui/scan_preview.hpp"
 #include "anascan/gui/session_view.hpp"
+#include "anascan/processing/coverage/coverage.hpp"
 
 namespace {
 
@@ -147,6 +149,84 @@ TEST(ScanPreview, ShowsWhatTheSensorSawNearBrightFarDark) {
     const int mid = preview.height_px / 2;
     EXPECT_GT(grey(15, mid), grey(65, mid)) << "the nearer box (left) is brighter";
     EXPECT_TRUE(gui::make_scan_preview(anascan::Scan{}).rgb.empty());
+}
+
+}  // namespace
+
+namespace {
+
+TEST(SessionView, AScanThatJoinedNothingIsUnjoinedNotOk) {
+    std::vector<ScanRecord> records{record(1, ScanState::kRegistered, 0),
+                                    record(2, ScanState::kRegistered, 0),
+                                    record(3, ScanState::kRegistered, 1)};
+    records[0].quality_json = R"({"method": "first", "rms_m": 0.0, "overlap_fraction": 0.0})";
+    records[1].quality_json =
+        R"({"method": "motion-prior", "rms_m": 0.0004, "overlap_fraction": 0.6})";
+    records[2].quality_json = R"({"method": "new-group", "rms_m": 0.0, "overlap_fraction": 0.0})";
+    std::vector<gui::ScanRow> rows;
+    for (const ScanRecord& r : records) rows.push_back(gui::scan_row(r));
+    gui::mark_unjoined(rows);
+    EXPECT_EQ(rows[0].state, gui::ScanRowState::kRegistered);  // scan 2 joined it
+    EXPECT_EQ(rows[1].state, gui::ScanRowState::kRegistered);
+    EXPECT_EQ(rows[2].state, gui::ScanRowState::kUnjoined);
+    EXPECT_STREQ(gui::to_string(rows[2].state), "unjoined");
+    // Placed without a match: no RMS 0.00 and no overlap 0 that read as measured.
+    EXPECT_FALSE(rows[2].rms_mm.has_value());
+    EXPECT_FALSE(rows[2].overlap_percent.has_value());
+    EXPECT_FALSE(rows[0].rms_mm.has_value());
+    ASSERT_TRUE(rows[1].rms_mm.has_value());
+    // Its own colour, unlike a registered scan's.
+    EXPECT_FALSE(gui::quality_color(rows[2]) == gui::quality_color(rows[1]));
+    // Excluding scan 2 leaves scan 1 alone too.
+    records[1].excluded = true;
+    rows.clear();
+    for (const ScanRecord& r : records) rows.push_back(gui::scan_row(r));
+    gui::mark_unjoined(rows);
+    EXPECT_EQ(rows[0].state, gui::ScanRowState::kUnjoined);
+}
+
+}  // namespace
+
+namespace {
+
+// One codec: the field app reads the coverage JSON with processing's reader, which gives
+// back what processing's writer wrote.
+TEST(SessionView, CoverageJsonReadsBackWhatTheWriterWrote) {
+    anascan::CoverageReport report;
+    report.status = anascan::CoverageStatus::kNoStone;
+    report.fraction = 0.43712;
+    report.surface_area_m2 = 0.528311;
+    report.covered_area_m2 = 0.230944;
+    report.sparse_area_m2 = 0.0123;
+    report.message = R"(too few "stone" points\ here)";
+    for (int i = 0; i < 3; ++i)
+        report.holes.push_back({.area_m2 = 0.01 / (i + 1),
+                                .centre_m = Eigen::Vector3d(0.1 * i, -0.2, 0.35),
+                                .normal = Eigen::Vector3d(0.0, 0.6, 0.8),
+                                .sample_count = std::size_t(40 - i)});
+    const std::string json = anascan::coverage_to_json(report, 2);
+    const auto read = anascan::coverage_from_json(json);
+    ASSERT_TRUE(read.has_value()) << read.error().message;
+    EXPECT_EQ(read->status, anascan::CoverageStatus::kNoStone);
+    EXPECT_NEAR(*read->fraction, report.fraction, 1e-5);
+    EXPECT_NEAR(*read->surface_area_m2, report.surface_area_m2, 1e-6);
+    EXPECT_NEAR(*read->covered_area_m2, report.covered_area_m2, 1e-6);
+    EXPECT_NEAR(*read->sparse_area_m2, report.sparse_area_m2, 1e-6);
+    EXPECT_EQ(read->hole_count, 3u) << "all holes are counted";
+    ASSERT_EQ(read->holes.size(), 2u) << "at most max_holes are listed";
+    EXPECT_NEAR(read->holes[1].area_m2, 0.005, 1e-6);
+    EXPECT_NEAR(read->holes[1].centre_m.x(), 0.1, 1e-5);
+    EXPECT_NEAR(read->holes[1].normal.z(), 0.8, 1e-4);
+    EXPECT_EQ(read->holes[1].sample_count, 39u);
+    EXPECT_EQ(read->message, report.message);
+    // The field app's view of the same text.
+    const gui::StoredCoverage shown = gui::parse_coverage_json(json);
+    ASSERT_TRUE(shown.fraction);
+    EXPECT_DOUBLE_EQ(*shown.fraction, *read->fraction);
+    EXPECT_EQ(shown.holes.size(), 2u);
+    const auto broken = anascan::coverage_from_json(R"({"fraction": )");
+    ASSERT_FALSE(broken.has_value());
+    EXPECT_EQ(broken.error().code, anascan::ErrorCode::kFormat);
 }
 
 }  // namespace

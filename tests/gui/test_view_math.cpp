@@ -7,6 +7,8 @@
 #include "anascan/gui/level_of_detail.hpp"
 #include "anascan/gui/orbit_camera.hpp"
 #include "anascan/gui/scan_colors.hpp"
+#include "anascan/gui/view_overlay.hpp"
+#include "anascan/processing/coverage/coverage.hpp"
 
 namespace anascan::gui {
 namespace {
@@ -117,6 +119,65 @@ TEST(ScanColors, PaletteTellsNeighboursApartQualityFollowsTheRms) {
     EXPECT_GT(poor.r, poor.g);
     EXPECT_GT(failed.r, 200);
     EXPECT_LT(failed.g, 80);
+}
+
+TEST(ViewOverlay, TheScaleBarIsARoundLengthThatFitsAndMeasuresTheView) {
+    const ScaleBar bar = scale_bar(0.001, 300.0f);  // 1 mm a pixel, 300 px at most
+    EXPECT_DOUBLE_EQ(bar.length_m, 0.2);
+    EXPECT_FLOAT_EQ(bar.length_px, 200.0f);
+    EXPECT_EQ(bar.label, "20 cm");
+    EXPECT_EQ(scale_bar(0.0001, 120.0f).label, "1 cm");
+    EXPECT_EQ(scale_bar(0.00002, 300.0f).label, "5 mm");
+    EXPECT_EQ(scale_bar(0.01, 250.0f).label, "2 m");
+    EXPECT_EQ(scale_bar(0.0, 250.0f).length_px, 0.0f);
+    // A camera fitted to a 1 m sphere: the bar's length in pixels is its length in metres
+    // on the target's plane, as the projection maps it.
+    OrbitCamera camera;
+    camera.fit({.centre_m = Eigen::Vector3d(5, 3, 1), .radius_m = 0.5}, 1.0);
+    const double m_per_px = metres_per_px_at_target(camera, 800.0f);
+    const Eigen::Vector3d right = camera.view().linear().row(0).transpose();  // screen x
+    const Eigen::Vector3d a = to_ndc(camera, 1.0, camera.target_m());
+    const Eigen::Vector3d b = to_ndc(camera, 1.0, camera.target_m() + 0.1 * right);
+    EXPECT_NEAR((b.x() - a.x()) * 0.5 * 800.0, 0.1 / m_per_px, 1e-6);
+}
+
+TEST(ViewOverlay, TheAxesTurnWithTheCamera) {
+    OrbitCamera camera;
+    const auto before = axes_on_screen(camera);
+    EXPECT_LT(before[2].y(), -0.5) << "world z is up on the screen (y down)";
+    camera.orbit(200.0, 0.0);
+    const auto after = axes_on_screen(camera);
+    EXPECT_GT((after[0] - before[0]).norm(), 0.1) << "x turns when the camera orbits";
+    EXPECT_NEAR(after[2].x(), 0.0, 1e-9) << "z stays vertical when orbiting about it";
+}
+
+TEST(ViewOverlay, EachColourModeHasALegendInTheColoursTheViewUses) {
+    FieldViewState state;
+    for (std::int64_t seq = 1; seq <= 12; ++seq)
+        state.scans.push_back({.seq = seq, .state = ScanRowState::kRegistered, .rms_mm = 0.3});
+    state.color_mode = ColorMode::kByScan;
+    const auto by_scan = color_legend(state, 8);
+    ASSERT_EQ(by_scan.size(), 9u) << "the newest 8 and a line for the older";
+    EXPECT_EQ(by_scan.back().label, "scan 12");
+    EXPECT_TRUE(by_scan.back().color == scan_palette_color(12));
+    state.color_mode = ColorMode::kByQuality;
+    const auto by_quality = color_legend(state);
+    const ScanRow failed{.seq = 13, .state = ScanRowState::kFailed};
+    const ScanRow unjoined{.seq = 14, .state = ScanRowState::kUnjoined};
+    auto has = [&](Rgb8 c) {
+        for (const LegendEntry& e : by_quality)
+            if (e.color == c) return true;
+        return false;
+    };
+    EXPECT_TRUE(has(quality_color(state.scans[0])));
+    EXPECT_TRUE(has(quality_color(failed)));
+    EXPECT_TRUE(has(quality_color(unjoined)));
+    state.color_mode = ColorMode::kByCoverage;
+    const auto by_coverage = color_legend(state);
+    bool ring = false;
+    for (const LegendEntry& e : by_coverage)
+        ring = ring || (e.ring && e.color == coverage_sample_color(SampleState::kUnobserved));
+    EXPECT_TRUE(ring) << "holes in the colour the coverage PLY gives unobserved samples";
 }
 
 }  // namespace

@@ -15,18 +15,6 @@ constexpr Rgb8 kObservedColor{40, 180, 40};
 constexpr Rgb8 kSparseColor{230, 190, 0};
 constexpr Rgb8 kUnobservedColor{220, 30, 30};
 
-Rgb8 color_of(SampleState state) {
-    switch (state) {
-        case SampleState::kObserved:
-            return kObservedColor;
-        case SampleState::kSparse:
-            return kSparseColor;
-        case SampleState::kUnobserved:
-            break;
-    }
-    return kUnobservedColor;
-}
-
 CoverageReport failed(CoverageStatus status, std::string message) {
     CoverageReport report;
     report.status = status;
@@ -51,7 +39,7 @@ CoverageReport measure(Mesh surface_rel, const BinnedPoints& points, const Cover
     report.samples.normals = samples.normals;
     report.samples.colors.reserve(samples.positions.size());
     for (SampleState state : report.sample_states) {
-        report.samples.colors.push_back(color_of(state));
+        report.samples.colors.push_back(coverage_sample_color(state));
         if (state == SampleState::kObserved) report.covered_area_m2 += area_per_sample;
         if (state == SampleState::kSparse) report.sparse_area_m2 += area_per_sample;
     }
@@ -101,6 +89,18 @@ CoverageReport compute_coverage_on_surface(const Mesh& surface_world,
         surface_rel.vertices.positions.push_back(
             (surface_world.vertices.world_position(i) - all.origin_m).cast<float>());
     return measure(std::move(surface_rel), all, config);
+}
+
+Rgb8 coverage_sample_color(SampleState state) {
+    switch (state) {
+        case SampleState::kObserved:
+            return kObservedColor;
+        case SampleState::kSparse:
+            return kSparseColor;
+        case SampleState::kUnobserved:
+            break;
+    }
+    return kUnobservedColor;
 }
 
 const char* to_string(CoverageStatus status) {

@@ -15,11 +15,12 @@
 
 namespace anascan::gui {
 
-/// Registration state of one scan (mirrors acquisition::ScanState).
-enum class ScanRowState { kQueued, kRegistered, kFailed, kExcluded };
+/// Registration state of one scan: acquisition::ScanState, with the registered scans that
+/// joined nothing apart (kUnjoined: placed in a group of their own, no other scan with it).
+enum class ScanRowState { kQueued, kRegistered, kUnjoined, kFailed, kExcluded };
 
-/// As the scan list shows it: "queued", "ok", "FAILED" (capitals: it must stand out),
-/// "excluded".
+/// As the scan list shows it: "queued", "ok", "unjoined", "FAILED" (capitals: it must stand
+/// out), "excluded".
 const char* to_string(ScanRowState state);
 
 /// One line of the scan list, in capture order.

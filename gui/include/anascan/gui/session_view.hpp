@@ -18,10 +18,16 @@ namespace anascan::gui {
 
 /// One scan-list row: seq, device, time, state and group one to one; RMS (mm) and overlap
 /// (%) from the registrar's quality_json ("rms_m", "overlap_fraction"); the message from it
-/// ("message", else "reason") or the file problem found by `session check`.
+/// ("message", else "reason") or the file problem found by `session check`. A scan placed
+/// without a registration ("method" "first" or "new-group") has no RMS and no overlap.
 ScanRow scan_row(const acquisition::ScanRecord& record);
 
-/// The stored value "coverage" (coverage_to_json): its fraction and its holes as markers.
+/// Registered rows alone in their group (no other registered, non-excluded row with them)
+/// become kUnjoined: they joined nothing, whatever their figures say.
+void mark_unjoined(std::vector<ScanRow>& rows);
+
+/// The stored value "coverage" (coverage_to_json, read by coverage_from_json): its
+/// fraction and its holes as markers.
 struct StoredCoverage {
     std::optional<double> fraction;  ///< 0..1; absent when the JSON has none.
     std::vector<HoleMarker> holes;

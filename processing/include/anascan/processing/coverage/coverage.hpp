@@ -18,8 +18,10 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "anascan/processing/core/expected.hpp"
 #include "anascan/processing/core/mesh.hpp"
 #include "anascan/processing/core/point_cloud.hpp"
 #include "anascan/processing/core/pose.hpp"
@@ -113,8 +115,27 @@ CoverageReport compute_coverage_on_surface(const Mesh& surface_world,
 /// Short name of a status ("ok", "no-scans", ...), for logs and JSON.
 const char* to_string(CoverageStatus status);
 
+/// The colour of a sample's state in the samples' PLY and in the field app's legend:
+/// green observed, yellow sparse, red unobserved.
+Rgb8 coverage_sample_color(SampleState state);
+
 /// The report as a JSON object (status, fraction, areas in m², holes with area_m2,
 /// centre_m, normal; at most `max_holes` holes), for the session store and `--json`.
 std::string coverage_to_json(const CoverageReport& report, std::size_t max_holes = 20);
+
+/// The report as coverage_to_json wrote it, read back: each figure absent when the text
+/// lacks it; holes as listed (at most the writer's max_holes, largest first).
+struct CoverageSummary {
+    std::optional<CoverageStatus> status;
+    std::optional<double> fraction;  ///< Observed area / surface area, 0..1.
+    std::optional<double> surface_area_m2, covered_area_m2, sparse_area_m2;
+    std::optional<std::size_t> hole_count;  ///< All holes found (the list may be shorter).
+    std::vector<CoverageHole> holes;        ///< The listed holes that parse.
+    std::size_t malformed_holes = 0;        ///< Listed, but missing a field: skipped.
+    std::string message;                    ///< Why, when not ok.
+};
+
+/// Reads coverage_to_json's text; kFormat when it is not a JSON object.
+Expected<CoverageSummary> coverage_from_json(std::string_view json);
 
 }  // namespace anascan

@@ -1,9 +1,6 @@
-// The device panel's link to the session's device: connect, read and apply its settings,
-// and the live camera preview grabbed between captures (CaptureSession's device calls run
-// on its scanner thread, so never during a capture; the UI thread only polls futures).
-#include <fmt/format.h>
+#include "device_link.hpp"
 
-#include "session_link.hpp"
+#include "future_ready.hpp"
 
 namespace anascan::field {
 namespace {
@@ -15,28 +12,10 @@ constexpr auto kCameraGrabInterval = std::chrono::milliseconds(500);
 constexpr auto kCameraGrabAfterCapture = std::chrono::seconds(1);
 constexpr auto kCameraRetryAfterError = std::chrono::seconds(2);
 
-template <typename T>
-bool ready(const std::optional<std::future<T>>& future) {
-    return future && future->wait_for(std::chrono::seconds(0)) == std::future_status::ready;
-}
-
 }  // namespace
 
-/// Opens the session for capture (if it is not) and attaches the active device; its
-/// settings are then read by poll_device.
-void SessionLink::open_device(gui::FieldViewState& view) {
-    const int device = view.device.active_device;
-    if (device < 0 || device >= static_cast<int>(view.device.devices.size())) {
-        view.status.last_error = "no device chosen: pick one in the device panel";
-        return;
-    }
-    if (!session_ && !start_session(view)) return;
-    (void)attach(view.device.devices[static_cast<std::size_t>(device)].id, view);
-}
-
-void SessionLink::apply_settings(gui::FieldViewState& view) {
-    gui::DeviceSettingsState& st = view.device.settings;
-    if (!session_ || attached_uri_.empty() || pending_settings_) return;
+void DeviceLink::apply_settings(const DeviceLinkInputs& in, gui::DeviceSettingsState& st) {
+    if (in.session == nullptr || !in.attached || pending_settings_) return;
     for (const acquisition::DeviceSetting& s : st.edited.settings) {
         if (std::string problem = gui::setting_problem(s); !problem.empty()) {
             st.message = "Not applied: " + problem;
@@ -44,29 +23,28 @@ void SessionLink::apply_settings(gui::FieldViewState& view) {
             return;
         }
     }
-    pending_settings_ = session_->apply_device_settings(st.edited);
+    pending_settings_ = in.session->apply_device_settings(st.edited);
     settings_applying_ = true;
     st.busy = true;
 }
 
-void SessionLink::poll_device(gui::FieldViewState& view) {
-    gui::DevicePanelState& device = view.device;
-    if (!attached_uri_.empty() && !device.connected && session_) {
+void DeviceLink::poll(const DeviceLinkInputs& in, gui::DevicePanelState& device) {
+    if (in.attached && !device.connected && in.session != nullptr) {
         device.connected = true;  // attached (by "Connect" or the first capture): read it
-        pending_settings_ = session_->device_settings();
+        pending_settings_ = in.session->device_settings();
         device.settings.busy = true;
         cameras_wanted_ = cameras_due_ = true;
     }
     if (ready(pending_settings_)) take_settings(device);
-    if (captures_seen_ != captures_finished_) {  // a capture ended: a fresh view is due
-        captures_seen_ = captures_finished_;
+    if (captures_seen_ != in.captures_finished) {  // a capture ended: a fresh view is due
+        captures_seen_ = in.captures_finished;
         cameras_due_ = true;
         next_camera_grab_ = std::chrono::steady_clock::now() + kCameraGrabAfterCapture;
     }
-    poll_cameras(device);
+    poll_cameras(in, device);
 }
 
-void SessionLink::take_settings(gui::DevicePanelState& device) {
+void DeviceLink::take_settings(gui::DevicePanelState& device) {
     gui::DeviceSettingsState& st = device.settings;
     Expected<acquisition::DeviceSettingsForm> form = pending_settings_->get();
     pending_settings_.reset();
@@ -85,7 +63,7 @@ void SessionLink::take_settings(gui::DevicePanelState& device) {
 
 /// A grab whenever the scanner thread is free (no capture, no settings call) and the last
 /// image is older than the interval; its images go to the panel's textures.
-void SessionLink::poll_cameras(gui::DevicePanelState& device) {
+void DeviceLink::poll_cameras(const DeviceLinkInputs& in, gui::DevicePanelState& device) {
     const auto now = std::chrono::steady_clock::now();
     if (ready(pending_cameras_)) {
         Expected<acquisition::CameraPreview> preview = pending_cameras_->get();
@@ -101,10 +79,10 @@ void SessionLink::poll_cameras(gui::DevicePanelState& device) {
             next_camera_grab_ = now + kCameraRetryAfterError;
         }
     }
-    if (!cameras_wanted_ || !session_ || attached_uri_.empty() || pending_capture_ ||
+    if (!cameras_wanted_ || in.session == nullptr || !in.attached || in.capturing ||
         pending_cameras_ || pending_settings_ || now < next_camera_grab_)
         return;
-    pending_cameras_ = session_->preview_cameras(kCameraPreviewWidthPx);
+    pending_cameras_ = in.session->preview_cameras(kCameraPreviewWidthPx);
 }
 
 }  // namespace anascan::field
