@@ -10,6 +10,7 @@
 #include "anascan/processing/io/ply.hpp"
 #include "anascan/processing/io/stanford_conf.hpp"
 #include "commands.hpp"
+#include "mesh_runner.hpp"
 #include "session_cli.hpp"
 
 namespace anascan::cli {
@@ -24,6 +25,7 @@ struct ExportOptions {
     std::string out;
     std::string poses;
     std::string truth_poses;
+    MeshOptions mesh;
     double voxel_mm = 0.0;
     bool include_failed = false;
     std::optional<int> group;
@@ -99,12 +101,26 @@ void write_truth_poses(const ExportOptions& o) {
     write_poses(o.truth_poses, o.dir, entries, "true poses");
 }
 
+// The fragment model of the exported scans, each oriented with its recorded sensor origin.
+void export_mesh(const ExportOptions& o, const std::vector<ScanRecord>& scans,
+                 const std::vector<io::ConfEntry>& entries) {
+    std::map<std::string, std::optional<Eigen::Vector3d>> sensors;
+    for (const ScanRecord& r : scans) sensors[r.file] = r.sensor_origin_scan_m;
+    std::vector<MeshScanEntry> mesh_entries;
+    for (const io::ConfEntry& e : entries) {
+        mesh_entries.push_back({fs::path(o.dir) / e.file, e.T_world_scan, sensors[e.file]});
+    }
+    run_mesh(mesh_entries, o.mesh);
+}
+
 void run_export(const ExportOptions& o) {
-    if (o.out.empty() && o.truth_poses.empty()) {
-        throw CommandFailed("session export: give --out MODEL.ply and/or --truth-poses TRUTH.conf");
+    if (o.out.empty() && o.truth_poses.empty() && o.mesh.out.empty()) {
+        throw CommandFailed(
+            "session export: give --out MODEL.ply, --mesh MESH.ply and/or --truth-poses "
+            "TRUTH.conf");
     }
     if (!o.truth_poses.empty()) write_truth_poses(o);
-    if (o.out.empty()) return;
+    if (o.out.empty() && o.mesh.out.empty()) return;
     auto store = open_session(o.dir, acquisition::SessionOpenMode::kReadOnly);
     auto scans = store->scans();
     if (!scans) fail_command(scans.error());
@@ -119,6 +135,9 @@ void run_export(const ExportOptions& o) {
         if (r.state == ScanState::kRegistered && !r.excluded && r.group != group)
             spdlog::warn("scan {} is in group {}, not exported (use --group)", r.seq, r.group);
     }
+    if (!o.mesh.out.empty()) export_mesh(o, *scans, entries);
+    if (!o.poses.empty()) write_poses(o.poses, o.dir, entries);
+    if (o.out.empty()) return;
     acquisition::AssemblyConfig config{.model_voxel_m = o.voxel_mm * 1e-3, .measure_pairs = false};
     auto report = acquisition::assemble_entries(o.dir, entries, config,
                                                 [](std::string_view m) { spdlog::debug("{}", m); });
@@ -126,7 +145,6 @@ void run_export(const ExportOptions& o) {
     if (auto ok = io::write_ply(o.out, report->model); !ok) fail_command(ok.error());
     std::printf("model: %s (%zu points from %zu scans of group %d)\n", o.out.c_str(),
                 report->model.size(), entries.size(), group);
-    if (!o.poses.empty()) write_poses(o.poses, o.dir, entries);
 }
 
 }  // namespace
@@ -145,6 +163,9 @@ void add_session_export_command(CLI::App& session) {
                     "Write the simulator's true poses of every scan as a Stanford .conf "
                     "(scan files named relative to it, as `anascan register` names them; "
                     "simulated sessions only), for `anascan eval`");
+    cmd->add_option("--mesh", o->mesh.out,
+                    "Also write the fragment model (.ply, .obj or .stl; see `anascan mesh`)");
+    add_mesh_options(cmd, o->mesh);
     cmd->add_option("--voxel-mm", o->voxel_mm, "Down-sample the model to this voxel size, mm")
         ->check(CLI::NonNegativeNumber);
     cmd->add_option("--group", o->group, "Export this registration group (default: the largest)");
