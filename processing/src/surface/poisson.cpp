@@ -9,10 +9,11 @@
 namespace anascan::surface_detail {
 namespace {
 
-// Peak resident memory of Open3D's Poisson per merged sample when the finest cell equals
-// the sample spacing; measured on the bunny and the simulated block
-// (docs/surface-reconstruction.md). Finer cells grow it with the surface area in cells.
-constexpr double kBytesPerSample = 1400.0;
+// Memory of Open3D's Poisson: a part per sample and a part per surface cell of the finest
+// level (about one per merged sample when the cell equals the resolution, fewer when it is
+// coarser). The bunny at 0.5 mm (235,064 samples, depth 9) estimates 705 MB for a measured
+// peak of 531 MB (docs/surface-reconstruction.md): a bound, not a prediction.
+constexpr double kBytesPerPoint = 100.0, kBytesPerCell = 1300.0;
 constexpr int kMinDepth = 5, kMaxDepth = 12;
 
 }  // namespace
@@ -24,15 +25,15 @@ PoissonDepth choose_depth(double box_m, double resolution_m, std::size_t points,
                          kMaxDepth);
     for (;; --d.depth) {
         d.cell_m = box_m / std::ldexp(1.0, d.depth);
-        const double cells_per_sample = std::max(1.0, std::pow(resolution_m / d.cell_m, 2.0));
-        d.estimated_memory_bytes =
-            static_cast<std::size_t>(kBytesPerSample * double(points) * cells_per_sample);
+        const double cells_per_sample = std::pow(resolution_m / d.cell_m, 2.0);
+        d.estimated_memory_bytes = static_cast<std::size_t>(
+            double(points) * (kBytesPerPoint + kBytesPerCell * cells_per_sample));
         if (d.estimated_memory_bytes <= max_memory_bytes || d.depth == kMinDepth) break;
     }
     return d;
 }
 
-Mesh poisson_surface(const PointCloud& cloud, int depth, double scale) {
+Mesh poisson_surface(const PointCloud& cloud, int depth, double scale, int threads) {
     open3d::geometry::PointCloud pcd;
     pcd.points_.reserve(cloud.size());
     pcd.normals_.reserve(cloud.size());
@@ -45,7 +46,7 @@ Mesh poisson_surface(const PointCloud& cloud, int depth, double scale) {
     mesh.vertices.origin_m = cloud.origin_m;
     if (pcd.points_.size() < 4) return mesh;
     auto [o3d, densities] = open3d::geometry::TriangleMesh::CreateFromPointCloudPoisson(
-        pcd, static_cast<std::size_t>(depth), 0.0f, static_cast<float>(scale), false);
+        pcd, static_cast<std::size_t>(depth), 0.0f, static_cast<float>(scale), false, threads);
     if (!o3d || o3d->triangles_.empty()) return mesh;
     o3d->ComputeVertexNormals();
     mesh.vertices.positions.reserve(o3d->vertices_.size());

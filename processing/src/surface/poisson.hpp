@@ -19,8 +19,8 @@ PoissonDepth choose_depth(double box_m, double resolution_m, std::size_t points,
                           std::size_t max_memory_bytes);
 
 /// Runs screened Poisson on `cloud` (positions and unit normals) at `depth`, in a box
-/// `scale` times the points' bounding cube. Returns the mesh in the cloud's frame (same
-/// origin) with vertex normals; empty on failure.
-Mesh poisson_surface(const PointCloud& cloud, int depth, double scale);
+/// `scale` times the points' bounding cube, on `threads` threads. Returns the mesh in the cloud's
+/// frame (same origin) with vertex normals; empty on failure.
+Mesh poisson_surface(const PointCloud& cloud, int depth, double scale, int threads);
 
 }  // namespace anascan::surface_detail

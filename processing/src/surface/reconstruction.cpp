@@ -93,8 +93,8 @@ SurfaceResult reconstruct_surface(std::span<const PlacedScan> scans, const Surfa
                   double(depth.estimated_memory_bytes) / 1048576.0);
     say(progress, line);
     Stopwatch watch;
-    result.model.mesh =
-        surface_detail::poisson_surface(merged.cloud, depth.depth, config.poisson_scale);
+    result.model.mesh = surface_detail::poisson_surface(
+        merged.cloud, depth.depth, config.poisson_scale, config.poisson_threads);
     d.seconds_poisson = watch.seconds();
     if (result.model.mesh.triangles.empty()) {
         result.status = SurfaceStatus::kPoissonFailed;

@@ -7,9 +7,9 @@
 /// and triangle is classed measured or interpolated from its distance to the measured
 /// points. docs/surface-reconstruction.md gives the figures and the reasons.
 ///
-/// Library code: no I/O, no threads of its own (Open3D's Poisson and TBB loops use the
-/// process's cores); results do not depend on the thread count except for Poisson's
-/// floating-point sums.
+/// Library code: no I/O, no threads of its own (TBB loops; Open3D's Poisson runs on one
+/// thread unless `poisson_threads` says otherwise); results do not depend on the thread
+/// count at the default.
 
 #include <Eigen/Core>
 #include <cstddef>
@@ -46,6 +46,9 @@ struct SurfaceConfig {
     /// Poisson's memory budget, bytes: the octree is coarsened until its estimate fits.
     std::size_t max_memory_bytes = std::size_t(1536) << 20;
     double poisson_scale = 1.1;  ///< Poisson's box relative to the points' bounding cube.
+    /// Threads of Poisson's own pool. 1 (the default) makes the surface independent of the
+    /// machine and avoids the pool's per-slice barriers, which stall on a loaded machine.
+    int poisson_threads = 1;
 };
 
 enum class SurfaceStatus {
