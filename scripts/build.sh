@@ -8,5 +8,11 @@ werror=OFF
 if [ "${CI:-}" = "true" ]; then werror=ON; fi
 jobs="${JOBS:-$(nproc)}"
 
-cmake -S . -B build -DCMAKE_BUILD_TYPE="${BUILD_TYPE:-Release}" -DANASCAN_WERROR="$werror" "$@" >/dev/null
+# ccache, when the machine has it (a developer's does; CI's clean machine does not), makes
+# rebuilds after a branch switch or in a second clone cheap.
+launcher=()
+if command -v ccache >/dev/null; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
+
+cmake -S . -B build -DCMAKE_BUILD_TYPE="${BUILD_TYPE:-Release}" -DANASCAN_WERROR="$werror" \
+    "${launcher[@]}" "$@" >/dev/null
 cmake --build build -j "$jobs"

@@ -1,7 +1,10 @@
 #pragma once
 // The state behind SessionStore (shared by the session_store*.cpp files).
+#include <cstdint>
 #include <filesystem>
 #include <mutex>
+#include <span>
+#include <string>
 
 #include "anascan/acquisition/store/session_store.hpp"
 #include "store/db.hpp"
@@ -28,6 +31,11 @@ ScanRecord read_scan_row(const db::Statement& row);
 /// Moves `DIR/file` (relative) to `DIR/recovered/` under a free name; returns the new path.
 Expected<std::filesystem::path> move_to_recovered(const std::filesystem::path& dir,
                                                   const std::string& file);
+
+/// CRC-32 (zlib) of a scan file's bytes, as recorded at acknowledgement.
+std::uint32_t file_crc32(std::span<const char> bytes);
+/// "its CRC-32 is ..., the session recorded ...": the problem of a changed file.
+std::string crc_mismatch(std::uint32_t found, std::uint32_t recorded);
 
 /// "DIR: what: the message" for errors not coming from SQLite.
 Error session_error(const std::filesystem::path& dir, ErrorCode code, std::string_view message);

@@ -1,6 +1,10 @@
 // SessionStore: writing a scan (file first, then its row) and reading it back.
+#include <zlib.h>
+
+#include <algorithm>
 #include <cstdio>
 
+#include "anascan/processing/io/file_bytes.hpp"
 #include "anascan/processing/io/ply.hpp"
 #include "store/codec.hpp"
 #include "store/impl.hpp"
@@ -66,8 +70,8 @@ Expected<void> insert_row(db::Connection& db, const ScanRecord& r) {
     auto stmt = db::Statement::prepare(
         db,
         "INSERT INTO scans(seq, file, device_id, device_kind, captured_ns, acknowledged_ns, "
-        "settings_json, sensor_origin_m, pose_prior, true_pose, point_count, state) "
-        "VALUES(?,?,?,?,?,?,?,?,?,?,?,'queued')");
+        "settings_json, sensor_origin_m, pose_prior, true_pose, point_count, state, "
+        "file_crc32) VALUES(?,?,?,?,?,?,?,?,?,?,?,'queued',?)");
     if (!stmt) return fail(stmt.error());
     stmt->bind(1, r.seq)
         .bind(2, r.file)
@@ -79,7 +83,8 @@ Expected<void> insert_row(db::Connection& db, const ScanRecord& r) {
         .bind(8, codec::vector_to_text(r.sensor_origin_scan_m))
         .bind(9, codec::pose_to_text(r.pose_prior))
         .bind(10, codec::pose_to_text(r.true_pose))
-        .bind(11, static_cast<std::int64_t>(r.point_count));
+        .bind(11, static_cast<std::int64_t>(r.point_count))
+        .bind(12, r.file_crc32 ? std::optional<std::int64_t>(*r.file_crc32) : std::nullopt);
     if (auto ok = stmt->run("cannot record the scan"); !ok) return ok;
     return tx->commit();
 }
@@ -101,6 +106,26 @@ ScanRecord record_of(std::int64_t seq, const Scan& scan, const std::optional<Pos
 }
 
 }  // namespace
+
+std::uint32_t file_crc32(std::span<const char> bytes) {
+    uLong crc = crc32(0L, Z_NULL, 0);
+    // zlib takes at most 4 GiB - 1 per call.
+    constexpr std::size_t kChunk = std::size_t{1} << 30;
+    for (std::size_t at = 0; at < bytes.size(); at += kChunk) {
+        const std::size_t n = std::min(kChunk, bytes.size() - at);
+        crc = crc32(crc, reinterpret_cast<const Bytef*>(bytes.data() + at), static_cast<uInt>(n));
+    }
+    return static_cast<std::uint32_t>(crc);
+}
+
+std::string crc_mismatch(std::uint32_t found, std::uint32_t recorded) {
+    char text[160];
+    std::snprintf(text, sizeof(text),
+                  "its CRC-32 is %08x, the session recorded %08x at acknowledgement (the file "
+                  "changed since: a torn write or flipped bits)",
+                  found, recorded);
+    return text;
+}
 
 Expected<fs::path> move_to_recovered(const fs::path& dir, const std::string& file) {
     std::error_code ec;
@@ -147,7 +172,9 @@ Expected<ScanRecord> SessionStore::save_scan(const Scan& scan,
             return fail(save_error(impl_->dir, *seq, moved.error()));
         }
     }
-    if (auto ok = io::write_ply(path, scan.cloud, ply_options(*seq, scan)); !ok) {
+    const std::vector<char> bytes = io::serialize_ply(scan.cloud, {}, ply_options(*seq, scan));
+    record.file_crc32 = file_crc32(bytes);
+    if (auto ok = io::write_file_atomically(path, bytes); !ok) {
         return fail(save_error(impl_->dir, *seq, ok.error()));
     }
     std::lock_guard lock(impl_->mutex);
@@ -163,7 +190,16 @@ Expected<ScanRecord> SessionStore::save_scan(const Scan& scan,
 Expected<Scan> SessionStore::load_scan(std::int64_t seq) const {
     auto record = scan(seq);
     if (!record) return fail(record.error());
-    auto ply = io::read_ply(impl_->dir / record->file);
+    const fs::path path = impl_->dir / record->file;
+    auto bytes = io::read_file_bytes(path);
+    if (!bytes) return fail(bytes.error());
+    if (const std::uint32_t crc = file_crc32(*bytes);
+        record->file_crc32 && crc != *record->file_crc32) {
+        return fail(ErrorCode::kFormat,
+                    path.string() + ": " + crc_mismatch(crc, *record->file_crc32) +
+                        " (run `anascan session check " + impl_->dir.string() + "`)");
+    }
+    auto ply = io::parse_ply(*bytes, path.string());
     if (!ply) return fail(ply.error());
     if (ply->cloud.size() != record->point_count) {
         return fail(ErrorCode::kTruncated,

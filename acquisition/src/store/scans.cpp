@@ -55,7 +55,7 @@ const char* const kScanColumns =
     "seq, file, device_id, device_kind, captured_ns, acknowledged_ns, settings_json, "
     "sensor_origin_m, pose_prior, true_pose, point_count, state, excluded, grp, pose, "
     "quality_json, latency_s, file_problem, "
-    "EXISTS(SELECT 1 FROM turnovers t WHERE t.after_seq = scans.seq - 1)";
+    "EXISTS(SELECT 1 FROM turnovers t WHERE t.after_seq = scans.seq - 1), file_crc32";
 
 ScanRecord read_scan_row(const db::Statement& row) {
     ScanRecord r;
@@ -79,6 +79,7 @@ ScanRecord read_scan_row(const db::Statement& row) {
     if (!row.is_null(16)) r.latency_s = row.real(16);
     r.file_problem = row.text(17);
     r.turned_over_before = row.int64(18) != 0;
+    if (!row.is_null(19)) r.file_crc32 = static_cast<std::uint32_t>(row.int64(19));
     return r;
 }
 
@@ -180,6 +181,16 @@ Expected<void> SessionStore::mark_file_problem(std::int64_t seq, std::string_vie
     }
     return add_event("scan-file-damaged", "",
                      "scan " + std::to_string(seq) + ": " + std::string(problem));
+}
+
+Expected<void> SessionStore::record_file_crc32(std::int64_t seq, std::uint32_t crc32) {
+    if (impl_->read_only) return fail(read_only_error(impl_->dir));
+    std::lock_guard lock(impl_->mutex);
+    auto stmt = db::Statement::prepare(
+        impl_->db, "UPDATE scans SET file_crc32 = ? WHERE seq = ? AND file_crc32 IS NULL");
+    if (!stmt) return fail(stmt.error());
+    stmt->bind(1, std::int64_t{crc32}).bind(2, seq);
+    return stmt->run("cannot record the checksum of scan " + std::to_string(seq));
 }
 
 }  // namespace anascan::acquisition

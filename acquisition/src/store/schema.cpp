@@ -43,7 +43,14 @@ CREATE TABLE turnovers(after_seq INTEGER PRIMARY KEY, time_ns INTEGER NOT NULL);
 ALTER TABLE scans ADD COLUMN file_problem TEXT NOT NULL DEFAULT '';
 )sql";
 
-constexpr std::array<std::string_view, 2> kMigrations = {kV1, kV2};
+// Version 3: the CRC-32 (zlib) of each scan file's bytes, recorded at acknowledgement, so that
+// `session check` finds bit flips and torn writes that still parse. NULL for a scan saved
+// before (`session check --repair` records it for a file that is otherwise intact).
+constexpr std::string_view kV3 = R"sql(
+ALTER TABLE scans ADD COLUMN file_crc32 INTEGER;
+)sql";
+
+constexpr std::array<std::string_view, 3> kMigrations = {kV1, kV2, kV3};
 static_assert(kMigrations.size() == kSessionSchemaVersion);
 
 Expected<void> apply(Connection& db, int version) {

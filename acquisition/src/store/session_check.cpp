@@ -5,6 +5,7 @@
 #include <set>
 
 #include "anascan/acquisition/store/session_store.hpp"
+#include "anascan/processing/io/file_bytes.hpp"
 #include "anascan/processing/io/ply.hpp"
 #include "store/impl.hpp"
 
@@ -13,12 +14,16 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// What is wrong with a row's file, or empty when it is fine.
-std::string file_problem(const fs::path& dir, const ScanRecord& row) {
+// What is wrong with a row's file, or empty when it is fine; `crc32` gets the file's CRC-32.
+std::string file_problem(const fs::path& dir, const ScanRecord& row, std::uint32_t& crc32) {
     const fs::path path = dir / row.file;
     std::error_code ec;
     if (!fs::exists(path, ec)) return "the file is missing";
-    auto ply = io::read_ply(path);
+    auto bytes = io::read_file_bytes(path);
+    if (!bytes) return bytes.error().message;
+    crc32 = file_crc32(*bytes);
+    if (row.file_crc32 && crc32 != *row.file_crc32) return crc_mismatch(crc32, *row.file_crc32);
+    auto ply = io::parse_ply(*bytes, path.string());
     if (!ply) return ply.error().message;
     if (ply->cloud.size() != row.point_count) {
         return "holds " + std::to_string(ply->cloud.size()) + " points, the session recorded " +
@@ -27,12 +32,30 @@ std::string file_problem(const fs::path& dir, const ScanRecord& row) {
     return {};
 }
 
+// A scan saved before checksums were recorded: --repair records the CRC-32 of its intact file.
+void record_checksum(SessionStore& store, std::int64_t seq, std::uint32_t crc32, bool repair,
+                     SessionCheckReport& report) {
+    ++report.scans_without_checksum;
+    if (!repair) return;
+    if (auto ok = store.record_file_crc32(seq, crc32); ok) {
+        ++report.checksums_recorded;
+    } else {
+        report.issues.push_back({.kind = CheckIssueKind::kDatabase,
+                                 .seq = seq,
+                                 .file = store.dir() / "session.sqlite",
+                                 .problem = ok.error().message,
+                                 .action = "could not record the checksum"});
+    }
+}
+
 void check_row(SessionStore& store, const ScanRecord& row, bool repair,
                SessionCheckReport& report) {
     ++report.scans_checked;
-    const std::string problem = file_problem(store.dir(), row);
+    std::uint32_t crc32 = 0;
+    const std::string problem = file_problem(store.dir(), row, crc32);
     if (problem.empty()) {
         ++report.scans_ok;
+        if (!row.file_crc32) record_checksum(store, row.seq, crc32, repair, report);
         return;
     }
     CheckIssue issue{.kind = problem == "the file is missing" ? CheckIssueKind::kMissingFile
@@ -150,6 +173,12 @@ std::vector<std::string> SessionCheckReport::lines() const {
         if (i.seq) line += " (scan " + std::to_string(*i.seq) + ")";
         line += ": " + i.problem + " -> " + (i.repaired ? "repaired: " : "") + i.action;
         out.push_back(std::move(line));
+    }
+    if (scans_without_checksum > 0) {
+        out.push_back(
+            std::to_string(scans_without_checksum) + " intact scan(s) saved without a checksum: " +
+            (checksums_recorded > 0 ? "recorded " + std::to_string(checksums_recorded) + " now"
+                                    : std::string("--repair records them")));
     }
     const std::size_t repaired = static_cast<std::size_t>(std::count_if(
         issues.begin(), issues.end(), [](const CheckIssue& i) { return i.repaired; }));

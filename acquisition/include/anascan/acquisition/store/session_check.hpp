@@ -3,7 +3,8 @@
 /// `session check`: verifies a session folder against its database after a crash or a
 /// disk problem, and repairs what can be repaired without losing anything acknowledged.
 ///
-/// - every scan row: its file exists, parses as PLY and holds the recorded point count;
+/// - every scan row: its file exists, has the CRC-32 recorded at acknowledgement (bit flips,
+///   torn writes), parses as PLY and holds the recorded point count;
 ///   a damaged file of an acknowledged scan is reported with its path; repair marks the row
 ///   failed with the reason (file and row are kept, never deleted);
 /// - temporary files of interrupted writes (`scans/.scan_*.ply.tmp*`): removed on repair;
@@ -28,7 +29,7 @@ struct SessionCheckOptions {
 
 enum class CheckIssueKind {
     kMissingFile,         ///< A row's file does not exist.
-    kDamagedFile,         ///< A row's file does not parse or has the wrong point count.
+    kDamagedFile,         ///< Wrong CRC-32, does not parse or has the wrong point count.
     kTemporaryFile,       ///< Left by an interrupted write.
     kUnacknowledgedFile,  ///< A final scan file without a row.
     kDatabase,            ///< integrity_check found problems.
@@ -52,7 +53,9 @@ struct SessionCheckReport {
     int schema_version = 0;
     std::size_t scans_checked = 0;
     std::size_t scans_ok = 0;
-    std::string integrity = "ok";  ///< PRAGMA integrity_check's answer.
+    std::size_t scans_without_checksum = 0;  ///< Intact, saved before CRC-32s were recorded.
+    std::size_t checksums_recorded = 0;      ///< Of those, recorded by this --repair run.
+    std::string integrity = "ok";            ///< PRAGMA integrity_check's answer.
     std::vector<CheckIssue> issues;
 
     /// Issues neither repaired nor already recorded.

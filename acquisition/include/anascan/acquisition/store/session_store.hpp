@@ -54,6 +54,9 @@ struct ScanRecord {
     std::optional<double> latency_s;  ///< Acknowledgement -> registered, seconds.
     bool turned_over_before = false;  ///< The operator turned the stone over before this scan.
     std::string file_problem;         ///< Set by `session check --repair` (file damaged).
+    /// CRC-32 (zlib) of the file's bytes at acknowledgement; empty for scans saved by an
+    /// anascan older than schema 3 until `session check --repair` records it.
+    std::optional<std::uint32_t> file_crc32;
 };
 
 /// What the registration worker decided for one scan.
@@ -100,7 +103,7 @@ struct DeviceRecord {
 };
 
 /// Current database schema version (`PRAGMA user_version`).
-inline constexpr int kSessionSchemaVersion = 2;
+inline constexpr int kSessionSchemaVersion = 3;
 
 /// "scans/scan_000042.ply".
 std::string scan_file_name(std::int64_t seq);
@@ -134,10 +137,14 @@ public:
     Expected<void> mark_turned_over(std::int64_t after_seq);
     /// Marks a scan whose file is damaged: state failed, `file_problem` set, an event.
     Expected<void> mark_file_problem(std::int64_t seq, std::string_view problem);
+    /// Records the CRC-32 of a scan saved without one (an older session, after its file was
+    /// checked intact).
+    Expected<void> record_file_crc32(std::int64_t seq, std::uint32_t crc32);
 
     Expected<std::vector<ScanRecord>> scans() const;  ///< In sequence order.
     Expected<ScanRecord> scan(std::int64_t seq) const;
-    Expected<Scan> load_scan(std::int64_t seq) const;  ///< Reads the PLY, fills meta.
+    /// Reads the PLY (checking its recorded CRC-32 and point count), fills meta.
+    Expected<Scan> load_scan(std::int64_t seq) const;
     Expected<std::vector<EventRecord>> events() const;
     Expected<std::vector<SessionNote>> notes() const;
     Expected<std::vector<DeviceRecord>> devices() const;

@@ -1,0 +1,93 @@
+#!/usr/bin/env bash
+# The sanitizer part of CI (scripts/test.sh runs it after the Release suite): the tests built
+# with AddressSanitizer + UndefinedBehaviorSanitizer in ./build-asan and with ThreadSanitizer
+# in ./build-tsan, each tree holding only the targets its set needs (-O1, no benchmarks, no
+# fuzzers). A test fails on any finding, in the test itself or in a child it runs (the
+# `anascan` and `anascan-field` commands are instrumented too): reports go to
+# <tree>/sanitizer-reports/, and any report there fails this script, whatever the exit code
+# the test saw. Usage: scripts/sanitize.sh [asan|tsan|all] (default all). The sets and why
+# they are what they are: docs/reliability.md.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+jobs="${JOBS:-$(nproc)}"
+nice="${NICE:-0}"
+which="${1:-all}"
+
+# ASan + UBSan: the unit and integration tests, except the long registration runs
+# (minutes each in Release; their code runs under ASan in the unit tests and the CLI tests).
+asan_targets=(anascan_session_store_tests anascan anascan_cli_session_tests
+    anascan_cli_capture_tests anascan_cli_capture_crash_tests anascan_acquisition_tests
+    anascan_processing_tests anascan_drivers_tests anascan_sl_tests
+    anascan_drivers_umockdev_tests anascan_devices_cli_tests anascan_sim_tests
+    anascan_sim_scanner_tests anascan_sim_device_tests anascan_device_control_tests
+    anascan_live_registration_quick_tests anascan_cli_tests anascan_cli_sl_tests
+    fuzz_ply_replay fuzz_text_points_replay fuzz_ptx_replay fuzz_stanford_conf_replay
+    fuzz_xf_replay)
+# TSan: everything that runs threads of its own: the capture session (scanner, persistence
+# and registration threads), the session store under concurrent writers, the device
+# layer's stream runner and watcher, and the field app's session link and workers.
+tsan_targets=(anascan anascan-field anascan_acquisition_tests anascan_session_store_tests
+    anascan_device_control_tests anascan_drivers_tests anascan_drivers_umockdev_tests
+    anascan_sim_device_tests anascan_cli_capture_tests anascan_field_session_tests
+    anascan_field_device_tests)
+tsan_suites='CaptureSessionTest|SessionStoreTest|SessionFaultTest|DeviceControlTest|StreamRunner'
+tsan_suites+='|Watcher|DepthCameraScanner|ScanRecording|Conformance|V4l2Test|UsbTest|SimTofDevice'
+tsan_suites+='|SimStructuredLightDevice|CliCapture|FieldSession|FieldDevice'
+tsan_regex="(^|/)($tsan_suites)\\."
+
+
+# Tests of targets not in a tree's set show up as `<target>_NOT_BUILT`; the install and
+# layout checks are build-system tests, not code under test.
+common_exclude='_NOT_BUILT$|^install\.|^layout\.|^anascan_live_registration_tests$'
+
+configure_and_build() {
+    local tree="$1" sanitizers="$2"
+    shift 2
+    local launcher=()
+    if command -v ccache >/dev/null; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
+    cmake -S . -B "$tree" "${launcher[@]}" -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1" \
+        -DANASCAN_SANITIZE="$sanitizers" -DANASCAN_BUILD_BENCH=OFF -DANASCAN_BUILD_FUZZ=OFF \
+        >/dev/null || return 1
+    nice -n "$nice" cmake --build "$tree" -j "$jobs" --target "$@"
+}
+
+# Runs ctest in a tree; fails when a test fails or any sanitizer report was written.
+run_tests() {
+    local tree="$1"
+    shift
+    local reports="$PWD/$tree/sanitizer-reports"
+    rm -rf "$reports" && mkdir -p "$reports"
+    local status=0
+    ASAN_OPTIONS="detect_leaks=1:halt_on_error=1:exitcode=86:verify_asan_link_order=0:log_path=$reports/asan" \
+    UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:exitcode=86:log_path=$reports/ubsan" \
+    TSAN_OPTIONS="halt_on_error=1:exitcode=86:second_deadlock_stack=1:log_path=$reports/tsan" \
+    LP_NUM_THREADS=0 \
+        ctest --test-dir "$tree" --output-on-failure -j "$jobs" -LE 'hw|data' "$@" ||
+        status=1
+    if compgen -G "$reports/*" >/dev/null; then
+        echo "sanitizer reports in $reports:" >&2
+        head -n 60 "$reports"/* >&2
+        status=1
+    fi
+    return "$status"
+}
+
+part() {
+    local name="$1"
+    shift
+    local start=$SECONDS status=0
+    "$@" || status=$?
+    echo "sanitize: $name took $((SECONDS - start)) s (exit $status)"
+    return "$status"
+}
+
+status=0
+if [ "$which" = asan ] || [ "$which" = all ]; then
+    part "asan build" configure_and_build build-asan "address;undefined" "${asan_targets[@]}"
+    part "asan tests" run_tests build-asan -E "$common_exclude" || status=1
+fi
+if [ "$which" = tsan ] || [ "$which" = all ]; then
+    part "tsan build" configure_and_build build-tsan "thread" "${tsan_targets[@]}"
+    part "tsan tests" run_tests build-tsan -E "$common_exclude" -R "$tsan_regex" || status=1
+fi
+exit "$status"
