@@ -9,6 +9,7 @@ find_package(SQLite3 REQUIRED)
 find_package(Threads REQUIRED)
 find_package(OpenCV 4.5 REQUIRED COMPONENTS core imgproc imgcodecs calib3d)
 find_package(Qhull REQUIRED)               # processing: convex hull of a stone (coverage)
+find_package(Open3D REQUIRED)              # processing/surface: screened Poisson (Kazhdan port)
 find_package(ZLIB REQUIRED)                 # drivers: CRC-32 of recorded frames
 find_package(EXPAT REQUIRED)                # processing: the XML section of E57 files
 find_package(PkgConfig REQUIRED)

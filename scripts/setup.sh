@@ -22,7 +22,7 @@ PACKAGES=(
     xvfb xauth
     fonts-dejavu-core                  # gui: anascan-field's large readable font (DejaVu Sans)
     python3-open3d python3-numpy       # peer for the side-by-side benchmarks
-    libopen3d-dev                      # Open3D C++: peer linked into anascan_bench_ply
+    libopen3d-dev                      # Open3D C++: screened Poisson (processing/surface); peer of the benchmarks
 )
 
 missing=()

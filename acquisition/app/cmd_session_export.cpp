@@ -5,6 +5,8 @@
 #include <spdlog/spdlog.h>
 
 #include <cstdio>
+#include <map>
+#include <optional>
 
 #include "anascan/acquisition/assembly/assembly.hpp"
 #include "anascan/acquisition/assembly/stone_frame.hpp"
@@ -12,6 +14,7 @@
 #include "anascan/processing/io/ply.hpp"
 #include "anascan/processing/io/stanford_conf.hpp"
 #include "commands.hpp"
+#include "mesh_runner.hpp"
 #include "point_files.hpp"
 #include "session_cli.hpp"
 
@@ -27,6 +30,7 @@ struct ExportOptions {
     std::string out;
     std::string poses;
     std::string truth_poses;
+    MeshOptions mesh;
     double voxel_mm = 0.0;
     bool include_failed = false;
     std::optional<int> group;
@@ -90,6 +94,18 @@ void write_truth_poses(const ExportOptions& o) {
     write_poses(o.truth_poses, o.dir, entries, "true poses");
 }
 
+// The fragment model of the exported scans, each oriented with its recorded sensor origin.
+void export_mesh(const ExportOptions& o, const std::vector<ScanRecord>& scans,
+                 const std::vector<io::ConfEntry>& entries) {
+    std::map<std::string, std::optional<Eigen::Vector3d>> sensors;
+    for (const ScanRecord& r : scans) sensors[r.file] = r.sensor_origin_scan_m;
+    std::vector<MeshScanEntry> mesh_entries;
+    for (const io::ConfEntry& e : entries) {
+        mesh_entries.push_back({fs::path(o.dir) / e.file, e.T_world_scan, sensors[e.file]});
+    }
+    run_mesh(mesh_entries, o.mesh);
+}
+
 /// The entries of the group to export, warning about registered scans left out.
 std::vector<io::ConfEntry> group_entries(const ExportOptions& o,
                                          const std::vector<ScanRecord>& scans, int group) {
@@ -114,16 +130,25 @@ void to_stone_frame(PointCloud& model, std::vector<io::ConfEntry>& entries) {
     std::printf("%s\n", frame.description.c_str());
 }
 
-void run_export(const ExportOptions& o) {
-    if (o.out.empty() && o.truth_poses.empty()) {
-        throw CommandFailed("session export: give --out MODEL.ply and/or --truth-poses TRUTH.conf");
+void check_export_outputs(const ExportOptions& o) {
+    if (o.out.empty() && o.truth_poses.empty() && o.mesh.out.empty()) {
+        throw CommandFailed(
+            "session export: give --out MODEL.ply, --mesh MESH.ply and/or --truth-poses "
+            "TRUTH.conf");
     }
     if (!o.out.empty()) check_point_output(o.out);
     check_output_writable(o.out, "--out");
+    check_output_writable(o.mesh.out, "--mesh");
     check_output_writable(o.poses, "--poses");
     check_output_writable(o.truth_poses, "--truth-poses");
+}
+
+// The model (and the mesh) of the chosen group, in the frame asked for: the stone frame
+// needs the assembled model, so the scans are assembled for a mesh alone too.
+void run_export(const ExportOptions& o) {
+    check_export_outputs(o);
     if (!o.truth_poses.empty()) write_truth_poses(o);
-    if (o.out.empty()) return;
+    if (o.out.empty() && o.mesh.out.empty()) return;
     auto store = open_session(o.dir, acquisition::SessionOpenMode::kReadOnly);
     auto scans = store->scans();
     if (!scans) fail_command(scans.error());
@@ -134,10 +159,13 @@ void run_export(const ExportOptions& o) {
                                                 [](std::string_view m) { spdlog::debug("{}", m); });
     if (!report) fail_command(report.error());
     if (o.frame == "stone") to_stone_frame(report->model, entries);
-    write_points(o.out, report->model);
-    std::printf("model: %s (%zu points from %zu scans of group %d, %s frame)\n", o.out.c_str(),
-                report->model.size(), entries.size(), group, o.frame.c_str());
+    if (!o.out.empty()) {
+        write_points(o.out, report->model);
+        std::printf("model: %s (%zu points from %zu scans of group %d, %s frame)\n", o.out.c_str(),
+                    report->model.size(), entries.size(), group, o.frame.c_str());
+    }
     if (!o.poses.empty()) write_poses(o.poses, o.dir, entries);
+    if (!o.mesh.out.empty()) export_mesh(o, *scans, entries);
 }
 
 }  // namespace
@@ -161,6 +189,9 @@ void add_session_export_command(CLI::App& session) {
                     "Write the simulator's true poses of every scan as a Stanford .conf "
                     "(scan files named relative to it, as `anascan register` names them; "
                     "simulated sessions only), for `anascan eval`");
+    cmd->add_option("--mesh", o->mesh.out,
+                    "Also write the fragment model (.ply, .obj or .stl; see `anascan mesh`)");
+    add_mesh_options(cmd, o->mesh);
     cmd->add_option("--voxel-mm", o->voxel_mm, "Down-sample the model to this voxel size, mm")
         ->check(CLI::NonNegativeNumber);
     cmd->add_option("--group", o->group, "Export this registration group (default: the largest)");

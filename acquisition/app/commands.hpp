@@ -47,6 +47,8 @@ struct CommandInterrupted : std::runtime_error {
 void add_info_command(CLI::App& app);
 void add_convert_command(CLI::App& app);
 void add_assemble_command(CLI::App& app);
+/// `mesh POSES.conf --out MESH`: the fragment model of scans placed by a .conf.
+void add_mesh_command(CLI::App& app);
 void add_demo_command(CLI::App& app);
 void add_eval_command(CLI::App& app);
 void add_register_command(CLI::App& app);

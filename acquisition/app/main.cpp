@@ -36,6 +36,7 @@ int main(int argc, char** argv) {
     anascan::cli::add_info_command(app);
     anascan::cli::add_convert_command(app);
     anascan::cli::add_assemble_command(app);
+    anascan::cli::add_mesh_command(app);
     anascan::cli::add_eval_command(app);
     anascan::cli::add_register_command(app);
     anascan::cli::add_align_command(app);

@@ -20,17 +20,19 @@ struct VertexLayout {
     /// CloudCompare, Open3D) ignore our origin comment, so the values must stand alone.
     bool absolute = false;
     bool normals = false, colors = false, intensity = false, confidence = false;
+    std::span<const PlyScalarProperty> scalars;  ///< Extra float properties, last.
 
-    explicit VertexLayout(const PointCloud& cloud)
+    VertexLayout(const PointCloud& cloud, std::span<const PlyScalarProperty> extra)
         : absolute(cloud.origin_m != Eigen::Vector3d::Zero()),
           normals(cloud.normals.size() == cloud.size() && cloud.has_normals()),
           colors(cloud.colors.size() == cloud.size() && cloud.has_colors()),
           intensity(cloud.intensity.size() == cloud.size() && cloud.has_intensity()),
-          confidence(cloud.confidence.size() == cloud.size() && cloud.has_confidence()) {}
+          confidence(cloud.confidence.size() == cloud.size() && cloud.has_confidence()),
+          scalars(extra) {}
 
     std::size_t record_bytes() const {
         return (absolute ? 24 : 12) + (normals ? 12 : 0) + (colors ? 3 : 0) + (intensity ? 4 : 0) +
-               (confidence ? 4 : 0);
+               (confidence ? 4 : 0) + 4 * scalars.size();
     }
 };
 
@@ -76,6 +78,7 @@ std::string header_text(const PointCloud& cloud, std::size_t triangle_count,
     if (layout.colors) text += "property uchar red\nproperty uchar green\nproperty uchar blue\n";
     if (layout.intensity) text += "property float intensity\n";
     if (layout.confidence) text += "property float confidence\n";
+    for (const PlyScalarProperty& s : layout.scalars) text += "property float " + s.name + "\n";
     if (triangle_count > 0) {
         text += "element face " + std::to_string(triangle_count) + "\n";
         text += "property list uchar int vertex_indices\n";
@@ -124,6 +127,7 @@ void write_binary_body(const PointCloud& cloud, std::span<const Eigen::Vector3i>
         }
         if (layout.intensity) out = put<kSwap>(out, cloud.intensity[i]);
         if (layout.confidence) out = put<kSwap>(out, cloud.confidence[i]);
+        for (const PlyScalarProperty& s : layout.scalars) out = put<kSwap>(out, s.values[i]);
     }
     for (const Eigen::Vector3i& t : triangles) {
         *out++ = 3;
@@ -181,6 +185,7 @@ void write_ascii_body(const PointCloud& cloud, std::span<const Eigen::Vector3i> 
         }
         if (layout.intensity) line.add(cloud.intensity[i]);
         if (layout.confidence) line.add(cloud.confidence[i]);
+        for (const PlyScalarProperty& s : layout.scalars) line.add(s.values[i]);
         line.end();
     }
     for (const Eigen::Vector3i& t : triangles) {
@@ -191,10 +196,20 @@ void write_ascii_body(const PointCloud& cloud, std::span<const Eigen::Vector3i> 
 }
 
 Expected<void> check_mesh(const std::filesystem::path& path, const PointCloud& cloud,
-                          std::span<const Eigen::Vector3i> triangles) {
+                          std::span<const Eigen::Vector3i> triangles,
+                          std::span<const PlyScalarProperty> scalars) {
     if (!cloud.attributes_consistent()) {
         return fail(ErrorCode::kInvalidArgument,
                     path.string() + ": cannot write PLY: " + describe_inconsistency(cloud));
+    }
+    for (const PlyScalarProperty& s : scalars) {
+        if (s.values.size() != cloud.size() || s.name.empty() ||
+            s.name.find_first_of(" \t\r\n") != std::string::npos) {
+            return fail(ErrorCode::kInvalidArgument,
+                        path.string() + ": cannot write PLY: vertex property '" + s.name +
+                            "' has " + std::to_string(s.values.size()) + " values for " +
+                            std::to_string(cloud.size()) + " vertices (or a bad name)");
+        }
     }
     for (std::size_t i = 0; i < triangles.size(); ++i) {
         for (int k = 0; k < 3; ++k) {
@@ -214,7 +229,7 @@ Expected<void> check_mesh(const std::filesystem::path& path, const PointCloud& c
 std::vector<char> serialize_ply(const PointCloud& cloud, std::span<const Eigen::Vector3i> triangles,
                                 const PlyWriteOptions& options) {
     assert(cloud.attributes_consistent());
-    const VertexLayout layout(cloud);
+    const VertexLayout layout(cloud, options.vertex_scalars);
     const std::string header = header_text(cloud, triangles.size(), options, layout);
     std::vector<char> out(header.begin(), header.end());
     if (options.format == PlyFormat::kAscii) {
@@ -236,13 +251,15 @@ std::vector<char> serialize_ply(const PointCloud& cloud, std::span<const Eigen::
 
 Expected<void> write_ply(const std::filesystem::path& path, const PointCloud& cloud,
                          const PlyWriteOptions& options) {
-    if (Expected<void> ok = check_mesh(path, cloud, {}); !ok) return ok;
+    if (Expected<void> ok = check_mesh(path, cloud, {}, options.vertex_scalars); !ok) return ok;
     return write_file_atomically(path, serialize_ply(cloud, {}, options));
 }
 
 Expected<void> write_ply(const std::filesystem::path& path, const Mesh& mesh,
                          const PlyWriteOptions& options) {
-    if (Expected<void> ok = check_mesh(path, mesh.vertices, mesh.triangles); !ok) return ok;
+    if (Expected<void> ok = check_mesh(path, mesh.vertices, mesh.triangles, options.vertex_scalars);
+        !ok)
+        return ok;
     return write_file_atomically(path, serialize_ply(mesh.vertices, mesh.triangles, options));
 }
 

@@ -1,7 +1,9 @@
-# processing/io: file formats (PLY, XYZ/PTS, PTX, E57, Stanford .conf, .xf) and crash-safe file writes.
+# processing/io: file formats (PLY, OBJ, STL, XYZ/PTS, PTX, E57, Stanford .conf, .xf) and crash-safe file writes.
 list(APPEND ANASCAN_PROCESSING_SOURCES
     src/io/coverage_ply.cpp
     src/io/file_bytes.cpp
+    src/io/mesh_file.cpp
+    src/io/obj.cpp
     src/io/ply_header.cpp
     src/io/ply_reader.cpp
     src/io/ply_source.cpp
@@ -9,6 +11,7 @@ list(APPEND ANASCAN_PROCESSING_SOURCES
     src/io/ply_writer.cpp
     src/io/ptx.cpp
     src/io/stanford_conf.cpp
+    src/io/stl.cpp
     src/io/text_lines.cpp
     src/io/text_points.cpp
     src/io/text_points_writer.cpp

@@ -43,9 +43,18 @@ Expected<PlyData> parse_ply(std::span<const char> bytes, std::string_view source
 /// Reads and parses a PLY file.
 Expected<PlyData> read_ply(const std::filesystem::path& path);
 
+/// An extra per-vertex property written as `property float NAME` after the cloud's own
+/// attributes (a mesh's support distance, its class); `values` is as long as the cloud.
+/// Readers that do not know the name skip it.
+struct PlyScalarProperty {
+    std::string name;
+    std::vector<float> values;
+};
+
 struct PlyWriteOptions {
     PlyFormat format = PlyFormat::kBinaryLittleEndian;
-    std::vector<std::string> comments;  ///< Written as `comment` lines.
+    std::vector<std::string> comments;              ///< Written as `comment` lines.
+    std::vector<PlyScalarProperty> vertex_scalars;  ///< Extra vertex properties, in order.
 };
 
 /// Serialises a cloud (and optional triangles) to PLY bytes: float x y z, then float nx ny

@@ -1,0 +1,40 @@
+#pragma once
+// Shared by `mesh` and `session export --mesh`: load placed scans, reconstruct the fragment
+// model, write the mesh and its report, print the report table.
+#include <CLI/CLI.hpp>
+#include <Eigen/Core>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "anascan/processing/core/pose.hpp"
+
+namespace anascan::cli {
+
+/// One scan to mesh: its file, its pose and, when known, its sensor position.
+struct MeshScanEntry {
+    std::filesystem::path file;
+    Pose T_world_scan = Pose::Identity();
+    std::optional<Eigen::Vector3d> sensor_scan_m;  ///< Sensor position in the scan frame.
+};
+
+struct MeshOptions {
+    std::string out;     ///< .ply, .obj or .stl
+    std::string report;  ///< .json, optional
+    double resolution_mm = 1.0;
+    std::string surface = "closed";  ///< closed | measured
+    bool ascii = false;              ///< ASCII PLY
+    double max_memory_mb = 1536.0;
+};
+
+/// Runs the whole job; throws CommandFailed with a message naming the file on bad input.
+void run_mesh(const std::vector<MeshScanEntry>& entries, const MeshOptions& options);
+
+/// Adds --resolution-mm, --surface, --report, --ascii and --max-memory-mb to `cmd`.
+void add_mesh_options(CLI::App* cmd, MeshOptions& options);
+
+/// Peak resident memory of this process so far, bytes.
+std::size_t peak_memory_bytes();
+
+}  // namespace anascan::cli

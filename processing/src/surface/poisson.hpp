@@ -1,0 +1,26 @@
+#pragma once
+// Screened Poisson surface reconstruction through Open3D 0.16 (a port of Kazhdan's
+// PoissonRecon); the only file that includes Open3D.
+#include <cstddef>
+
+#include "anascan/processing/core/mesh.hpp"
+
+namespace anascan::surface_detail {
+
+struct PoissonDepth {
+    int depth = 0;        ///< Octree depth.
+    double cell_m = 0.0;  ///< Finest cell width at that depth, metres.
+    std::size_t estimated_memory_bytes = 0;
+};
+
+/// The depth whose finest cell is at most `resolution_m`, coarsened until Poisson's memory
+/// estimate for `points` samples fits `max_memory_bytes`.
+PoissonDepth choose_depth(double box_m, double resolution_m, std::size_t points,
+                          std::size_t max_memory_bytes);
+
+/// Runs screened Poisson on `cloud` (positions and unit normals) at `depth`, in a box
+/// `scale` times the points' bounding cube, on `threads` threads. Returns the mesh in the cloud's
+/// frame (same origin) with vertex normals; empty on failure.
+Mesh poisson_surface(const PointCloud& cloud, int depth, double scale, int threads);
+
+}  // namespace anascan::surface_detail

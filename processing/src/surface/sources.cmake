@@ -1,0 +1,13 @@
+# processing/surface: fragment models (screened Poisson through Open3D, support and class of
+# every vertex and triangle, topology and the model report).
+list(APPEND ANASCAN_PROCESSING_SOURCES
+    src/surface/fragment_model.cpp
+    src/surface/merge.cpp
+    src/surface/mesh_distance.cpp
+    src/surface/mesh_measures.cpp
+    src/surface/mesh_topology.cpp
+    src/surface/model_report.cpp
+    src/surface/poisson.cpp
+    src/surface/reconstruction.cpp
+    src/surface/support.cpp
+)

@@ -1,0 +1,48 @@
+#include "support.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "anascan/processing/spatial/kdtree.hpp"
+
+namespace anascan::surface_detail {
+
+void classify_support(FragmentModel& model, const MergedCloud& merged, double threshold_m) {
+    const PointCloud& v = model.mesh.vertices;
+    const std::size_t n = v.size();
+    model.support_threshold_m = threshold_m;
+    model.support_distance_m.assign(n, std::numeric_limits<float>::infinity());
+    model.support_scans.assign(n, 0);
+    model.vertex_class.assign(n, SurfaceClass::kInterpolated);
+    const KdTree tree(merged.cloud.positions);
+    const Eigen::Vector3f shift = (v.origin_m - merged.cloud.origin_m).cast<float>();
+    const float radius = static_cast<float>(threshold_m);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024), [&](const auto& range) {
+        std::vector<Neighbor> near;
+        for (std::size_t i = range.begin(); i != range.end(); ++i) {
+            const Eigen::Vector3f q = v.positions[i] + shift;
+            Neighbor nn;
+            if (tree.nearest(q, nn)) model.support_distance_m[i] = std::sqrt(nn.distance_sq_m2);
+            tree.radius_any_order(q, radius, near);
+            std::uint16_t scans = 0;
+            for (const Neighbor& p : near) scans = std::max(scans, merged.scans[p.index]);
+            model.support_scans[i] = scans;
+            if (model.support_distance_m[i] <= radius)
+                model.vertex_class[i] = SurfaceClass::kMeasured;
+        }
+    });
+    model.triangle_class.resize(model.mesh.triangles.size());
+    for (std::size_t t = 0; t < model.mesh.triangles.size(); ++t) {
+        int measured = 0;
+        for (int k = 0; k < 3; ++k) {
+            measured += model.vertex_class[model.mesh.triangles[t][k]] == SurfaceClass::kMeasured;
+        }
+        model.triangle_class[t] =
+            measured >= 2 ? SurfaceClass::kMeasured : SurfaceClass::kInterpolated;
+    }
+}
+
+}  // namespace anascan::surface_detail
