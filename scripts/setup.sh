@@ -18,6 +18,7 @@ PACKAGES=(
     libspdlog-dev libfmt-dev libcli11-dev nlohmann-json3-dev
     libgtest-dev libgmock-dev googletest libbenchmark-dev
     umockdev libumockdev-dev
+    libexpat1-dev                      # processing: the XML section of E57 files
     zlib1g-dev libx11-dev              # drivers: recording CRC-32; projector test reads the X screen
     xvfb xauth
     fonts-dejavu-core                  # gui: anascan-field's large readable font (DejaVu Sans)

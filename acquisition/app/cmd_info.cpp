@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include "anascan/processing/io/e57.hpp"
 #include "anascan/processing/io/ply.hpp"
 #include "anascan/processing/io/ptx.hpp"
 #include "anascan/processing/io/stanford_conf.hpp"
@@ -72,6 +73,26 @@ void info_ptx(const std::filesystem::path& path) {
     }
 }
 
+void info_e57(const std::filesystem::path& path) {
+    auto e57 = io::read_e57(path);
+    if (!e57) fail_command(e57.error());
+    std::printf("%s: E57, %zu scan(s), %zu image(s) (not read)\n", path.c_str(), e57->scans.size(),
+                e57->image_count);
+    for (const io::E57Scan& s : e57->scans) {
+        std::printf(" scan %s '%s': %llu records, %llu invalid\n", s.scan.meta.id.c_str(),
+                    s.name.c_str(), static_cast<unsigned long long>(s.record_count),
+                    static_cast<unsigned long long>(s.invalid_count));
+        if (s.grid.rows > 0)
+            std::printf("  grid: %d rows x %d columns\n", s.grid.rows, s.grid.cols);
+        print_cloud(s.scan.cloud);
+        if (s.scan.meta.T_world_scan) {
+            print_pose("pose", *s.scan.meta.T_world_scan);
+        } else {
+            std::printf("  pose: none (scan frame = file frame)\n");
+        }
+    }
+}
+
 void info_conf(const std::filesystem::path& path) {
     auto conf = io::read_conf(path);
     if (!conf) fail_command(conf.error());
@@ -83,6 +104,7 @@ void info_file(const std::filesystem::path& path) {
     const std::string ext = path.extension().string();
     if (ext == ".ply") return info_ply(path);
     if (ext == ".ptx") return info_ptx(path);
+    if (ext == ".e57") return info_e57(path);
     if (ext == ".conf") return info_conf(path);
     if (ext == ".xf") {
         auto T = io::read_xf(path);
@@ -100,7 +122,7 @@ void info_file(const std::filesystem::path& path) {
 
 void add_info_command(CLI::App& app) {
     auto* cmd = app.add_subcommand(
-        "info", "Describe scan, mesh and pose files (.ply .xyz .pts .ptx .conf .xf)");
+        "info", "Describe scan, mesh and pose files (.ply .xyz .pts .ptx .e57 .conf .xf)");
     auto files = std::make_shared<std::vector<std::string>>();
     cmd->add_option("files", *files, "Files to describe")->required()->check(CLI::ExistingFile);
     cmd->callback([files] {

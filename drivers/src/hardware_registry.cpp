@@ -1,5 +1,6 @@
 #include "anascan/drivers/depth_camera_scanner.hpp"
 #include "anascan/drivers/device_registry.hpp"
+#include "anascan/drivers/e57_station_scanner.hpp"
 #include "anascan/drivers/ptx_station_scanner.hpp"
 #include "anascan/drivers/recording.hpp"
 #include "anascan/drivers/structured_light_scanner.hpp"
@@ -10,8 +11,8 @@ namespace anascan::drivers {
 
 DeviceRegistry make_hardware_registry() {
     DeviceRegistry registry;
-    for (Backend b :
-         {make_v4l2_backend(), make_usb_backend(), make_ptx_backend(), make_playback_backend()}) {
+    for (Backend b : {make_v4l2_backend(), make_usb_backend(), make_ptx_backend(),
+                      make_e57_backend(), make_playback_backend()}) {
         (void)registry.add(std::move(b));  // distinct schemes: cannot fail
     }
     // The cameras the composed scanners (`sl:`, `depth:`) are made of.

@@ -32,6 +32,7 @@
 #include <vector>
 
 #include "anascan/processing/core/allocator.hpp"
+#include "anascan/processing/core/stopwatch.hpp"
 #include "anascan/processing/evaluation/pose_sampling.hpp"
 #include "anascan/processing/registration/batch/scan_registration.hpp"
 
@@ -285,15 +286,15 @@ void report_chain(const ScanRegistrationResult& r, const std::vector<std::size_t
     std::printf("chain breaks %zu\n", breaks);
 }
 
-}  // namespace
+// The scans of the wall, in a shuffled input order (the registration must not rely on the
+// order); `position[k]` is where window k landed.
+struct ShuffledScans {
+    std::vector<ScanInput> inputs;
+    std::vector<View> views;
+    std::vector<std::size_t> position;
+};
 
-int main(int argc, char** argv) {
-    Options o;
-    if (!parse(argc, argv, o)) return 2;
-    const bool fixed_mmap = !o.default_allocator && use_fixed_mmap_threshold();
-    const auto start = std::chrono::steady_clock::now();
-    const Wall wall(static_cast<double>(o.scans + 3) * kStepM + kWindowM, o.seed);
-    std::mt19937 rng(o.seed);
+ShuffledScans make_scans(const Options& o, const Wall& wall, std::mt19937& rng) {
     std::vector<View> views;
     std::vector<ScanInput> inputs;
     for (std::size_t k = 0; k < o.scans; ++k) {
@@ -309,18 +310,20 @@ int main(int argc, char** argv) {
                  },
              .sensor_origin_scan_m = T_scan_object * (centre + Eigen::Vector3d(0, 0, 1.0))});
     }
-    // Shuffled input order: the registration must not rely on the order.
     std::vector<std::size_t> order(o.scans);
     for (std::size_t i = 0; i < o.scans; ++i) order[i] = i;
     std::shuffle(order.begin(), order.end(), rng);
-    std::vector<ScanInput> shuffled;
-    std::vector<View> shuffled_views;
-    std::vector<std::size_t> position(o.scans);
+    ShuffledScans out;
+    out.position.resize(o.scans);
     for (std::size_t i : order) {
-        position[i] = shuffled.size();
-        shuffled.push_back(inputs[i]);
-        shuffled_views.push_back(views[i]);
+        out.position[i] = out.inputs.size();
+        out.inputs.push_back(inputs[i]);
+        out.views.push_back(views[i]);
     }
+    return out;
+}
+
+ScanRegistrationConfig make_config(const Options& o) {
     ScanRegistrationConfig config{.voxel_size_m = o.voxel_mm * 1e-3,
                                   .max_candidates_per_scan = o.candidates,
                                   .max_loaded_clouds = o.max_loaded,
@@ -333,22 +336,11 @@ int main(int argc, char** argv) {
                                                        ("anascan-scale-" + std::to_string(getpid()))
                                                  : std::filesystem::path(o.spill);
     }
-    std::size_t messages = 0;
-    PeakTrace peaks;
-    const ScanRegistrationResult r = register_scans(shuffled, config, [&](std::string_view m) {
-        peaks.observe(m);
-        if (++messages % 200 == 0)
-            std::fprintf(stderr, "[%zu] %.*s\n", messages, int(m.size()), m.data());
-    });
-    if (!config.spill_directory.empty()) {
-        std::error_code ignored;
-        std::filesystem::remove(config.spill_directory, ignored);
-    }
-    peaks.observe("end of register_scans");
-    const Errors e = measure(r, shuffled_views, position, o.list);
-    if (o.list) report_chain(r, position);
-    const double total_s =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return config;
+}
+
+void print_summary(const Options& o, const ScanRegistrationResult& r, const Errors& e,
+                   double total_s) {
     std::printf("scans %zu, points %zu, candidates/scan %zu, voxel %.1f mm, %s\n", o.scans,
                 o.points, o.candidates, o.voxel_mm,
                 o.in_memory ? "all in memory" : "spilled to disk");
@@ -368,8 +360,12 @@ int main(int argc, char** argv) {
         "neighbours: max %.4f deg, %.4f mm\n",
         r.scans[r.reference_scan].name.c_str(), e.max_rotation_deg, e.max_translation_mm,
         e.max_neighbour_rotation_deg, e.max_neighbour_translation_mm);
-    std::vector<std::size_t> window_of(o.scans);
-    for (std::size_t k = 0; k < o.scans; ++k) window_of[position[k]] = k;
+}
+
+// Candidate pairs against the truth: windows overlap their two neighbours on each side.
+void print_candidates(const ScanRegistrationResult& r, const std::vector<std::size_t>& position) {
+    std::vector<std::size_t> window_of(position.size());
+    for (std::size_t k = 0; k < position.size(); ++k) window_of[position[k]] = k;
     std::size_t overlapping = 0, wrong_verified = 0;
     for (const PairOutcome& p : r.pairs) {
         const std::size_t a = window_of[p.source], b = window_of[p.target];
@@ -380,7 +376,36 @@ int main(int argc, char** argv) {
     std::printf(
         "candidate pairs: %zu overlapping of %zu (windows overlap their 2 neighbours "
         "each side: %zu pairs), %zu non-overlapping verified\n",
-        overlapping, r.pairs.size(), 2 * o.scans - 3, wrong_verified);
+        overlapping, r.pairs.size(), 2 * position.size() - 3, wrong_verified);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    Options o;
+    if (!parse(argc, argv, o)) return 2;
+    const bool fixed_mmap = !o.default_allocator && use_fixed_mmap_threshold();
+    const Stopwatch watch;
+    const Wall wall(static_cast<double>(o.scans + 3) * kStepM + kWindowM, o.seed);
+    std::mt19937 rng(o.seed);
+    const ShuffledScans scans = make_scans(o, wall, rng);
+    const ScanRegistrationConfig config = make_config(o);
+    std::size_t messages = 0;
+    PeakTrace peaks;
+    const ScanRegistrationResult r = register_scans(scans.inputs, config, [&](std::string_view m) {
+        peaks.observe(m);
+        if (++messages % 200 == 0)
+            std::fprintf(stderr, "[%zu] %.*s\n", messages, int(m.size()), m.data());
+    });
+    if (!config.spill_directory.empty()) {
+        std::error_code ignored;
+        std::filesystem::remove(config.spill_directory, ignored);
+    }
+    peaks.observe("end of register_scans");
+    const Errors e = measure(r, scans.views, scans.position, o.list);
+    if (o.list) report_chain(r, scans.position);
+    print_summary(o, r, e, watch.seconds());
+    print_candidates(r, scans.position);
     std::printf("peak RSS %.1f MB (%s), cloud reloads %zu%s%s\n", peak_rss_mb(),
                 fixed_mmap ? "fixed mmap threshold" : "default allocator", r.cloud_reloads,
                 r.spill_error.empty() ? "" : ", spill error: ", r.spill_error.c_str());

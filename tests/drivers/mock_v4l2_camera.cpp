@@ -122,68 +122,84 @@ bool MockV4l2Camera::handle_read(void* c) {
     return true;
 }
 
+int MockV4l2Camera::query_capability(v4l2_capability* cap) const {
+    std::memset(cap, 0, sizeof(*cap));
+    std::strncpy(reinterpret_cast<char*>(cap->driver), "anascan-mock", sizeof(cap->driver) - 1);
+    std::strncpy(reinterpret_cast<char*>(cap->card), config_.card.c_str(), sizeof(cap->card) - 1);
+    std::strncpy(reinterpret_cast<char*>(cap->bus_info), "platform:mock",
+                 sizeof(cap->bus_info) - 1);
+    cap->device_caps = V4L2_CAP_VIDEO_CAPTURE | (config_.can_read ? V4L2_CAP_READWRITE : 0) |
+                       (config_.streaming ? V4L2_CAP_STREAMING : 0);
+    cap->capabilities = cap->device_caps | V4L2_CAP_DEVICE_CAPS;
+    return 0;
+}
+
+int MockV4l2Camera::set_or_get_format(bool set, v4l2_format* f) {
+    if (set) {
+        auto it = std::find_if(config_.formats.begin(), config_.formats.end(),
+                               [&](PixelFormat x) { return fourcc(x) == f->fmt.pix.pixelformat; });
+        if (it == config_.formats.end()) return EINVAL;
+        format_ = *it;
+    }
+    f->fmt.pix.width = static_cast<std::uint32_t>(config_.width);  // the only size
+    f->fmt.pix.height = static_cast<std::uint32_t>(config_.height);
+    f->fmt.pix.pixelformat = fourcc(format_);
+    f->fmt.pix.bytesperline =
+        format_ == PixelFormat::kMjpeg
+            ? 0
+            : static_cast<std::uint32_t>(config_.width * bytes_per_pixel(format_));
+    f->fmt.pix.sizeimage = static_cast<std::uint32_t>(image_bytes());
+    return 0;
+}
+
+int MockV4l2Camera::exposure_control(bool set, v4l2_control* c) {
+    if (c->id == V4L2_CID_EXPOSURE_AUTO && set) return 0;
+    if (c->id != V4L2_CID_EXPOSURE_ABSOLUTE) return EINVAL;
+    if (!set) {
+        c->value = exposure_;
+        return 0;
+    }
+    if (c->value < config_.exposure_min || c->value > config_.exposure_max) return ERANGE;
+    exposure_ = c->value;
+    return 0;
+}
+
+int MockV4l2Camera::enumerate(unsigned long request, void* p) const {
+    if (request == VIDIOC_ENUM_FMT) {
+        auto* d = static_cast<v4l2_fmtdesc*>(p);
+        if (d->index >= config_.formats.size()) return EINVAL;
+        d->pixelformat = fourcc(config_.formats[d->index]);
+        return 0;
+    }
+    if (request == VIDIOC_ENUM_FRAMESIZES) {
+        auto* s = static_cast<v4l2_frmsizeenum*>(p);
+        if (s->index != 0) return EINVAL;
+        s->type = V4L2_FRMSIZE_TYPE_DISCRETE;
+        s->discrete = {static_cast<std::uint32_t>(config_.width),
+                       static_cast<std::uint32_t>(config_.height)};
+        return 0;
+    }
+    auto* i = static_cast<v4l2_frmivalenum*>(p);  // VIDIOC_ENUM_FRAMEINTERVALS: 30 and 15 Hz
+    if (i->index > 1) return EINVAL;
+    i->type = V4L2_FRMIVAL_TYPE_DISCRETE;
+    i->discrete = {1, i->index == 0 ? 30u : 15u};
+    return 0;
+}
+
 int MockV4l2Camera::handle_format_ioctl(unsigned long request, void* p) {
     switch (request) {
-        case VIDIOC_QUERYCAP: {
-            auto* cap = static_cast<v4l2_capability*>(p);
-            std::memset(cap, 0, sizeof(*cap));
-            std::strncpy(reinterpret_cast<char*>(cap->driver), "anascan-mock",
-                         sizeof(cap->driver) - 1);
-            std::strncpy(reinterpret_cast<char*>(cap->card), config_.card.c_str(),
-                         sizeof(cap->card) - 1);
-            std::strncpy(reinterpret_cast<char*>(cap->bus_info), "platform:mock",
-                         sizeof(cap->bus_info) - 1);
-            cap->device_caps = V4L2_CAP_VIDEO_CAPTURE |
-                               (config_.can_read ? V4L2_CAP_READWRITE : 0) |
-                               (config_.streaming ? V4L2_CAP_STREAMING : 0);
-            cap->capabilities = cap->device_caps | V4L2_CAP_DEVICE_CAPS;
-            return 0;
-        }
-        case VIDIOC_ENUM_FMT: {
-            auto* d = static_cast<v4l2_fmtdesc*>(p);
-            if (d->index >= config_.formats.size()) return EINVAL;
-            d->pixelformat = fourcc(config_.formats[d->index]);
-            return 0;
-        }
-        case VIDIOC_ENUM_FRAMESIZES: {
-            auto* s = static_cast<v4l2_frmsizeenum*>(p);
-            if (s->index != 0) return EINVAL;
-            s->type = V4L2_FRMSIZE_TYPE_DISCRETE;
-            s->discrete = {static_cast<std::uint32_t>(config_.width),
-                           static_cast<std::uint32_t>(config_.height)};
-            return 0;
-        }
+        case VIDIOC_QUERYCAP:
+            return query_capability(static_cast<v4l2_capability*>(p));
+        case VIDIOC_ENUM_FMT:
+        case VIDIOC_ENUM_FRAMESIZES:
+        case VIDIOC_ENUM_FRAMEINTERVALS:
+            return enumerate(request, p);
         case VIDIOC_S_FMT:
-        case VIDIOC_G_FMT: {
-            auto* f = static_cast<v4l2_format*>(p);
-            if (request == VIDIOC_S_FMT) {
-                auto it = std::find_if(
-                    config_.formats.begin(), config_.formats.end(),
-                    [&](PixelFormat x) { return fourcc(x) == f->fmt.pix.pixelformat; });
-                if (it == config_.formats.end()) return EINVAL;
-                format_ = *it;
-            }
-            f->fmt.pix.width = static_cast<std::uint32_t>(config_.width);  // the only size
-            f->fmt.pix.height = static_cast<std::uint32_t>(config_.height);
-            f->fmt.pix.pixelformat = fourcc(format_);
-            f->fmt.pix.bytesperline =
-                format_ == PixelFormat::kMjpeg
-                    ? 0
-                    : static_cast<std::uint32_t>(config_.width * bytes_per_pixel(format_));
-            f->fmt.pix.sizeimage = static_cast<std::uint32_t>(image_bytes());
-            return 0;
-        }
-        case VIDIOC_ENUM_FRAMEINTERVALS: {  // 30 Hz and 15 Hz
-            auto* i = static_cast<v4l2_frmivalenum*>(p);
-            if (i->index > 1) return EINVAL;
-            i->type = V4L2_FRMIVAL_TYPE_DISCRETE;
-            i->discrete = {1, i->index == 0 ? 30u : 15u};
-            return 0;
-        }
+        case VIDIOC_G_FMT:
+            return set_or_get_format(request == VIDIOC_S_FMT, static_cast<v4l2_format*>(p));
         case VIDIOC_G_PARM:
         case VIDIOC_S_PARM: {
-            auto* parm = static_cast<v4l2_streamparm*>(p);
-            v4l2_fract& t = parm->parm.capture.timeperframe;
+            v4l2_fract& t = static_cast<v4l2_streamparm*>(p)->parm.capture.timeperframe;
             if (request == VIDIOC_S_PARM && t.numerator != 0)
                 rate_hz_ = static_cast<int>(t.denominator / t.numerator);
             t = {1, static_cast<std::uint32_t>(rate_hz_)};
@@ -198,21 +214,39 @@ int MockV4l2Camera::handle_format_ioctl(unsigned long request, void* p) {
             return 0;
         }
         case VIDIOC_G_CTRL:
-        case VIDIOC_S_CTRL: {
-            auto* c = static_cast<v4l2_control*>(p);
-            if (c->id == V4L2_CID_EXPOSURE_AUTO && request == VIDIOC_S_CTRL) return 0;
-            if (c->id != V4L2_CID_EXPOSURE_ABSOLUTE) return EINVAL;
-            if (request == VIDIOC_G_CTRL)
-                c->value = exposure_;
-            else if (c->value < config_.exposure_min || c->value > config_.exposure_max)
-                return ERANGE;
-            else
-                exposure_ = c->value;
-            return 0;
-        }
+        case VIDIOC_S_CTRL:
+            return exposure_control(request == VIDIOC_S_CTRL, static_cast<v4l2_control*>(p));
         default:
             return ENOTTY;
     }
+}
+
+int MockV4l2Camera::dequeue_buffer(void* c, void* d) {
+    auto* data = static_cast<UMockdevIoctlData*>(d);
+    if (queued_indices_.empty() || !next_frame_available()) return unplugged_ ? ENODEV : EAGAIN;
+    const Taken taken = take_frame();
+    const std::vector<std::uint8_t>& frame = taken.bytes;
+    auto* b = as<v4l2_buffer>(data);
+    b->flags = V4L2_BUF_FLAG_TIMESTAMP_MONOTONIC | V4L2_BUF_FLAG_TSTAMP_SRC_SOE;
+    b->timestamp.tv_sec = static_cast<time_t>(taken.at.count() / 1000000000);
+    b->timestamp.tv_usec = static_cast<suseconds_t>(taken.at.count() % 1000000000 / 1000);
+    b->index = queued_indices_.front();
+    b->m.userptr = queued_userptrs_.front();
+    b->bytesused = static_cast<std::uint32_t>(frame.size());
+    b->memory = V4L2_MEMORY_USERPTR;
+    queued_indices_.erase(queued_indices_.begin());
+    queued_userptrs_.erase(queued_userptrs_.begin());
+    GError* error = nullptr;
+    UMockdevIoctlData* target =
+        umockdev_ioctl_data_resolve(data, offsetof(v4l2_buffer, m.userptr), frame.size(), &error);
+    if (target == nullptr) {
+        g_error_free(error);
+        return EFAULT;
+    }
+    std::memcpy(target->data, frame.data(), frame.size());
+    umockdev_ioctl_client_complete(static_cast<UMockdevIoctlClient*>(c), 0, 0);
+    g_object_unref(target);
+    return -1;  // already completed
 }
 
 int MockV4l2Camera::handle_buffer_ioctl(void* c, unsigned long request, void* d) {
@@ -231,33 +265,8 @@ int MockV4l2Camera::handle_buffer_ioctl(void* c, unsigned long request, void* d)
             queued_userptrs_.push_back(b->m.userptr);
             return 0;
         }
-        case VIDIOC_DQBUF: {
-            if (queued_indices_.empty() || !next_frame_available())
-                return unplugged_ ? ENODEV : EAGAIN;
-            const Taken taken = take_frame();
-            const std::vector<std::uint8_t>& frame = taken.bytes;
-            auto* b = as<v4l2_buffer>(data);
-            b->flags = V4L2_BUF_FLAG_TIMESTAMP_MONOTONIC | V4L2_BUF_FLAG_TSTAMP_SRC_SOE;
-            b->timestamp.tv_sec = static_cast<time_t>(taken.at.count() / 1000000000);
-            b->timestamp.tv_usec = static_cast<suseconds_t>(taken.at.count() % 1000000000 / 1000);
-            b->index = queued_indices_.front();
-            b->m.userptr = queued_userptrs_.front();
-            b->bytesused = static_cast<std::uint32_t>(frame.size());
-            b->memory = V4L2_MEMORY_USERPTR;
-            queued_indices_.erase(queued_indices_.begin());
-            queued_userptrs_.erase(queued_userptrs_.begin());
-            GError* error = nullptr;
-            UMockdevIoctlData* target = umockdev_ioctl_data_resolve(
-                data, offsetof(v4l2_buffer, m.userptr), frame.size(), &error);
-            if (target == nullptr) {
-                g_error_free(error);
-                return EFAULT;
-            }
-            std::memcpy(target->data, frame.data(), frame.size());
-            umockdev_ioctl_client_complete(static_cast<UMockdevIoctlClient*>(c), 0, 0);
-            g_object_unref(target);
-            return -1;  // already completed
-        }
+        case VIDIOC_DQBUF:
+            return dequeue_buffer(c, data);
         case VIDIOC_STREAMON:
             ++streamon_count_;
             return 0;

@@ -15,6 +15,10 @@
 
 #include "anascan/drivers/frame.hpp"
 #include "mock_pixel.hpp"
+
+struct v4l2_capability;
+struct v4l2_format;
+struct v4l2_control;
 #include "umockdev_testbed.hpp"
 
 namespace anascan::drivers::test {
@@ -77,6 +81,11 @@ private:
     std::size_t image_bytes() const;
     bool next_frame_available();
     int handle_format_ioctl(unsigned long request, void* arg_data);
+    int query_capability(v4l2_capability* cap) const;
+    int enumerate(unsigned long request, void* arg_data) const;
+    int set_or_get_format(bool set, v4l2_format* format);
+    int exposure_control(bool set, v4l2_control* control);
+    int dequeue_buffer(void* client, void* arg);
     int handle_buffer_ioctl(void* client, unsigned long request, void* arg);
 
     Testbed& testbed_;

@@ -10,16 +10,11 @@
 #include <opencv2/structured_light.hpp>
 #include <random>
 
+#include "anascan/processing/core/stopwatch.hpp"
 #include "anascan/processing/spatial/kdtree.hpp"
 
 namespace anascan::test {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double since(Clock::time_point t0) {
-    return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 struct Rectification {
     cv::Mat map1x, map1y, map2x, map2y, Q;
@@ -57,12 +52,61 @@ cv::Mat load_rectified(const std::filesystem::path& file, const cv::Mat& mx, con
 
 }  // namespace
 
+namespace {
+
+// The decoder's inputs, loaded and rectified as the sample does: the cam1 images with the
+// file's cam2 maps and vice versa. Empty `error` when all images load.
+struct GrayCodeImages {
+    std::vector<std::vector<cv::Mat>> pattern;
+    std::vector<cv::Mat> white{2}, black{2};
+    std::string error;
+};
+
+GrayCodeImages load_images(const Rectification& rect,
+                           const std::vector<std::filesystem::path>& cam1_files,
+                           const std::vector<std::filesystem::path>& cam2_files, std::size_t n) {
+    GrayCodeImages in;
+    in.pattern.assign(2, std::vector<cv::Mat>(n));
+    for (std::size_t i = 0; i < n + 2; ++i) {
+        const cv::Mat a = load_rectified(cam1_files[i], rect.map2x, rect.map2y);
+        const cv::Mat b = load_rectified(cam2_files[i], rect.map1x, rect.map1y);
+        if (a.empty() || b.empty()) {
+            in.error = "unreadable image " + std::to_string(i + 1);
+            return in;
+        }
+        if (i < n)
+            in.pattern[0][i] = a, in.pattern[1][i] = b;
+        else if (i == n)
+            in.white[0] = a, in.white[1] = b;
+        else
+            in.black[0] = a, in.black[1] = b;
+    }
+    return in;
+}
+
+// The finite points of the disparity map, millimetres to metres.
+void reproject(cv::Mat disparity, const cv::Mat& Q, PointCloud& cloud) {
+    cv::Mat points;
+    disparity.convertTo(disparity, CV_32FC1);
+    cv::reprojectImageTo3D(disparity, points, Q, true, -1);
+    for (int y = 0; y < points.rows; ++y) {
+        for (int x = 0; x < points.cols; ++x) {
+            const cv::Vec3f p = points.at<cv::Vec3f>(y, x);
+            if (disparity.at<float>(y, x) == 0.0f || !std::isfinite(p[2]) || std::abs(p[2]) >= 1e4f)
+                continue;
+            cloud.positions.emplace_back(p[0] * 1e-3f, p[1] * 1e-3f, p[2] * 1e-3f);
+        }
+    }
+}
+
+}  // namespace
+
 OpenCvGrayCodeResult run_opencv_graycode(const std::filesystem::path& calibration,
                                          const std::vector<std::filesystem::path>& cam1_files,
                                          const std::vector<std::filesystem::path>& cam2_files,
                                          int projector_width_px, int projector_height_px) {
     OpenCvGrayCodeResult result;
-    const auto t0 = Clock::now();
+    const Stopwatch total;
     Rectification rect;
     if (!read_rectification(calibration, rect)) {
         result.error = "cannot read " + calibration.string();
@@ -77,44 +121,22 @@ OpenCvGrayCodeResult run_opencv_graycode(const std::filesystem::path& calibratio
         result.error = "wrong image count";
         return result;
     }
-    // As the sample does: the cam1 images with the file's cam2 maps and vice versa.
-    std::vector<std::vector<cv::Mat>> pattern(2, std::vector<cv::Mat>(n));
-    std::vector<cv::Mat> white(2), black(2);
-    for (std::size_t i = 0; i < n + 2; ++i) {
-        const cv::Mat a = load_rectified(cam1_files[i], rect.map2x, rect.map2y);
-        const cv::Mat b = load_rectified(cam2_files[i], rect.map1x, rect.map1y);
-        if (a.empty() || b.empty()) {
-            result.error = "unreadable image " + std::to_string(i + 1);
-            return result;
-        }
-        if (i < n)
-            pattern[0][i] = a, pattern[1][i] = b;
-        else if (i == n)
-            white[0] = a, white[1] = b;
-        else
-            black[0] = a, black[1] = b;
+    GrayCodeImages in = load_images(rect, cam1_files, cam2_files, n);
+    if (!in.error.empty()) {
+        result.error = in.error;
+        return result;
     }
-    result.load_s = since(t0);
+    result.load_s = total.seconds();
     cv::Mat disparity;
-    const auto t1 = Clock::now();
-    if (!graycode->decode(pattern, disparity, black, white,
+    const Stopwatch decode;
+    if (!graycode->decode(in.pattern, disparity, in.black, in.white,
                           cv::structured_light::DECODE_3D_UNDERWORLD)) {
         result.error = "GrayCodePattern::decode failed";
         return result;
     }
-    result.decode_s = since(t1);
-    cv::Mat points;
-    disparity.convertTo(disparity, CV_32FC1);
-    cv::reprojectImageTo3D(disparity, points, rect.Q, true, -1);
-    for (int y = 0; y < points.rows; ++y) {
-        for (int x = 0; x < points.cols; ++x) {
-            const cv::Vec3f p = points.at<cv::Vec3f>(y, x);
-            if (disparity.at<float>(y, x) == 0.0f || !std::isfinite(p[2]) || std::abs(p[2]) >= 1e4f)
-                continue;
-            result.cloud.positions.emplace_back(p[0] * 1e-3f, p[1] * 1e-3f, p[2] * 1e-3f);
-        }
-    }
-    result.total_s = since(t0);
+    result.decode_s = decode.seconds();
+    reproject(disparity, rect.Q, result.cloud);
+    result.total_s = total.seconds();
     result.ok = true;
     return result;
 }

@@ -1,4 +1,4 @@
-# processing/io: file formats (PLY, XYZ/PTS, PTX, Stanford .conf, .xf) and crash-safe file writes.
+# processing/io: file formats (PLY, XYZ/PTS, PTX, E57, Stanford .conf, .xf) and crash-safe file writes.
 list(APPEND ANASCAN_PROCESSING_SOURCES
     src/io/coverage_ply.cpp
     src/io/file_bytes.cpp
@@ -13,3 +13,4 @@ list(APPEND ANASCAN_PROCESSING_SOURCES
     src/io/text_points.cpp
     src/io/xf.cpp
 )
+include(${CMAKE_CURRENT_LIST_DIR}/e57/sources.cmake)

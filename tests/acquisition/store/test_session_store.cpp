@@ -39,33 +39,31 @@ void exec_sql(const std::filesystem::path& file, const std::string& sql) {
     sqlite3_close(db);
 }
 
-TEST_F(SessionStoreTest, ScansPosesEventsNotesAndValuesSurviveReopening) {
-    const Scan first = make_scan(300, 1);
-    {
-        auto store = open_or_die(dir_);
-        ASSERT_TRUE(store);
-        Scan with_prior = first;
-        with_prior.meta.T_world_scan = make_test_pose(7);
-        auto r1 = store->save_scan(with_prior, make_test_pose(1));
-        ASSERT_TRUE(r1) << r1.error().message;
-        EXPECT_EQ(r1->seq, 1);
-        EXPECT_EQ(r1->file, "scans/scan_000001.ply");
-        ASSERT_TRUE(store->save_scan(make_scan(50, 2, "sim:other#1"), std::nullopt));
-        ASSERT_TRUE(store->save_scan(make_scan(10, 3), make_test_pose(3)));
-        ASSERT_TRUE(store->record_registration(
-            1, {ScanState::kRegistered, 0, Pose::Identity(), R"({"rms_m":0.0001})", 0.25}));
-        ASSERT_TRUE(store->record_registration(2, {ScanState::kFailed, -1, {}, "{}", {}}));
-        ASSERT_TRUE(
-            store->update_poses({{1, {0, make_test_pose(4)}}, {3, {1, make_test_pose(5)}}}));
-        ASSERT_TRUE(store->add_event("device-error", "sim:test#0", "unplugged"));
-        ASSERT_TRUE(store->add_note(2, "smudge on the lens"));
-        ASSERT_TRUE(store->add_note(std::nullopt, "rain started"));
-        ASSERT_TRUE(store->set_value("coverage", R"({"fraction":0.5})"));
-        ASSERT_TRUE(store->set_value("coverage", R"({"fraction":0.75})"));
-    }
-    auto store = open_or_die(dir_, SessionOpenMode::kReadOnly);
+// Writes three scans with poses, states, an event, notes and values.
+void write_session(const std::filesystem::path& dir, const Scan& first) {
+    auto store = open_or_die(dir);
     ASSERT_TRUE(store);
-    auto scans = store->scans();
+    Scan with_prior = first;
+    with_prior.meta.T_world_scan = make_test_pose(7);
+    auto r1 = store->save_scan(with_prior, make_test_pose(1));
+    ASSERT_TRUE(r1) << r1.error().message;
+    EXPECT_EQ(r1->seq, 1);
+    EXPECT_EQ(r1->file, "scans/scan_000001.ply");
+    ASSERT_TRUE(store->save_scan(make_scan(50, 2, "sim:other#1"), std::nullopt));
+    ASSERT_TRUE(store->save_scan(make_scan(10, 3), make_test_pose(3)));
+    ASSERT_TRUE(store->record_registration(
+        1, {ScanState::kRegistered, 0, Pose::Identity(), R"({"rms_m":0.0001})", 0.25}));
+    ASSERT_TRUE(store->record_registration(2, {ScanState::kFailed, -1, {}, "{}", {}}));
+    ASSERT_TRUE(store->update_poses({{1, {0, make_test_pose(4)}}, {3, {1, make_test_pose(5)}}}));
+    ASSERT_TRUE(store->add_event("device-error", "sim:test#0", "unplugged"));
+    ASSERT_TRUE(store->add_note(2, "smudge on the lens"));
+    ASSERT_TRUE(store->add_note(std::nullopt, "rain started"));
+    ASSERT_TRUE(store->set_value("coverage", R"({"fraction":0.5})"));
+    ASSERT_TRUE(store->set_value("coverage", R"({"fraction":0.75})"));
+}
+
+void expect_scan_records(SessionStore& store, const Scan& first) {
+    auto scans = store.scans();
     ASSERT_TRUE(scans) << scans.error().message;
     ASSERT_EQ(scans->size(), 3u);
     const ScanRecord& s1 = (*scans)[0];
@@ -90,8 +88,10 @@ TEST_F(SessionStoreTest, ScansPosesEventsNotesAndValuesSurviveReopening) {
     EXPECT_FALSE((*scans)[1].latency_s);
     EXPECT_EQ((*scans)[2].group, 1);
     EXPECT_EQ((*scans)[2].state, ScanState::kQueued);
+}
 
-    auto loaded = store->load_scan(1);
+void expect_scan_file(SessionStore& store, const Scan& first) {
+    auto loaded = store.load_scan(1);
     ASSERT_TRUE(loaded) << loaded.error().message;
     EXPECT_EQ(loaded->cloud.origin_m, first.cloud.origin_m);
     EXPECT_EQ(loaded->cloud.positions, first.cloud.positions);
@@ -101,28 +101,41 @@ TEST_F(SessionStoreTest, ScansPosesEventsNotesAndValuesSurviveReopening) {
     EXPECT_EQ(loaded->meta.sequence, 1);
     EXPECT_EQ(*loaded->meta.sensor_origin_scan_m, *first.meta.sensor_origin_scan_m);
     expect_same_pose(loaded->meta.T_world_scan, make_test_pose(4));
+}
 
-    auto events = store->events();
+void expect_events_notes_values(SessionStore& store) {
+    auto events = store.events();
     ASSERT_TRUE(events);
     ASSERT_EQ(events->size(), 1u);
     EXPECT_EQ((*events)[0].kind, "device-error");
     EXPECT_EQ((*events)[0].device, "sim:test#0");
-    auto notes = store->notes();
+    auto notes = store.notes();
     ASSERT_TRUE(notes);
     ASSERT_EQ(notes->size(), 2u);
     EXPECT_EQ((*notes)[0].seq, std::optional<std::int64_t>(2));
     EXPECT_EQ((*notes)[1].text, "rain started");
     EXPECT_FALSE((*notes)[1].seq);
-    auto devices = store->devices();
+    auto devices = store.devices();
     ASSERT_TRUE(devices);
     EXPECT_EQ(devices->size(), 2u);
-    auto coverage = store->value("coverage");
+    auto coverage = store.value("coverage");
     ASSERT_TRUE(coverage);
     EXPECT_EQ(**coverage, R"({"fraction":0.75})");
-    EXPECT_FALSE(*store->value("nothing"));
+    EXPECT_FALSE(*store.value("nothing"));
     // Read-only: writes are refused.
-    EXPECT_FALSE(store->add_note(std::nullopt, "x"));
-    EXPECT_FALSE(store->save_scan(make_scan(5, 9), std::nullopt));
+    EXPECT_FALSE(store.add_note(std::nullopt, "x"));
+    EXPECT_FALSE(store.save_scan(make_scan(5, 9), std::nullopt));
+}
+
+TEST_F(SessionStoreTest, ScansPosesEventsNotesAndValuesSurviveReopening) {
+    const Scan first = make_scan(300, 1);
+    write_session(dir_, first);
+    if (HasFatalFailure()) return;
+    auto store = open_or_die(dir_, SessionOpenMode::kReadOnly);
+    ASSERT_TRUE(store);
+    expect_scan_records(*store, first);
+    expect_scan_file(*store, first);
+    expect_events_notes_values(*store);
 }
 
 TEST_F(SessionStoreTest, ExclusionIsUndoableAndTurnOverFlagsTheNextScan) {
