@@ -27,12 +27,18 @@ json hole_json(const reassembly::FaceHole& h) {
 json face_json(const reassembly::PlanarFace& f) {
     json holes = json::array();
     for (const auto& h : f.holes) holes.push_back(hole_json(h));
-    return {{"id", f.id},           {"normal", vec(f.normal)},
-            {"offset_m", f.offset_m}, {"centre_m", vec(f.centre_m)},
-            {"width_axis", vec(f.width_axis)}, {"width_m", f.width_m},
-            {"height_m", f.height_m}, {"area_m2", f.area_m2},
-            {"roughness_per_m2", f.roughness_per_m2}, {"rms_m", f.rms_m},
-            {"num_points", f.num_points}, {"holes", holes}};
+    return {{"id", f.id},
+            {"normal", vec(f.normal)},
+            {"offset_m", f.offset_m},
+            {"centre_m", vec(f.centre_m)},
+            {"width_axis", vec(f.width_axis)},
+            {"width_m", f.width_m},
+            {"height_m", f.height_m},
+            {"area_m2", f.area_m2},
+            {"roughness_per_m2", f.roughness_per_m2},
+            {"rms_m", f.rms_m},
+            {"num_points", f.num_points},
+            {"holes", holes}};
 }
 
 reassembly::PlanarFace face_from(const json& j) {
@@ -46,18 +52,20 @@ reassembly::PlanarFace face_from(const json& j) {
     f.width_m = j.at("width_m").get<double>();
     f.height_m = j.at("height_m").get<double>();
     f.area_m2 = j.at("area_m2").get<double>();
-    f.roughness_per_m2 = j.at("roughness_per_m2").is_number() ? j["roughness_per_m2"].get<double>() : 0.0;
+    f.roughness_per_m2 =
+        j.at("roughness_per_m2").is_number() ? j["roughness_per_m2"].get<double>() : 0.0;
     f.rms_m = j.at("rms_m").get<double>();
     f.num_points = j.at("num_points").get<std::size_t>();
     for (const json& h : j.at("holes")) {
-        reassembly::FaceHole hole{
-            .kind = h.at("kind") == "dowel" ? reassembly::HoleKind::kDowel
-                                            : reassembly::HoleKind::kClampChannel,
-            .centre_m = vec(h.at("centre_m")),
-            .face_uv_m = {h.at("face_uv_m").at(0).get<double>(), h.at("face_uv_m").at(1).get<double>()},
-            .length_m = h.at("length_m").get<double>(),
-            .width_m = h.at("width_m").get<double>(),
-            .depth_m = h.at("depth_m").get<double>()};
+        reassembly::FaceHole hole{.kind = h.at("kind") == "dowel"
+                                              ? reassembly::HoleKind::kDowel
+                                              : reassembly::HoleKind::kClampChannel,
+                                  .centre_m = vec(h.at("centre_m")),
+                                  .face_uv_m = {h.at("face_uv_m").at(0).get<double>(),
+                                                h.at("face_uv_m").at(1).get<double>()},
+                                  .length_m = h.at("length_m").get<double>(),
+                                  .width_m = h.at("width_m").get<double>(),
+                                  .depth_m = h.at("depth_m").get<double>()};
         f.holes.push_back(hole);
     }
     return f;
@@ -75,13 +83,20 @@ json to_json(const NamedBlockFeatures& block) {
     json faces = json::array(), edges = json::array();
     for (const auto& f : b.faces) faces.push_back(face_json(f));
     for (const auto& e : b.edges)
-        edges.push_back({{"from", e.from}, {"to", e.to}, {"point_m", vec(e.point_m)},
-                         {"direction", vec(e.direction)}, {"length_m", e.length_m},
+        edges.push_back({{"from", e.from},
+                         {"to", e.to},
+                         {"point_m", vec(e.point_m)},
+                         {"direction", vec(e.direction)},
+                         {"length_m", e.length_m},
                          {"angle_deg", e.angle_deg}});
-    return {{"id", block.id},       {"source", block.source},
-            {"status", reassembly::to_string(b.status)}, {"message", b.message},
-            {"num_points", b.num_points}, {"spacing_m", b.spacing_m},
-            {"faces", faces},       {"edges", edges}};
+    return {{"id", block.id},
+            {"source", block.source},
+            {"status", reassembly::to_string(b.status)},
+            {"message", b.message},
+            {"num_points", b.num_points},
+            {"spacing_m", b.spacing_m},
+            {"faces", faces},
+            {"edges", edges}};
 }
 
 Expected<NamedBlockFeatures> block_features_from_json(const json& j,
@@ -101,7 +116,8 @@ Expected<NamedBlockFeatures> block_features_from_json(const json& j,
         b.spacing_m = j.at("spacing_m").get<double>();
         for (const json& f : j.at("faces")) b.faces.push_back(face_from(f));
         for (const json& e : j.at("edges"))
-            b.edges.push_back({.from = e.at("from").get<int>(), .to = e.at("to").get<int>(),
+            b.edges.push_back({.from = e.at("from").get<int>(),
+                               .to = e.at("to").get<int>(),
                                .point_m = vec(e.at("point_m")),
                                .direction = vec(e.at("direction")),
                                .length_m = e.at("length_m").get<double>(),
@@ -142,7 +158,8 @@ Expected<reassembly::FaceRef> parse_face_ref(const std::vector<std::string>& ids
         return fail(ErrorCode::kInvalidArgument, "'" + text + "': expected BLOCK:FACE");
     const auto it = std::find(ids.begin(), ids.end(), text.substr(0, colon));
     if (it == ids.end())
-        return fail(ErrorCode::kInvalidArgument, "'" + text + "': no block " + text.substr(0, colon));
+        return fail(ErrorCode::kInvalidArgument,
+                    "'" + text + "': no block " + text.substr(0, colon));
     try {
         return reassembly::FaceRef{int(it - ids.begin()), std::stoi(text.substr(colon + 1))};
     } catch (const std::exception&) {

@@ -26,8 +26,8 @@ struct FeaturesOptions {
 };
 
 Rgb8 palette(int i) {
-    static constexpr Rgb8 kColours[] = {{230, 159, 0},  {86, 180, 233}, {0, 158, 115},
-                                        {240, 228, 66}, {0, 114, 178},  {213, 94, 0},
+    static constexpr Rgb8 kColours[] = {{230, 159, 0},   {86, 180, 233}, {0, 158, 115},
+                                        {240, 228, 66},  {0, 114, 178},  {213, 94, 0},
                                         {204, 121, 167}, {140, 140, 60}};
     return kColours[i % 8];
 }
@@ -44,12 +44,14 @@ PointCloud features_cloud(const PointCloud& points, const ra::BlockFeatures& f) 
         out.colors.push_back(c);
     };
     for (const ra::FaceEdge& e : f.edges)
-        for (double t = -0.5; t <= 0.5; t += 0.002) mark(e.point_m + t * e.length_m * e.direction, {0, 0, 255});
+        for (double t = -0.5; t <= 0.5; t += 0.002)
+            mark(e.point_m + t * e.length_m * e.direction, {0, 0, 255});
     for (const ra::PlanarFace& face : f.faces)
         for (const ra::FaceHole& h : face.holes)
             for (double a = -0.5; a <= 0.5; a += 0.02)
                 for (double b = -0.5; b <= 0.5; b += 0.1)
-                    mark(h.centre_m + a * h.length_m * face.width_axis + b * h.width_m * face.height_axis,
+                    mark(h.centre_m + a * h.length_m * face.width_axis +
+                             b * h.width_m * face.height_axis,
                          {255, 0, 0});
     return out;
 }
@@ -61,7 +63,8 @@ Expected<Mesh> read_model(const std::string& path, const FeaturesOptions& o) {
     if (o.noise_mm > 0.0) {  // Test aid: noise on the positions; normals follow the mesh.
         std::mt19937 rng(o.seed);
         std::normal_distribution<float> noise(0.0f, float(o.noise_mm / 1000.0));
-        for (Eigen::Vector3f& p : mesh.vertices.positions) p += Eigen::Vector3f(noise(rng), noise(rng), noise(rng));
+        for (Eigen::Vector3f& p : mesh.vertices.positions)
+            p += Eigen::Vector3f(noise(rng), noise(rng), noise(rng));
     }
     return mesh;
 }
@@ -77,8 +80,9 @@ void run_features(const FeaturesOptions& o) {
         if (!mesh) fail_command(mesh.error());
         const Stopwatch watch;
         const ra::BlockFeatureConfig config;
-        block.features = mesh->triangles.empty() ? ra::extract_block_features(mesh->vertices, config)
-                                                 : ra::extract_block_features(*mesh, config);
+        block.features = mesh->triangles.empty()
+                             ? ra::extract_block_features(mesh->vertices, config)
+                             : ra::extract_block_features(*mesh, config);
         const double seconds = watch.seconds();
         const ra::BlockFeatures& f = block.features;
         std::size_t holes = 0;
@@ -90,24 +94,32 @@ void run_features(const FeaturesOptions& o) {
         const std::filesystem::path base = std::filesystem::path(o.out) / block.id;
         if (auto ok = write_json_file(base.string() + ".features.json", to_json(block)); !ok)
             fail_command(ok.error());
-        if (auto ok = io::write_ply(base.string() + ".features.ply", features_cloud(mesh->vertices, f)); !ok)
+        if (auto ok =
+                io::write_ply(base.string() + ".features.ply", features_cloud(mesh->vertices, f));
+            !ok)
             fail_command(ok.error());
     }
-    if (failed > 0) spdlog::warn("{} of {} blocks cannot be matched (see their status)", failed, o.models.size());
+    if (failed > 0)
+        spdlog::warn("{} of {} blocks cannot be matched (see their status)", failed,
+                     o.models.size());
 }
 
 }  // namespace
 
 void add_blocks_command(CLI::App& app) {
-    auto* blocks = app.add_subcommand("blocks", "Block features, neighbour proposals and their evaluation");
+    auto* blocks =
+        app.add_subcommand("blocks", "Block features, neighbour proposals and their evaluation");
     blocks->require_subcommand(1);
     auto opts = std::make_shared<FeaturesOptions>();
-    auto* cmd = blocks->add_subcommand("features", "Planar faces, adjacency, roughness and holes of block models");
+    auto* cmd = blocks->add_subcommand(
+        "features", "Planar faces, adjacency, roughness and holes of block models");
     cmd->add_option("models", opts->models, "Block models (PLY mesh or cloud with normals)")
         ->required()
         ->check(CLI::ExistingFile);
-    cmd->add_option("--out", opts->out, "Output folder (ID.features.json, ID.features.ply)")->required();
-    cmd->add_option("--noise-mm", opts->noise_mm, "Add Gaussian noise of this sigma to mesh vertices (tests)")
+    cmd->add_option("--out", opts->out, "Output folder (ID.features.json, ID.features.ply)")
+        ->required();
+    cmd->add_option("--noise-mm", opts->noise_mm,
+                    "Add Gaussian noise of this sigma to mesh vertices (tests)")
         ->check(CLI::NonNegativeNumber);
     cmd->add_option("--seed", opts->seed, "Seed of the added noise");
     cmd->callback([opts] { run_features(*opts); });

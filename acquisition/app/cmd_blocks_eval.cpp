@@ -49,7 +49,8 @@ std::map<std::string, FaceKey> name_faces(const json& proposals, const json& tru
         const std::string id = b.at("id").get<std::string>();
         if (!rotation.contains(id)) continue;
         for (const json& f : b.at("faces")) {
-            const Eigen::Vector3d n(f.at("normal").at(0).get<double>(), f.at("normal").at(1).get<double>(),
+            const Eigen::Vector3d n(f.at("normal").at(0).get<double>(),
+                                    f.at("normal").at(1).get<double>(),
                                     f.at("normal").at(2).get<double>());
             if (std::string name = true_face_name(rotation[id], n); !name.empty())
                 out[id + ":" + std::to_string(f.at("id").get<int>())] = {id, name};
@@ -75,7 +76,8 @@ void run_eval(const EvalOptions& o) {
         std::map<FaceKey, std::set<FaceKey>> partners;
         std::map<FaceKey, std::string> kind;
         for (const json& j : truth->at("joints")) {
-            const FaceKey a{j.at("a").at("block"), j.at("a").at("face")}, b{j.at("b").at("block"), j.at("b").at("face")};
+            const FaceKey a{j.at("a").at("block"), j.at("a").at("face")},
+                b{j.at("b").at("block"), j.at("b").at("face")};
             partners[a].insert(b), partners[b].insert(a);
             kind[a] = kind[b] = j.at("kind").get<std::string>();
         }
@@ -89,7 +91,8 @@ void run_eval(const EvalOptions& o) {
             for (std::size_t k = 0; k < cands.size(); ++k) {
                 const std::string other = cands[k].at("face").get<std::string>();
                 const auto it = names.find(other);
-                const bool is_true = self != names.end() && it != names.end() && partners.contains(self->second) &&
+                const bool is_true = self != names.end() && it != names.end() &&
+                                     partners.contains(self->second) &&
                                      partners[self->second].contains(it->second);
                 if (!is_true) {
                     wrong[{label, other}] = cands[k].at("score").get<double>();
@@ -120,25 +123,35 @@ void run_eval(const EvalOptions& o) {
                  {"top3_share", top3 / n},
                  {"faces_not_found", missing},
                  {"vertical_top1_share", vertical ? double(top1_vertical) / vertical : 0.0},
-                 {"bed_top1_share", ranks.size() - vertical ? double(top1 - top1_vertical) / double(ranks.size() - vertical) : 0.0},
+                 {"bed_top1_share", ranks.size() - vertical ? double(top1 - top1_vertical) /
+                                                                  double(ranks.size() - vertical)
+                                                            : 0.0},
                  {"wrong_pairs_above_lowest_true", wrong_above},
                  {"random_top1", random_top1}};
         json per = json::array();
         for (const JointFaceRank& r : ranks)
-            per.push_back({{"block", r.face.first}, {"face", r.face.second}, {"kind", r.kind},
-                           {"rank", r.rank}, {"score", r.score}});
+            per.push_back({{"block", r.face.first},
+                           {"face", r.face.second},
+                           {"kind", r.kind},
+                           {"rank", r.rank},
+                           {"score", r.score}});
         out["ranks"] = per;
         if (o.as_json) {
             std::printf("%s\n", out.dump(1).c_str());
             return;
         }
         for (const JointFaceRank& r : ranks)
-            std::printf("%-6s %-3s %-9s rank %s\n", r.face.first.c_str(), r.face.second.c_str(), r.kind.c_str(),
-                        r.rank > 0 ? std::to_string(r.rank).c_str() : (r.rank == 0 ? "face not found" : "not ranked"));
-        std::printf("%zu true joint faces: top-1 %.1f%%, top-3 %.1f%% (vertical top-1 %.1f%%, bed top-1 %.1f%%); "
-                    "%d faces not found; %d wrong pairs above the lowest true pair; random top-1 %.1f%%\n",
-                    ranks.size(), 100 * top1 / n, 100 * top3 / n, 100 * out["vertical_top1_share"].get<double>(),
-                    100 * out["bed_top1_share"].get<double>(), missing, wrong_above, 100 * random_top1);
+            std::printf("%-6s %-3s %-9s rank %s\n", r.face.first.c_str(), r.face.second.c_str(),
+                        r.kind.c_str(),
+                        r.rank > 0 ? std::to_string(r.rank).c_str()
+                                   : (r.rank == 0 ? "face not found" : "not ranked"));
+        std::printf(
+            "%zu true joint faces: top-1 %.1f%%, top-3 %.1f%% (vertical top-1 %.1f%%, bed top-1 "
+            "%.1f%%); "
+            "%d faces not found; %d wrong pairs above the lowest true pair; random top-1 %.1f%%\n",
+            ranks.size(), 100 * top1 / n, 100 * top3 / n,
+            100 * out["vertical_top1_share"].get<double>(),
+            100 * out["bed_top1_share"].get<double>(), missing, wrong_above, 100 * random_top1);
     } catch (const json::exception& e) {
         fail_command({ErrorCode::kFormat, o.proposals + " / " + o.truth + ": " + e.what()});
     }
@@ -148,9 +161,14 @@ void run_eval(const EvalOptions& o) {
 
 void add_blocks_eval_command(CLI::App& blocks) {
     auto opts = std::make_shared<EvalOptions>();
-    auto* cmd = blocks.add_subcommand("eval", "Ranks of the true neighbours (simulated monument truth)");
-    cmd->add_option("proposals", opts->proposals, "Proposals of blocks match")->required()->check(CLI::ExistingFile);
-    cmd->add_option("--truth", opts->truth, "truth.json of sim export-monument")->required()->check(CLI::ExistingFile);
+    auto* cmd =
+        blocks.add_subcommand("eval", "Ranks of the true neighbours (simulated monument truth)");
+    cmd->add_option("proposals", opts->proposals, "Proposals of blocks match")
+        ->required()
+        ->check(CLI::ExistingFile);
+    cmd->add_option("--truth", opts->truth, "truth.json of sim export-monument")
+        ->required()
+        ->check(CLI::ExistingFile);
     cmd->add_flag("--json", opts->as_json, "JSON on stdout");
     cmd->callback([opts] { run_eval(*opts); });
 }

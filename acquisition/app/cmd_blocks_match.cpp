@@ -32,7 +32,8 @@ std::vector<NamedBlockFeatures> read_features_dir(const std::string& dir) {
     for (const auto& entry : fs::directory_iterator(dir, ec))
         if (entry.path().string().ends_with(".features.json")) files.push_back(entry.path());
     if (ec) fail_command({ErrorCode::kIo, dir + ": " + ec.message()});
-    if (files.empty()) fail_command({ErrorCode::kEmpty, dir + ": no *.features.json (run blocks features)"});
+    if (files.empty())
+        fail_command({ErrorCode::kEmpty, dir + ": no *.features.json (run blocks features)"});
     std::sort(files.begin(), files.end());
     std::vector<NamedBlockFeatures> blocks;
     for (const fs::path& f : files) {
@@ -67,8 +68,9 @@ std::vector<ra::ExpertDecision> read_decisions(const std::string& dir,
                          (!a ? a.error() : b.error()).message);
             continue;
         }
-        out.push_back({*a, *b, d.value("decision", "") == "rejected" ? ra::Decision::kRejected
-                                                                     : ra::Decision::kAccepted});
+        out.push_back({*a, *b,
+                       d.value("decision", "") == "rejected" ? ra::Decision::kRejected
+                                                             : ra::Decision::kAccepted});
     }
     return out;
 }
@@ -81,8 +83,12 @@ json candidate_json(const std::vector<NamedBlockFeatures>& blocks, const ra::Fac
     }
     json pairs = json::array();
     for (const auto& [x, y] : s.neighbour_pairs) pairs.push_back({x, y});
-    return {{"face", face_label(blocks, s.b)}, {"score", s.score}, {"checks", checks},
-            {"passed", passed}, {"accepted", s.accepted}, {"neighbour_pairs", pairs}};
+    return {{"face", face_label(blocks, s.b)},
+            {"score", s.score},
+            {"checks", checks},
+            {"passed", passed},
+            {"accepted", s.accepted},
+            {"neighbour_pairs", pairs}};
 }
 
 json blocks_json(const std::vector<NamedBlockFeatures>& blocks) {
@@ -91,8 +97,10 @@ json blocks_json(const std::vector<NamedBlockFeatures>& blocks) {
         json faces = json::array();
         for (const auto& f : b.features.faces)
             faces.push_back({{"id", f.id}, {"normal", {f.normal.x(), f.normal.y(), f.normal.z()}}});
-        out.push_back({{"id", b.id}, {"status", ra::to_string(b.features.status)},
-                       {"message", b.features.message}, {"faces", faces}});
+        out.push_back({{"id", b.id},
+                       {"status", ra::to_string(b.features.status)},
+                       {"message", b.features.message},
+                       {"faces", faces}});
     }
     return out;
 }
@@ -104,9 +112,12 @@ void print_table(const std::vector<NamedBlockFeatures>& blocks, const ra::MatchR
             const ra::FacePairScore& s = p.candidates[k];
             std::string passed;
             for (int c = 0; c < ra::kCheckCount; ++c)
-                if (s.passed(ra::Check(c))) passed += std::string(passed.empty() ? "" : ",") + ra::to_string(ra::Check(c));
-            std::printf("%-12s %-12s %6.2f  %s%s\n", k == 0 ? face_label(blocks, p.face).c_str() : "",
-                        face_label(blocks, s.b).c_str(), s.score, passed.c_str(), s.accepted ? " (accepted)" : "");
+                if (s.passed(ra::Check(c)))
+                    passed += std::string(passed.empty() ? "" : ",") + ra::to_string(ra::Check(c));
+            std::printf("%-12s %-12s %6.2f  %s%s\n",
+                        k == 0 ? face_label(blocks, p.face).c_str() : "",
+                        face_label(blocks, s.b).c_str(), s.score, passed.c_str(),
+                        s.accepted ? " (accepted)" : "");
         }
     }
 }
@@ -118,13 +129,15 @@ void run_match(const MatchOptions& o) {
         bool found = false;
         for (int c = 0; c < ra::kCheckCount; ++c)
             if (name == ra::to_string(ra::Check(c))) config.enabled[c] = false, found = true;
-        if (!found) fail_command({ErrorCode::kInvalidArgument, "--disable: no check '" + name + "'"});
+        if (!found)
+            fail_command({ErrorCode::kInvalidArgument, "--disable: no check '" + name + "'"});
     }
     std::vector<ra::BlockFeatures> features;
     for (const auto& b : blocks) {
         features.push_back(b.features);
         if (!b.features.matchable())
-            spdlog::warn("block {} takes no part: {} ({})", b.id, ra::to_string(b.features.status), b.features.message);
+            spdlog::warn("block {} takes no part: {} ({})", b.id, ra::to_string(b.features.status),
+                         b.features.message);
     }
     const auto decisions = read_decisions(o.dir, ids_of(blocks));
     const ra::MatchResult r = ra::match_blocks(features, decisions, config);
@@ -139,8 +152,11 @@ void run_match(const MatchOptions& o) {
         for (int b : g) ids.push_back(blocks[b].id);
         groups.push_back(ids);
     }
-    const json out{{"features_dir", fs::absolute(o.dir).string()}, {"blocks", blocks_json(blocks)},
-                   {"proposals", proposals}, {"match_graph_edges", r.match_graph.size()}, {"groups", groups}};
+    const json out{{"features_dir", fs::absolute(o.dir).string()},
+                   {"blocks", blocks_json(blocks)},
+                   {"proposals", proposals},
+                   {"match_graph_edges", r.match_graph.size()},
+                   {"groups", groups}};
     if (auto ok = write_json_file(o.out, out); !ok) fail_command(ok.error());
     print_table(blocks, r, o.top);
     std::printf("%zu faces of %zu blocks, %zu mutual best pairs, %zu groups; %zu decisions; %s\n",
@@ -165,11 +181,14 @@ void run_decide(const std::string& proposals, const std::string& a, const std::s
     }
     json& list = decisions["decisions"];
     for (auto it = list.begin(); it != list.end();)
-        it = ((*it)["a"] == a && (*it)["b"] == b) || ((*it)["a"] == b && (*it)["b"] == a) ? list.erase(it) : it + 1;
+        it = ((*it)["a"] == a && (*it)["b"] == b) || ((*it)["a"] == b && (*it)["b"] == a)
+                 ? list.erase(it)
+                 : it + 1;
     list.push_back({{"a", a}, {"b", b}, {"decision", accept ? "accepted" : "rejected"}});
     if (auto ok = write_json_file(decisions_path(dir), decisions); !ok) fail_command(ok.error());
-    std::printf("%s %s = %s in %s (used by the next blocks match)\n", accept ? "accepted" : "rejected",
-                a.c_str(), b.c_str(), decisions_path(dir).c_str());
+    std::printf("%s %s = %s in %s (used by the next blocks match)\n",
+                accept ? "accepted" : "rejected", a.c_str(), b.c_str(),
+                decisions_path(dir).c_str());
 }
 
 }  // namespace
@@ -177,17 +196,24 @@ void run_decide(const std::string& proposals, const std::string& a, const std::s
 void add_blocks_match_commands(CLI::App& blocks) {
     auto opts = std::make_shared<MatchOptions>();
     auto* cmd = blocks.add_subcommand("match", "Ranked neighbour proposals for every face");
-    cmd->add_option("dir", opts->dir, "Folder of blocks features output")->required()->check(CLI::ExistingDirectory);
+    cmd->add_option("dir", opts->dir, "Folder of blocks features output")
+        ->required()
+        ->check(CLI::ExistingDirectory);
     cmd->add_option("--out", opts->out, "Proposals file (JSON)")->required();
-    cmd->add_option("--top", opts->top, "Candidates per face in the table")->check(CLI::PositiveNumber);
-    cmd->add_option("--disable", opts->disabled, "Leave a check out (ablation): neighbours, area, size, "
+    cmd->add_option("--top", opts->top, "Candidates per face in the table")
+        ->check(CLI::PositiveNumber);
+    cmd->add_option("--disable", opts->disabled,
+                    "Leave a check out (ablation): neighbours, area, size, "
                     "roughness, nb-roughness, edges, holes");
     cmd->callback([opts] { run_match(*opts); });
     for (const bool accept : {true, false}) {
         auto refs = std::make_shared<std::array<std::string, 3>>();
-        auto* d = blocks.add_subcommand(accept ? "accept" : "reject",
-                                        accept ? "Accept a proposed face pair" : "Reject a proposed face pair");
-        d->add_option("proposals", (*refs)[0], "Proposals file of blocks match")->required()->check(CLI::ExistingFile);
+        auto* d = blocks.add_subcommand(
+            accept ? "accept" : "reject",
+            accept ? "Accept a proposed face pair" : "Reject a proposed face pair");
+        d->add_option("proposals", (*refs)[0], "Proposals file of blocks match")
+            ->required()
+            ->check(CLI::ExistingFile);
         d->add_option("a", (*refs)[1], "Face BLOCK:FACE")->required();
         d->add_option("b", (*refs)[2], "Face BLOCK:FACE")->required();
         d->callback([refs, accept] { run_decide((*refs)[0], (*refs)[1], (*refs)[2], accept); });

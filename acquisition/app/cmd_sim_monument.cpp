@@ -25,28 +25,30 @@ struct ExportMonumentOptions {
 
 nlohmann::json pose_json(const Pose& T) {
     nlohmann::json rows = nlohmann::json::array();
-    for (int r = 0; r < 4; ++r)
-        rows.push_back({T(r, 0), T(r, 1), T(r, 2), T(r, 3)});
+    for (int r = 0; r < 4; ++r) rows.push_back({T(r, 0), T(r, 1), T(r, 2), T(r, 3)});
     return rows;
 }
 
 nlohmann::json truth_json(const sim::Monument& m) {
     nlohmann::json blocks = nlohmann::json::array(), joints = nlohmann::json::array();
     for (const sim::MonumentBlock& b : m.blocks)
-        blocks.push_back({{"id", b.id},
-                          {"course", b.course},
-                          {"size_m", {b.config.size_m.x(), b.config.size_m.y(), b.config.size_m.z()}},
-                          {"T_monument_block", pose_json(b.T_monument_block)},
-                          {"T_ground_block", pose_json(b.T_ground_block)},
-                          {"clamp_halves", b.config.clamp_holes.size()},
-                          {"dowels", b.config.dowel_holes.size()}});
+        blocks.push_back(
+            {{"id", b.id},
+             {"course", b.course},
+             {"size_m", {b.config.size_m.x(), b.config.size_m.y(), b.config.size_m.z()}},
+             {"T_monument_block", pose_json(b.T_monument_block)},
+             {"T_ground_block", pose_json(b.T_ground_block)},
+             {"clamp_halves", b.config.clamp_holes.size()},
+             {"dowels", b.config.dowel_holes.size()}});
     for (const sim::JointPair& j : m.joints)
-        joints.push_back({{"a", {{"block", m.blocks[j.a.block].id}, {"face", sim::face_name(j.a.face)}}},
-                          {"b", {{"block", m.blocks[j.b.block].id}, {"face", sim::face_name(j.b.face)}}},
-                          {"kind", j.kind == sim::JointKind::kVertical ? "vertical" : "bed"}});
+        joints.push_back(
+            {{"a", {{"block", m.blocks[j.a.block].id}, {"face", sim::face_name(j.a.face)}}},
+             {"b", {{"block", m.blocks[j.b.block].id}, {"face", sim::face_name(j.b.face)}}},
+             {"kind", j.kind == sim::JointKind::kVertical ? "vertical" : "bed"}});
     return {{"monument", m.name},
-            {"frames", "T_ground_block: pose of blocks/ID.ply vertices (block frame centred, "
-                       "+y facade, +-x vertical joints, +-z beds); T_monument_block: built pose"},
+            {"frames",
+             "T_ground_block: pose of blocks/ID.ply vertices (block frame centred, "
+             "+y facade, +-x vertical joints, +-z beds); T_monument_block: built pose"},
             {"blocks", blocks},
             {"joints", joints}};
 }
@@ -66,7 +68,8 @@ void run_export_monument(const ExportMonumentOptions& o) {
     for (const sim::MonumentBlock& b : monument->blocks) {
         const Mesh mesh = sim::block_mesh(b);
         vertices += mesh.vertices.size();
-        const io::PlyWriteOptions options{.comments = {"anascan sim monument " + o.name + " block " + b.id}};
+        const io::PlyWriteOptions options{
+            .comments = {"anascan sim monument " + o.name + " block " + b.id}};
         if (auto ok = io::write_ply(dir / "blocks" / (b.id + ".ply"),
                                     sim::transformed_mesh(mesh, b.T_ground_block), options);
             !ok)

@@ -42,10 +42,10 @@ Expected<std::vector<double>> course_lengths(const MonumentConfig& c, const Draw
         }
         if (ok) return lengths;
     }
-    return fail(ErrorCode::kInvalidArgument,
-                "monument " + c.name + ": no block lengths within [" +
-                    std::to_string(c.min_block_length_m) + ", " +
-                    std::to_string(c.max_block_length_m) + "] m fit the course");
+    return fail(ErrorCode::kInvalidArgument, "monument " + c.name + ": no block lengths within [" +
+                                                 std::to_string(c.min_block_length_m) + ", " +
+                                                 std::to_string(c.max_block_length_m) +
+                                                 "] m fit the course");
 }
 
 // Finishes as on the Octagon, by sharpness of their tool marks (amplitude / wavelength²,
@@ -54,8 +54,8 @@ Expected<std::vector<double>> course_lengths(const MonumentConfig& c, const Draw
 // each varied by up to 25% per block.
 std::array<FaceFinish, kBlockFaceCount> monument_finishes(const Draws& draws, int block) {
     auto vary = [&](int k) { return draws.uniform(30, block * 8 + k, 0.8, 1.25); };
-    const FaceFinish joint{.amplitude_m = 0.0015 * vary(0), .wavelength_m = 0.012,
-                           .recess_m = 0.002};
+    const FaceFinish joint{
+        .amplitude_m = 0.0015 * vary(0), .wavelength_m = 0.012, .recess_m = 0.002};
     const FaceFinish bed{.amplitude_m = 0.0025 * vary(1), .wavelength_m = 0.025};
     return {joint,
             joint,
@@ -89,12 +89,13 @@ MonumentBlock make_block(const MonumentConfig& c, const Draws& draws, int course
 void add_facade_lines(const MonumentConfig& c, Monument& m) {
     for (MonumentBlock& block : m.blocks) {
         if (block.course == 0) {
-            block.config.ornament = OrnamentBand{.enabled = true,
-                                                 .face = BlockFace::kPosY,
-                                                 .top_offset_m = 0.12,
-                                                 .height_m = 0.08,
-                                                 .phase_m = block.T_monument_block.translation().x(),
-                                                 .run_to_edges = true};
+            block.config.ornament =
+                OrnamentBand{.enabled = true,
+                             .face = BlockFace::kPosY,
+                             .top_offset_m = 0.12,
+                             .height_m = 0.08,
+                             .phase_m = block.T_monument_block.translation().x(),
+                             .run_to_edges = true};
         }
         if (block.course == c.courses - 1)
             block.config.moulding = Moulding{.enabled = true, .face = BlockFace::kPosY};
@@ -114,8 +115,8 @@ void add_vertical_joint(const Draws& draws, int a, int b, Monument& m) {
     right.offset_m = -offset_m;  // The -x edge runs the other way.
     m.blocks[a].config.clamp_holes.push_back(left);
     m.blocks[b].config.clamp_holes.push_back(right);
-    m.joints.push_back({.a = {a, BlockFace::kPosX}, .b = {b, BlockFace::kNegX},
-                        .kind = JointKind::kVertical});
+    m.joints.push_back(
+        {.a = {a, BlockFace::kPosX}, .b = {b, BlockFace::kNegX}, .kind = JointKind::kVertical});
 }
 
 // A dowel meeting across the bed joint between lower block lo and upper block up when
@@ -127,20 +128,24 @@ void add_bed_joint(const Draws& draws, int lo, int up, Monument& m) {
     const double xu = U.T_monument_block.translation().x(), hu = 0.5 * U.config.size_m.x();
     const double x0 = std::max(xl - hl, xu - hu), x1 = std::min(xl + hl, xu + hu);
     if (x1 - x0 < 0.05) return;
-    m.joints.push_back({.a = {lo, BlockFace::kPosZ}, .b = {up, BlockFace::kNegZ},
-                        .kind = JointKind::kBed});
+    m.joints.push_back(
+        {.a = {lo, BlockFace::kPosZ}, .b = {up, BlockFace::kNegZ}, .kind = JointKind::kBed});
     if (x1 - x0 < 0.3) return;
     const double x = draws.uniform(60, lo * 1000 + up, x0 + 0.12, x1 - 0.12);
     const double y = draws.uniform(61, lo * 1000 + up, -0.2, 0.2) * L.config.size_m.y();
     const double radius_m = draws.uniform(62, lo * 1000 + up, 0.015, 0.025);
     const double depth_m = draws.uniform(63, lo * 1000 + up, 0.04, 0.06);
     // Top face axes (a, b) = (+x, +y); bottom face axes (a, b) = (+y, +x).
-    m.blocks[lo].config.dowel_holes.push_back(
-        {.face = BlockFace::kPosZ, .u_m = x - xl, .v_m = y, .radius_m = radius_m,
-         .depth_m = depth_m});
-    m.blocks[up].config.dowel_holes.push_back(
-        {.face = BlockFace::kNegZ, .u_m = y, .v_m = x - xu, .radius_m = radius_m,
-         .depth_m = depth_m});
+    m.blocks[lo].config.dowel_holes.push_back({.face = BlockFace::kPosZ,
+                                               .u_m = x - xl,
+                                               .v_m = y,
+                                               .radius_m = radius_m,
+                                               .depth_m = depth_m});
+    m.blocks[up].config.dowel_holes.push_back({.face = BlockFace::kNegZ,
+                                               .u_m = y,
+                                               .v_m = x - xu,
+                                               .radius_m = radius_m,
+                                               .depth_m = depth_m});
 }
 
 void weather_and_lay_down(const MonumentConfig& c, const Draws& draws, Monument& m) {
@@ -154,8 +159,8 @@ void weather_and_lay_down(const MonumentConfig& c, const Draws& draws, Monument&
         b.lost_corner_max_depth_m = w.lost_corner_depth_m;
         b.erosion_m = w.erosion_m;
         const BlockPlacement placement{
-            .resting_face = static_cast<BlockFace>(
-                static_cast<int>(draws.uniform(72, i, 0.0, 5.999))),
+            .resting_face =
+                static_cast<BlockFace>(static_cast<int>(draws.uniform(72, i, 0.0, 5.999))),
             .yaw_deg = draws.uniform(73, i, 0.0, 360.0),
             .position_m = c.ground_spacing_m *
                           Eigen::Vector2d(double(int(i) % columns), double(int(i) / columns))};

@@ -47,8 +47,7 @@ double clamp_hole_m(const StoneBlockConfig& config, const FaceFrame& top, const 
     const double edge_m = std::abs(ea) * top.half_a_m + std::abs(eb) * top.half_b_m;
     const double s = ea * u + eb * v;                   // Toward the edge.
     const double w = -eb * u + ea * v - hole.offset_m;  // Along the edge.
-    const double end_m =
-        hole.open_at_edge ? edge_m + hole.width_m : edge_m - 0.5 * config.margin_m;
+    const double end_m = hole.open_at_edge ? edge_m + hole.width_m : edge_m - 0.5 * config.margin_m;
     const double start_m = end_m - hole.length_m;
     const double hw = 0.5 * hole.width_m, wall = config.grid_step_m;
     const double channel =

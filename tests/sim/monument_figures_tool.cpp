@@ -42,7 +42,9 @@ Tally evaluate(const sim::Monument& m, const std::vector<ra::BlockFeatures>& fea
         int best = 0;  // 0: face not found; -1: not ranked.
         for (const ra::FaceProposals& p : r.per_face) {
             if (p.face.block != jf.first) continue;
-            if (true_face(m.blocks[jf.first], features[jf.first].faces[p.face.face].normal) != jf.second) continue;
+            if (true_face(m.blocks[jf.first], features[jf.first].faces[p.face.face].normal) !=
+                jf.second)
+                continue;
             if (best == 0) best = -1;
             for (std::size_t k = 0; k < p.candidates.size(); ++k) {
                 const ra::FaceRef o = p.candidates[k].b;
@@ -80,22 +82,26 @@ int main(int argc, char** argv) {
         for (const sim::MonumentBlock& b : m->blocks) {
             Mesh mesh = sim::transformed_mesh(sim::block_mesh(b), b.T_ground_block);
             if (noise_m > 0)
-                for (auto& p : mesh.vertices.positions) p += Eigen::Vector3f(noise(rng), noise(rng), noise(rng));
+                for (auto& p : mesh.vertices.positions)
+                    p += Eigen::Vector3f(noise(rng), noise(rng), noise(rng));
             features.push_back(ra::extract_block_features(mesh, {}));
         }
         for (std::size_t c = 0; c < configs.size(); ++c) {
             const Tally t = evaluate(*m, features, ra::match_blocks(features, {}, configs[c]));
-            totals[c].faces += t.faces, totals[c].top1 += t.top1, totals[c].top3 += t.top3, totals[c].missing += t.missing;
+            totals[c].faces += t.faces, totals[c].top1 += t.top1, totals[c].top3 += t.top3,
+                totals[c].missing += t.missing;
             if (c == 0)
-                std::printf("seed %s (%llu): %d joint faces, top-1 %d, top-3 %d, not found %d\n", argv[a],
-                            (unsigned long long)config->seed, t.faces, t.top1, t.top3, t.missing);
+                std::printf("seed %s (%llu): %d joint faces, top-1 %d, top-3 %d, not found %d\n",
+                            argv[a], (unsigned long long)config->seed, t.faces, t.top1, t.top3,
+                            t.missing);
         }
     }
     for (std::size_t c = 0; c < configs.size(); ++c)
         std::printf("%-16s top-1 %5.1f%%  top-3 %5.1f%%  (%d joint faces, %d not found)\n",
-                    c == 0 ? "all checks" : (std::string("without ") + ra::to_string(ra::Check(c - 1))).c_str(),
-                    100.0 * totals[c].top1 / totals[c].faces, 100.0 * totals[c].top3 / totals[c].faces,
-                    totals[c].faces, totals[c].missing);
+                    c == 0 ? "all checks"
+                           : (std::string("without ") + ra::to_string(ra::Check(c - 1))).c_str(),
+                    100.0 * totals[c].top1 / totals[c].faces,
+                    100.0 * totals[c].top3 / totals[c].faces, totals[c].faces, totals[c].missing);
     std::printf("random top-1: %.1f%%\n", 100.0 / (6.0 * 14.0));
     return 0;
 }

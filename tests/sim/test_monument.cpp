@@ -32,8 +32,9 @@ TEST(Monument, NamedSectionsAndJointsTouch) {
             for (const JointPair& j : m->joints) {
                 const MonumentBlock &a = m->blocks[j.a.block], &b = m->blocks[j.b.block];
                 const Eigen::Vector3d n = face_normal(j.a.face);
-                EXPECT_NEAR(n.dot(face_centre_monument(a, j.a.face) - face_centre_monument(b, j.b.face)),
-                            0.0, 1e-9);
+                EXPECT_NEAR(
+                    n.dot(face_centre_monument(a, j.a.face) - face_centre_monument(b, j.b.face)),
+                    0.0, 1e-9);
                 EXPECT_NEAR(n.dot(face_normal(j.b.face)), -1.0, 1e-12);
                 vertical += j.kind == JointKind::kVertical;
             }
@@ -90,8 +91,9 @@ TEST(MonumentFeatures, FallenBlocksAgainstTruth) {
                 if (p.normal.dot(n) > std::cos(2.0 * std::numbers::pi / 180)) found = &p;
             ASSERT_NE(found, nullptr) << b.id << " face " << face_name(BlockFace(face));
             EXPECT_LT(std::acos(std::min(1.0, found->normal.dot(n))) * 180 / std::numbers::pi, 0.3);
-            const Eigen::Vector3d in_plane = (Eigen::Vector3d::Ones() - face_normal(BlockFace(face)).cwiseAbs())
-                                                 .cwiseProduct(b.config.size_m);
+            const Eigen::Vector3d in_plane =
+                (Eigen::Vector3d::Ones() - face_normal(BlockFace(face)).cwiseAbs())
+                    .cwiseProduct(b.config.size_m);
             const double w = in_plane.maxCoeff(), h = (in_plane.sum() - w);
             EXPECT_NEAR(found->width_m, w, 0.005) << b.id << " " << face_name(BlockFace(face));
             EXPECT_NEAR(found->height_m, h, 0.005) << b.id << " " << face_name(BlockFace(face));

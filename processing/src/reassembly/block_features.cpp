@@ -36,8 +36,8 @@ std::vector<int> point_faces(std::size_t n, const std::vector<detail::FaceBuild>
 void set_status(BlockFeatures& out, const BlockFeatureConfig& config) {
     if (out.faces.empty()) {
         out.status = BlockStatus::kNoPlanarFace;
-        out.message = "no planar face of at least " +
-                      std::to_string(config.faces.min_face_area_m2) + " m2";
+        out.message =
+            "no planar face of at least " + std::to_string(config.faces.min_face_area_m2) + " m2";
     } else if (out.faces.size() < 2 || out.edges.empty()) {
         out.status = BlockStatus::kTooFewFaces;
         out.message = std::to_string(out.faces.size()) + " planar face(s), none meeting another";
@@ -110,8 +110,10 @@ BlockFeatures extract_block_features(const PointCloud& cloud, const BlockFeature
         return out;
     }
     const KdTree tree(cloud.positions);
-    const detail::FeatureInput in{.points = cloud.positions, .normals = cloud.normals,
-                                  .tree = tree, .spacing_m = median_spacing(cloud.positions, tree)};
+    const detail::FeatureInput in{.points = cloud.positions,
+                                  .normals = cloud.normals,
+                                  .tree = tree,
+                                  .spacing_m = median_spacing(cloud.positions, tree)};
     out.spacing_m = in.spacing_m;
     std::vector<detail::FaceBuild> faces = detail::find_faces(in, config.faces);
     out.edges = detail::face_adjacency(in, faces, config.adjacency);
@@ -156,14 +158,22 @@ BlockFeatures extract_block_features(const Mesh& mesh, const BlockFeatureConfig&
 
 const char* to_string(BlockStatus status) {
     switch (status) {
-        case BlockStatus::kOk: return "ok";
-        case BlockStatus::kEmpty: return "empty";
-        case BlockStatus::kNoNormals: return "no normals";
-        case BlockStatus::kBadMesh: return "bad mesh";
-        case BlockStatus::kNonManifold: return "non-manifold";
-        case BlockStatus::kNoPlanarFace: return "no planar face";
-        case BlockStatus::kTooFewFaces: return "too few faces";
-        case BlockStatus::kTooNoisy: return "too noisy";
+        case BlockStatus::kOk:
+            return "ok";
+        case BlockStatus::kEmpty:
+            return "empty";
+        case BlockStatus::kNoNormals:
+            return "no normals";
+        case BlockStatus::kBadMesh:
+            return "bad mesh";
+        case BlockStatus::kNonManifold:
+            return "non-manifold";
+        case BlockStatus::kNoPlanarFace:
+            return "no planar face";
+        case BlockStatus::kTooFewFaces:
+            return "too few faces";
+        case BlockStatus::kTooNoisy:
+            return "too noisy";
     }
     return "unknown";
 }

@@ -71,8 +71,11 @@ std::vector<FaceEdge> face_adjacency(const FeatureInput& in, const std::vector<F
                              .length_m = hi - lo,
                              .angle_deg = angle_deg};
             edges.push_back(e);
-            edges.push_back({.from = b.id, .to = a.id, .point_m = e.point_m,
-                             .direction = -e.direction, .length_m = e.length_m,
+            edges.push_back({.from = b.id,
+                             .to = a.id,
+                             .point_m = e.point_m,
+                             .direction = -e.direction,
+                             .length_m = e.length_m,
                              .angle_deg = angle_deg});
         }
     }

@@ -68,7 +68,8 @@ void fit_rectangle(const FeatureInput& in, FaceBuild& f) {
 
 // Assigns every input point to the plane it lies on best (distance and normal), so that
 // all points count, not only the RANSAC subsample.
-std::vector<FaceBuild> assign_points(const FeatureInput& in, const std::vector<DetectedPlane>& planes,
+std::vector<FaceBuild> assign_points(const FeatureInput& in,
+                                     const std::vector<DetectedPlane>& planes,
                                      const FaceDetectionConfig& c) {
     std::vector<FaceBuild> faces(planes.size());
     const double cos_max = std::cos(c.normal_threshold_deg * kDegToRad);
@@ -92,8 +93,9 @@ std::vector<FaceBuild> assign_points(const FeatureInput& in, const std::vector<D
 // Merges each face into a larger one that is parallel and within merge_offset_m (a recess
 // or a carved band of the same dressed face).
 std::vector<FaceBuild> merge_parallel(std::vector<FaceBuild> faces, const FaceDetectionConfig& c) {
-    std::sort(faces.begin(), faces.end(),
-              [](const FaceBuild& a, const FaceBuild& b) { return a.inliers.size() > b.inliers.size(); });
+    std::sort(faces.begin(), faces.end(), [](const FaceBuild& a, const FaceBuild& b) {
+        return a.inliers.size() > b.inliers.size();
+    });
     const double cos_merge = std::cos(c.merge_angle_deg * kDegToRad);
     std::vector<FaceBuild> kept;
     for (FaceBuild& f : faces) {
@@ -120,13 +122,13 @@ std::vector<FaceBuild> find_faces(const FeatureInput& in, const FaceDetectionCon
     const double sample_spacing_m =
         in.spacing_m * std::sqrt(double(in.points.size()) / double(sample.size()));
     const double point_area_m2 = sample_spacing_m * sample_spacing_m;
-    const RansacParams params{
-        .epsilon_m = c.epsilon_m,
-        .cluster_epsilon_m = 4.0 * sample_spacing_m,
-        .normal_cos = std::cos(c.normal_threshold_deg * kDegToRad),
-        .min_points = std::max<std::size_t>(30, std::size_t(0.3 * c.min_face_area_m2 / point_area_m2)),
-        .probability = c.probability,
-        .seed = c.seed};
+    const RansacParams params{.epsilon_m = c.epsilon_m,
+                              .cluster_epsilon_m = 4.0 * sample_spacing_m,
+                              .normal_cos = std::cos(c.normal_threshold_deg * kDegToRad),
+                              .min_points = std::max<std::size_t>(
+                                  30, std::size_t(0.3 * c.min_face_area_m2 / point_area_m2)),
+                              .probability = c.probability,
+                              .seed = c.seed};
     std::vector<FaceBuild> faces = assign_points(in, detect_planes(sp, sn, params), c);
     for (FaceBuild& f : faces)
         if (f.inliers.size() >= 3) refit_plane(in, f, f.face.normal);

@@ -81,7 +81,8 @@ void face_holes(const FeatureInput& in, std::vector<FaceBuild>& faces, const Hol
             if (double(idx.size()) * in.spacing_m * in.spacing_m < c.min_area_m2) continue;
             std::vector<Eigen::Vector2d> uv;
             double depth_m = 0.0;
-            for (std::size_t i : idx) uv.push_back(floor.uv[i]), depth_m = std::max(depth_m, floor.depth_m[i]);
+            for (std::size_t i : idx)
+                uv.push_back(floor.uv[i]), depth_m = std::max(depth_m, floor.depth_m[i]);
             const Rectangle2 r = min_area_rectangle(uv);
             FaceHole hole{.face_uv_m = r.centre,
                           .length_m = r.long_m + in.spacing_m,

@@ -98,13 +98,13 @@ double neighbour_hole_score(const BlockFeatures& a, int fa, const BlockFeatures&
             if (JointHole j = joint_hole(eb, h); j.from_edge_m < config.hole_edge_distance_m)
                 hb.push_back(j), pair_b.push_back(int(p));
     }
-    return hole_agreement(ha.size(), hb.size(), config.hole_tolerance_m, [&](std::size_t i,
-                                                                              std::size_t j) {
-        if (pair_a[i] != pair_b[j]) return 1e9;
-        return std::abs(ha[i].along_m + hb[j].along_m) +
-               std::abs(ha[i].from_edge_m - hb[j].from_edge_m) +
-               hole_size_error(*ha[i].hole, *hb[j].hole);
-    });
+    return hole_agreement(ha.size(), hb.size(), config.hole_tolerance_m,
+                          [&](std::size_t i, std::size_t j) {
+                              if (pair_a[i] != pair_b[j]) return 1e9;
+                              return std::abs(ha[i].along_m + hb[j].along_m) +
+                                     std::abs(ha[i].from_edge_m - hb[j].from_edge_m) +
+                                     hole_size_error(*ha[i].hole, *hb[j].hole);
+                          });
 }
 
 // Holes on the matching faces themselves (dowels across a bed joint): the same distances
@@ -113,31 +113,30 @@ double face_hole_score(const BlockFeatures& a, int fa, const BlockFeatures& b, i
                        const Correspondence& c, const MatchConfig& config) {
     const auto& holes_a = a.faces[fa].holes;
     const auto& holes_b = b.faces[fb].holes;
-    return hole_agreement(holes_a.size(), holes_b.size(), config.hole_tolerance_m,
-                          [&](std::size_t i, std::size_t j) {
-                              std::vector<double> d;
-                              for (const auto& [na, nb] : c.pairs) {
-                                  const JointHole ja = joint_hole(find_edge(a, fa, na), holes_a[i]);
-                                  const JointHole jb = joint_hole(find_edge(b, fb, nb), holes_b[j]);
-                                  d.push_back(std::abs(ja.from_edge_m - jb.from_edge_m));
-                              }
-                              if (d.empty()) return 1e9;
-                              std::sort(d.begin(), d.end());
-                              return d[(d.size() - 1) / 2] +
-                                     hole_size_error(holes_a[i], holes_b[j]);
-                          });
+    return hole_agreement(
+        holes_a.size(), holes_b.size(), config.hole_tolerance_m, [&](std::size_t i, std::size_t j) {
+            std::vector<double> d;
+            for (const auto& [na, nb] : c.pairs) {
+                const JointHole ja = joint_hole(find_edge(a, fa, na), holes_a[i]);
+                const JointHole jb = joint_hole(find_edge(b, fb, nb), holes_b[j]);
+                d.push_back(std::abs(ja.from_edge_m - jb.from_edge_m));
+            }
+            if (d.empty()) return 1e9;
+            std::sort(d.begin(), d.end());
+            return d[(d.size() - 1) / 2] + hole_size_error(holes_a[i], holes_b[j]);
+        });
 }
 
-Correspondence score_correspondence(const BlockFeatures& a, int fa, const BlockFeatures& b,
-                                    int fb, std::vector<std::pair<int, int>> pairs,
+Correspondence score_correspondence(const BlockFeatures& a, int fa, const BlockFeatures& b, int fb,
+                                    std::vector<std::pair<int, int>> pairs,
                                     const MatchConfig& config) {
     Correspondence c{.pairs = std::move(pairs)};
     for (const auto& [na, nb] : c.pairs) {
-        c.neighbour_roughness += roughness_score(a.faces[na].roughness_per_m2,
-                                                 b.faces[nb].roughness_per_m2,
-                                                 config.roughness_tolerance);
-        c.edge_lengths += linear_score(find_edge(a, fa, na).length_m - find_edge(b, fb, nb).length_m,
-                                       config.edge_length_tolerance_m);
+        c.neighbour_roughness += roughness_score(
+            a.faces[na].roughness_per_m2, b.faces[nb].roughness_per_m2, config.roughness_tolerance);
+        c.edge_lengths +=
+            linear_score(find_edge(a, fa, na).length_m - find_edge(b, fb, nb).length_m,
+                         config.edge_length_tolerance_m);
     }
     const double n = std::max<double>(1.0, double(c.pairs.size()));
     c.neighbour_roughness /= n;
@@ -160,8 +159,8 @@ double correspondence_value(const Correspondence& c, const MatchConfig& config) 
 }
 
 // Every mirrored cyclic correspondence of the neighbours; the best by weighted score.
-Correspondence best_correspondence(const BlockFeatures& a, int fa, const BlockFeatures& b,
-                                   int fb, const MatchConfig& config) {
+Correspondence best_correspondence(const BlockFeatures& a, int fa, const BlockFeatures& b, int fb,
+                                   const MatchConfig& config) {
     const std::vector<int> na = ordered_neighbours(a, fa), nb = ordered_neighbours(b, fb);
     Correspondence best;
     double best_value = -1.0;
@@ -190,8 +189,7 @@ FacePairScore score_face_pair(const BlockFeatures& a, int fa, const BlockFeature
     const PlanarFace &f = a.faces[fa], &g = b.faces[fb];
     FacePairScore s{.a = {0, fa}, .b = {0, fb}};
     auto set = [&](Check c, double v) { s.checks[static_cast<int>(c)] = v; };
-    set(Check::kNeighbourCount,
-        a.neighbours(fa).size() == b.neighbours(fb).size() ? 1.0 : 0.0);
+    set(Check::kNeighbourCount, a.neighbours(fa).size() == b.neighbours(fb).size() ? 1.0 : 0.0);
     set(Check::kArea, linear_score((f.area_m2 - g.area_m2) / std::max(f.area_m2, g.area_m2),
                                    config.area_tolerance));
     set(Check::kSize, 0.5 * (linear_score(f.width_m - g.width_m, config.size_tolerance_m) +

@@ -27,8 +27,8 @@ double bending_energy(const FeatureInput& in, std::size_t p, int k, std::vector<
     return count > 0 ? sum / count : 0.0;
 }
 
-double roughness_of(const FeatureInput& in, const std::vector<int>& point_face,
-                    const FaceBuild& f, const RoughnessConfig& c) {
+double roughness_of(const FeatureInput& in, const std::vector<int>& point_face, const FaceBuild& f,
+                    const RoughnessConfig& c) {
     const std::size_t stride =
         std::max<std::size_t>(1, f.inliers.size() / std::size_t(std::max(1, c.samples_per_face)));
     const float radius_m = static_cast<float>(c.radius_factor * std::max(in.spacing_m, 1e-6));

@@ -9,8 +9,7 @@
 namespace anascan::reassembly {
 namespace {
 
-const ExpertDecision* decision_of(std::span<const ExpertDecision> decisions, FaceRef a,
-                                  FaceRef b) {
+const ExpertDecision* decision_of(std::span<const ExpertDecision> decisions, FaceRef a, FaceRef b) {
     for (const ExpertDecision& d : decisions)
         if ((d.a == a && d.b == b) || (d.a == b && d.b == a)) return &d;
     return nullptr;
@@ -64,7 +63,8 @@ MatchResult match_blocks(std::span<const BlockFeatures> blocks,
             if (slot[bi].empty() || slot[bj].empty()) continue;
             for (std::size_t fa = 0; fa < slot[bi].size(); ++fa) {
                 for (std::size_t fb = 0; fb < slot[bj].size(); ++fb) {
-                    FacePairScore s = score_face_pair(blocks[bi], int(fa), blocks[bj], int(fb), config);
+                    FacePairScore s =
+                        score_face_pair(blocks[bi], int(fa), blocks[bj], int(fb), config);
                     s.a = {int(bi), int(fa)};
                     s.b = {int(bj), int(fb)};
                     const ExpertDecision* d = decision_of(decisions, s.a, s.b);

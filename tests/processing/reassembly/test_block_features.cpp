@@ -23,7 +23,8 @@ Mesh box_mesh(const Eigen::Vector3d& size_m, double step_m, const Relief& relief
         const int axis = f / 2;
         const double sign = f % 2 == 0 ? 1.0 : -1.0;
         const int ua = (axis + 1) % 3, va = (axis + 2) % 3;
-        const int nu = int(std::round(size_m[ua] / step_m)), nv = int(std::round(size_m[va] / step_m));
+        const int nu = int(std::round(size_m[ua] / step_m)),
+                  nv = int(std::round(size_m[va] / step_m));
         const int base = int(mesh.vertices.size());
         for (int j = 0; j <= nv; ++j) {
             for (int i = 0; i <= nu; ++i) {
@@ -56,7 +57,8 @@ const PlanarFace* face_along(const BlockFeatures& f, const Eigen::Vector3d& n) {
 }
 
 TEST(BlockFeatures, BoxFacesSizesAndAdjacency) {
-    for (const Eigen::Vector3d size : {Eigen::Vector3d(1.0, 0.6, 0.5), Eigen::Vector3d(0.45, 0.7, 0.4)}) {
+    for (const Eigen::Vector3d size :
+         {Eigen::Vector3d(1.0, 0.6, 0.5), Eigen::Vector3d(0.45, 0.7, 0.4)}) {
         const BlockFeatures f = extract_block_features(box_mesh(size, 0.01), {});
         ASSERT_EQ(f.status, BlockStatus::kOk) << f.message;
         ASSERT_EQ(f.faces.size(), 6u);
@@ -66,7 +68,8 @@ TEST(BlockFeatures, BoxFacesSizesAndAdjacency) {
                 const Eigen::Vector3d n = sign * Eigen::Vector3d::Unit(axis);
                 const PlanarFace* face = face_along(f, n);
                 ASSERT_NE(face, nullptr);
-                const double angle_deg = std::acos(std::min(1.0, face->normal.dot(n))) * 180 / std::numbers::pi;
+                const double angle_deg =
+                    std::acos(std::min(1.0, face->normal.dot(n))) * 180 / std::numbers::pi;
                 EXPECT_LT(angle_deg, 0.3);
                 const double a = size[(axis + 1) % 3], b = size[(axis + 2) % 3];
                 EXPECT_NEAR(face->width_m, std::max(a, b), 0.005);
@@ -130,7 +133,8 @@ TEST(BlockFeatures, HeavyNoiseIsNotMatched) {
     Mesh noisy = box_mesh({0.8, 0.6, 0.5}, 0.01);
     std::mt19937 rng(3);
     std::normal_distribution<float> noise(0.0f, 0.01f);  // 1 cm on a 1 cm grid.
-    for (Eigen::Vector3f& p : noisy.vertices.positions) p += Eigen::Vector3f(noise(rng), noise(rng), noise(rng));
+    for (Eigen::Vector3f& p : noisy.vertices.positions)
+        p += Eigen::Vector3f(noise(rng), noise(rng), noise(rng));
     const BlockFeatures f = extract_block_features(noisy, {});
     EXPECT_FALSE(f.matchable()) << to_string(f.status) << ": " << f.message;
 }

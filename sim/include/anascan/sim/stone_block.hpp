@@ -54,9 +54,9 @@ struct OrnamentBand {
     BlockFace face = BlockFace::kPosY;
     double top_offset_m = 0.04;  ///< Distance of the band's upper border below the top edge.
     double height_m = 0.08;
-    double period_m = 0.06;  ///< Spacing of the eggs along the band.
-    double depth_m = 0.012;  ///< Depth of the carved background.
-    double phase_m = 0.0;    ///< Shift of the eggs along the band (continuity across blocks).
+    double period_m = 0.06;     ///< Spacing of the eggs along the band.
+    double depth_m = 0.012;     ///< Depth of the carved background.
+    double phase_m = 0.0;       ///< Shift of the eggs along the band (continuity across blocks).
     bool run_to_edges = false;  ///< Through the drafted margins (a band crossing the joints).
 };
 
@@ -91,13 +91,13 @@ struct StoneBlockConfig {
                                        DowelHole{.face = BlockFace::kPosZ, .u_m = -0.15}};
     OrnamentBand ornament;
     Moulding moulding;
-    int chip_count = 8;                    ///< Chipped-off pieces along random edges.
-    double chip_max_depth_m = 0.025;       ///< Largest chip depth, measured on the faces.
-    double chip_max_half_length_m = 0.08;  ///< Largest chip half length along its edge.
-    int lost_corner_count = 0;             ///< Corners broken off (weathering, falling).
+    int chip_count = 8;                     ///< Chipped-off pieces along random edges.
+    double chip_max_depth_m = 0.025;        ///< Largest chip depth, measured on the faces.
+    double chip_max_half_length_m = 0.08;   ///< Largest chip half length along its edge.
+    int lost_corner_count = 0;              ///< Corners broken off (weathering, falling).
     double lost_corner_max_depth_m = 0.08;  ///< Largest cut depth along the corner diagonal.
     double erosion_m = 0.0;  ///< Peak depth of weathering over the whole surface (no margin).
-    std::uint64_t seed = 1;                ///< Same config and seed: identical mesh.
+    std::uint64_t seed = 1;  ///< Same config and seed: identical mesh.
 };
 
 /// The block as a closed, consistently oriented (outward) mesh in the block frame, with

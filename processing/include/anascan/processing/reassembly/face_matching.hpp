@@ -42,8 +42,8 @@ struct FaceRef {
 /// The score of one face pair with its breakdown.
 struct FacePairScore {
     FaceRef a, b;
-    double score = 0.0;                    ///< Σ weight · check score.
-    std::array<double, kCheckCount> checks{};  ///< Each check's score, 0..1.
+    double score = 0.0;                                ///< Σ weight · check score.
+    std::array<double, kCheckCount> checks{};          ///< Each check's score, 0..1.
     std::vector<std::pair<int, int>> neighbour_pairs;  ///< Face ids of a ↔ b, best found.
     bool accepted = false;  ///< An expert accepted this pair (ranks first).
 
