@@ -9,6 +9,7 @@ PACKAGES=(
     clang libclang-rt-14-dev           # libFuzzer targets
     libeigen3-dev libnanoflann-dev libtbb-dev
     libqhull-dev                       # processing: convex hull of a stone (coverage)
+    libcgal-dev                        # processing: efficient RANSAC planes of block features
     libopencv-dev libopencv-contrib-dev
     libembree-dev                      # ray caster of the simulated scanners (sim/)
     libusb-1.0-0-dev libv4l-dev

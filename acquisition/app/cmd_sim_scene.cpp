@@ -77,6 +77,7 @@ void add_sim_scene_commands(CLI::App& sim) {
         ->check(CLI::NonNegativeNumber);
     cmd->callback([opts] { run_export_scene(*opts); });
     add_sim_scanner_commands(sim);
+    add_sim_monument_commands(sim);
 }
 
 }  // namespace anascan::cli

@@ -67,6 +67,14 @@ void add_sim_command(CLI::App& app);
 void add_sim_scene_commands(CLI::App& sim);
 /// `sim tof-scan`, `sim sl-capture`: simulated scanners on the named scenes.
 void add_sim_scanner_commands(CLI::App& sim);
+/// `sim list-monuments`, `sim export-monument`: the simulated monument with its truth.
+void add_sim_monument_commands(CLI::App& sim);
+/// `blocks features|match|accept|reject|eval`: block features and neighbour proposals.
+void add_blocks_command(CLI::App& app);
+/// `blocks match|accept|reject` (registered by add_blocks_command on its group).
+void add_blocks_match_commands(CLI::App& blocks);
+/// `blocks eval` (registered by add_blocks_command on its group).
+void add_blocks_eval_command(CLI::App& blocks);
 /// `session info|check|export|exclude|note|turned-over`: a capture session folder.
 void add_session_command(CLI::App& app);
 

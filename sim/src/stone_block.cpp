@@ -73,6 +73,38 @@ void apply_chip(const Chip& chip, Eigen::Vector3d& p) {
     if (h > limit) p += (limit - h) * chip.outward;
 }
 
+// A lost corner: the corner at signs s cut off by a rough plane across its diagonal.
+struct LostCorner {
+    Eigen::Vector3d corner, outward;
+    double depth_m = 0.0;
+    std::uint64_t seed = 0;
+};
+
+std::vector<LostCorner> make_lost_corners(const StoneBlockConfig& config,
+                                          const Eigen::Vector3d& half_m) {
+    std::vector<LostCorner> corners;
+    for (int c = 0; c < config.lost_corner_count; ++c) {
+        auto draw = [&](int k) {
+            return detail::unit_from_hash(detail::hash3(config.seed, 700 + c, k));
+        };
+        Eigen::Vector3d signs;
+        for (int a = 0; a < 3; ++a) signs[a] = draw(a) < 0.5 ? -1.0 : 1.0;
+        corners.push_back({.corner = signs.cwiseProduct(half_m),
+                           .outward = signs / std::sqrt(3.0),
+                           .depth_m = config.lost_corner_max_depth_m * (0.5 + 0.5 * draw(3)),
+                           .seed = detail::hash3(config.seed, 800 + c)});
+    }
+    return corners;
+}
+
+void apply_lost_corner(const LostCorner& lost, Eigen::Vector3d& p) {
+    const double rough =
+        0.9 + 0.2 * detail::value_noise(lost.seed, p.x() / 0.02 + p.z() / 0.03, p.y() / 0.02);
+    const double limit = -lost.depth_m * rough;
+    const double h = lost.outward.dot(p - lost.corner);
+    if (h > limit) p += (limit - h) * lost.outward;
+}
+
 int dominant_axis(const Eigen::Vector3d& v) {
     int axis = 0;
     v.cwiseAbs().maxCoeff(&axis);
@@ -90,6 +122,7 @@ struct MeshBuilder {
     const StoneBlockConfig& config;
     Lattice lattice;
     std::vector<Chip> chips;
+    std::vector<LostCorner> lost_corners;
     Mesh mesh;
     std::unordered_map<std::int64_t, int> index_of;
 
@@ -100,6 +133,7 @@ struct MeshBuilder {
         if (boundary_count(lattice, ijk) == 1)
             p -= detail::face_relief_m(config, frame, p.dot(frame.a), p.dot(frame.b)) * frame.n;
         for (const Chip& chip : chips) apply_chip(chip, p);
+        for (const LostCorner& lost : lost_corners) apply_lost_corner(lost, p);
         it->second = static_cast<int>(mesh.vertices.positions.size());
         mesh.vertices.positions.push_back(p.cast<float>());
         return it->second;
@@ -159,7 +193,10 @@ Mesh make_stone_block(const StoneBlockConfig& config) {
     const double step = std::max(config.grid_step_m, 1e-4);
     Lattice lattice{.cells = (2.0 * half_m / step).array().round().max(2.0).cast<int>().matrix(),
                     .half_m = half_m};
-    MeshBuilder builder{.config = config, .lattice = lattice, .chips = make_chips(config, half_m)};
+    MeshBuilder builder{.config = config,
+                        .lattice = lattice,
+                        .chips = make_chips(config, half_m),
+                        .lost_corners = make_lost_corners(config, half_m)};
     for (int f = 0; f < kBlockFaceCount; ++f)
         builder.add_face(detail::face_frame(static_cast<BlockFace>(f), half_m));
     add_vertex_normals(builder.mesh);

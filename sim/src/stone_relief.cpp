@@ -47,7 +47,7 @@ double clamp_hole_m(const StoneBlockConfig& config, const FaceFrame& top, const 
     const double edge_m = std::abs(ea) * top.half_a_m + std::abs(eb) * top.half_b_m;
     const double s = ea * u + eb * v;                   // Toward the edge.
     const double w = -eb * u + ea * v - hole.offset_m;  // Along the edge.
-    const double end_m = edge_m - 0.5 * config.margin_m;
+    const double end_m = hole.open_at_edge ? edge_m + hole.width_m : edge_m - 0.5 * config.margin_m;
     const double start_m = end_m - hole.length_m;
     const double hw = 0.5 * hole.width_m, wall = config.grid_step_m;
     const double channel =
@@ -68,16 +68,30 @@ double ornament_m(const StoneBlockConfig& config, const FaceFrame& frame, double
     const bool a_vertical = std::abs(frame.a.z()) > 0.5;
     const double z = a_vertical ? u * frame.a.z() : v * frame.b.z();
     const double along = a_vertical ? v : u;
-    const double half_along = (a_vertical ? frame.half_b_m : frame.half_a_m) - config.margin_m;
+    const double half_along = (a_vertical ? frame.half_b_m : frame.half_a_m) -
+                              (band.run_to_edges ? 0.0 : config.margin_m);
     const double half_z = std::abs(a_vertical ? frame.half_a_m : frame.half_b_m);
     const double z_mid = half_z - band.top_offset_m - 0.5 * band.height_m;
     const double inside = inside_rect(z, along, z_mid, 0.5 * band.height_m, half_along);
     if (inside <= -config.grid_step_m) return 0.0;
-    const double phase = along / band.period_m - std::floor(along / band.period_m) - 0.5;
+    const double shifted = (along + band.phase_m) / band.period_m;
+    const double phase = shifted - std::floor(shifted) - 0.5;
     const double dz = (z - z_mid) / (0.4 * band.height_m);
     const double r2 = (phase / 0.38) * (phase / 0.38) + dz * dz;
     const double egg = r2 < 1.0 ? std::sqrt(1.0 - r2) : 0.0;
     return pocket_m(inside, band.depth_m * (1.0 - egg), config.grid_step_m);
+}
+
+// Cavetto moulding: depth below the face as a function of the height in the face only.
+double moulding_m(const Moulding& m, const FaceFrame& frame, double u, double v) {
+    if (!m.enabled || m.face != frame.face || std::abs(frame.n.z()) > 0.5) return 0.0;
+    const bool a_vertical = std::abs(frame.a.z()) > 0.5;
+    const double z = a_vertical ? u * frame.a.z() : v * frame.b.z();
+    const double half_z = a_vertical ? frame.half_a_m : frame.half_b_m;
+    const double below_top = half_z - z - m.top_offset_m;  // Down from the fillet.
+    if (below_top <= 0.0 || below_top >= m.height_m) return 0.0;
+    const double t = below_top / m.height_m;  // 0 at the fillet, 1 at the foot.
+    return m.depth_m * std::sqrt(std::max(0.0, 1.0 - (2.0 * t - 1.0) * (2.0 * t - 1.0)));
 }
 
 }  // namespace
@@ -103,9 +117,14 @@ double face_relief_m(const StoneBlockConfig& config, const FaceFrame& frame, dou
     const double edge_distance_m =
         std::min(frame.half_a_m - std::abs(u), frame.half_b_m - std::abs(v));
     const double fade = smoothstep(edge_distance_m / std::max(config.margin_m, 1e-9));
+    const FaceFinish& finish = config.finishes[face_index];
     double depth_m =
-        fade * finish_m(config.finishes[face_index], hash3(config.seed, 101, face_index), u, v);
+        fade * (finish.recess_m + finish_m(finish, hash3(config.seed, 101, face_index), u, v));
     depth_m = std::max(depth_m, ornament_m(config, frame, u, v));
+    depth_m = std::max(depth_m, moulding_m(config.moulding, frame, u, v));
+    if (config.erosion_m > 0.0)
+        depth_m += config.erosion_m *
+                   fractal_noise(hash3(config.seed, 202, face_index), u / 0.04, v / 0.04, 3);
     if (frame.face == BlockFace::kPosZ) {
         for (const ClampHole& hole : config.clamp_holes)
             depth_m = std::max(depth_m, clamp_hole_m(config, frame, hole, u, v));

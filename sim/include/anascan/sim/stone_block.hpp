@@ -22,6 +22,8 @@ struct FaceFinish {
     double wavelength_m = 0.01;     ///< Spacing of the marks (noise scale or groove spacing).
     bool parallel_grooves = false;  ///< Claw-chisel grooves (true) or pointed/random (false).
     double groove_angle_deg = 30;   ///< Groove direction in the face, from its first axis.
+    /// Anathyrosis: the rough centre sits this much below the smooth drafted margin.
+    double recess_m = 0.0;
 };
 
 /// A rectangular clamp channel with deeper end pockets, cut into the top face across a
@@ -33,6 +35,9 @@ struct ClampHole {
     double width_m = 0.025;
     double channel_depth_m = 0.02;
     double pocket_depth_m = 0.05;  ///< Depth of the square pockets at both ends.
+    /// The channel runs out through the edge (half of a clamp shared with the neighbour
+    /// across a vertical joint): one pocket inside, the other in the neighbour.
+    bool open_at_edge = false;
 };
 
 /// A round dowel hole in a face.
@@ -49,8 +54,20 @@ struct OrnamentBand {
     BlockFace face = BlockFace::kPosY;
     double top_offset_m = 0.04;  ///< Distance of the band's upper border below the top edge.
     double height_m = 0.08;
-    double period_m = 0.06;  ///< Spacing of the eggs along the band.
-    double depth_m = 0.012;  ///< Depth of the carved background.
+    double period_m = 0.06;     ///< Spacing of the eggs along the band.
+    double depth_m = 0.012;     ///< Depth of the carved background.
+    double phase_m = 0.0;       ///< Shift of the eggs along the band (continuity across blocks).
+    bool run_to_edges = false;  ///< Through the drafted margins (a band crossing the joints).
+};
+
+/// A moulding along the top edge of a side face: a cavetto (quarter-round hollow) below a
+/// flat fillet, running from edge to edge so that it continues across vertical joints.
+struct Moulding {
+    bool enabled = false;
+    BlockFace face = BlockFace::kPosY;
+    double top_offset_m = 0.02;  ///< Fillet height below the top edge.
+    double height_m = 0.06;      ///< Height of the hollow below the fillet.
+    double depth_m = 0.01;       ///< Deepest point of the hollow below the face plane.
 };
 
 struct StoneBlockConfig {
@@ -73,10 +90,14 @@ struct StoneBlockConfig {
     std::vector<DowelHole> dowel_holes{DowelHole{.face = BlockFace::kNegZ, .u_m = 0.1},
                                        DowelHole{.face = BlockFace::kPosZ, .u_m = -0.15}};
     OrnamentBand ornament;
-    int chip_count = 8;                    ///< Chipped-off pieces along random edges.
-    double chip_max_depth_m = 0.025;       ///< Largest chip depth, measured on the faces.
-    double chip_max_half_length_m = 0.08;  ///< Largest chip half length along its edge.
-    std::uint64_t seed = 1;                ///< Same config and seed: identical mesh.
+    Moulding moulding;
+    int chip_count = 8;                     ///< Chipped-off pieces along random edges.
+    double chip_max_depth_m = 0.025;        ///< Largest chip depth, measured on the faces.
+    double chip_max_half_length_m = 0.08;   ///< Largest chip half length along its edge.
+    int lost_corner_count = 0;              ///< Corners broken off (weathering, falling).
+    double lost_corner_max_depth_m = 0.08;  ///< Largest cut depth along the corner diagonal.
+    double erosion_m = 0.0;  ///< Peak depth of weathering over the whole surface (no margin).
+    std::uint64_t seed = 1;  ///< Same config and seed: identical mesh.
 };
 
 /// The block as a closed, consistently oriented (outward) mesh in the block frame, with

@@ -1,0 +1,176 @@
+// anascan blocks eval PROPOSALS.json --truth DIR/truth.json [--json]: for every true joint
+// face of the simulated monument, the rank of its true neighbour face in its proposal
+// list; the top-1 and top-3 shares, and how many wrong pairs outscore the lowest true one.
+// Detected faces are named by the truth: a face's normal, taken back into the block frame
+// by T_ground_block, within 10 degrees of a block axis.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <set>
+
+#include "block_features_json.hpp"
+#include "commands.hpp"
+
+namespace anascan::cli {
+namespace {
+
+using nlohmann::json;
+using FaceKey = std::pair<std::string, std::string>;  // Block id, true face name ("+x").
+
+struct EvalOptions {
+    std::string proposals;
+    std::string truth;
+    bool as_json = false;
+};
+
+std::string true_face_name(const Eigen::Matrix3d& R_ground_block, const Eigen::Vector3d& n_ground) {
+    static const char* kNames[6] = {"+x", "-x", "+y", "-y", "+z", "-z"};
+    const Eigen::Vector3d n = R_ground_block.transpose() * n_ground.normalized();
+    for (int f = 0; f < 6; ++f) {
+        Eigen::Vector3d axis = Eigen::Vector3d::Zero();
+        axis[f / 2] = f % 2 == 0 ? 1.0 : -1.0;
+        if (n.dot(axis) > std::cos(10.0 * M_PI / 180.0)) return kNames[f];
+    }
+    return "";
+}
+
+// Detected face label ("c0b1:3") -> true face key, for every face the truth can name.
+std::map<std::string, FaceKey> name_faces(const json& proposals, const json& truth) {
+    std::map<std::string, Eigen::Matrix3d> rotation;
+    for (const json& b : truth.at("blocks")) {
+        Eigen::Matrix3d R;
+        for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 3; ++c) R(r, c) = b.at("T_ground_block").at(r).at(c).get<double>();
+        rotation[b.at("id").get<std::string>()] = R;
+    }
+    std::map<std::string, FaceKey> out;
+    for (const json& b : proposals.at("blocks")) {
+        const std::string id = b.at("id").get<std::string>();
+        if (!rotation.contains(id)) continue;
+        for (const json& f : b.at("faces")) {
+            const Eigen::Vector3d n(f.at("normal").at(0).get<double>(),
+                                    f.at("normal").at(1).get<double>(),
+                                    f.at("normal").at(2).get<double>());
+            if (std::string name = true_face_name(rotation[id], n); !name.empty())
+                out[id + ":" + std::to_string(f.at("id").get<int>())] = {id, name};
+        }
+    }
+    return out;
+}
+
+struct JointFaceRank {
+    FaceKey face;
+    std::string kind;
+    int rank = 0;  ///< 1 = first; 0 = the face was not found; -1 = not among the candidates.
+    double score = 0.0;
+};
+
+void run_eval(const EvalOptions& o) {
+    auto proposals = read_json_file(o.proposals);
+    if (!proposals) fail_command(proposals.error());
+    auto truth = read_json_file(o.truth);
+    if (!truth) fail_command(truth.error());
+    try {
+        const std::map<std::string, FaceKey> names = name_faces(*proposals, *truth);
+        std::map<FaceKey, std::set<FaceKey>> partners;
+        std::map<FaceKey, std::string> kind;
+        for (const json& j : truth->at("joints")) {
+            const FaceKey a{j.at("a").at("block"), j.at("a").at("face")},
+                b{j.at("b").at("block"), j.at("b").at("face")};
+            partners[a].insert(b), partners[b].insert(a);
+            kind[a] = kind[b] = j.at("kind").get<std::string>();
+        }
+        std::vector<JointFaceRank> ranks;
+        for (const auto& [face, ps] : partners) ranks.push_back({face, kind[face]});
+        std::map<std::set<std::string>, double> wrong;  // Unordered wrong pair -> score.
+        for (const json& p : proposals->at("proposals")) {
+            const std::string label = p.at("face").get<std::string>();
+            const auto self = names.find(label);
+            const auto& cands = p.at("candidates");
+            for (std::size_t k = 0; k < cands.size(); ++k) {
+                const std::string other = cands[k].at("face").get<std::string>();
+                const auto it = names.find(other);
+                const bool is_true = self != names.end() && it != names.end() &&
+                                     partners.contains(self->second) &&
+                                     partners[self->second].contains(it->second);
+                if (!is_true) {
+                    wrong[{label, other}] = cands[k].at("score").get<double>();
+                    continue;
+                }
+                for (JointFaceRank& r : ranks)
+                    if (r.face == self->second && (r.rank <= 0 || int(k) + 1 < r.rank))
+                        r.rank = int(k) + 1, r.score = cands[k].at("score").get<double>();
+                break;
+            }
+            if (self == names.end()) continue;
+            for (JointFaceRank& r : ranks)
+                if (r.face == self->second && r.rank == 0) r.rank = -1;  // Found, not ranked.
+        }
+        int top1 = 0, top3 = 0, missing = 0, top1_vertical = 0, vertical = 0;
+        double lowest_true = 1e300;
+        for (const JointFaceRank& r : ranks) {
+            top1 += r.rank == 1, top3 += r.rank >= 1 && r.rank <= 3, missing += r.rank == 0;
+            vertical += r.kind == "vertical", top1_vertical += r.kind == "vertical" && r.rank == 1;
+            if (r.rank >= 1) lowest_true = std::min(lowest_true, r.score);
+        }
+        int wrong_above = 0;
+        for (const auto& [pair, score] : wrong) wrong_above += score > lowest_true;
+        const double n = std::max<double>(1.0, double(ranks.size()));
+        const double random_top1 = 1.0 / (6.0 * double(truth->at("blocks").size()));
+        json out{{"joint_faces", ranks.size()},
+                 {"top1_share", top1 / n},
+                 {"top3_share", top3 / n},
+                 {"faces_not_found", missing},
+                 {"vertical_top1_share", vertical ? double(top1_vertical) / vertical : 0.0},
+                 {"bed_top1_share", ranks.size() - vertical ? double(top1 - top1_vertical) /
+                                                                  double(ranks.size() - vertical)
+                                                            : 0.0},
+                 {"wrong_pairs_above_lowest_true", wrong_above},
+                 {"random_top1", random_top1}};
+        json per = json::array();
+        for (const JointFaceRank& r : ranks)
+            per.push_back({{"block", r.face.first},
+                           {"face", r.face.second},
+                           {"kind", r.kind},
+                           {"rank", r.rank},
+                           {"score", r.score}});
+        out["ranks"] = per;
+        if (o.as_json) {
+            std::printf("%s\n", out.dump(1).c_str());
+            return;
+        }
+        for (const JointFaceRank& r : ranks)
+            std::printf("%-6s %-3s %-9s rank %s\n", r.face.first.c_str(), r.face.second.c_str(),
+                        r.kind.c_str(),
+                        r.rank > 0 ? std::to_string(r.rank).c_str()
+                                   : (r.rank == 0 ? "face not found" : "not ranked"));
+        std::printf(
+            "%zu true joint faces: top-1 %.1f%%, top-3 %.1f%% (vertical top-1 %.1f%%, bed top-1 "
+            "%.1f%%); "
+            "%d faces not found; %d wrong pairs above the lowest true pair; random top-1 %.1f%%\n",
+            ranks.size(), 100 * top1 / n, 100 * top3 / n,
+            100 * out["vertical_top1_share"].get<double>(),
+            100 * out["bed_top1_share"].get<double>(), missing, wrong_above, 100 * random_top1);
+    } catch (const json::exception& e) {
+        fail_command({ErrorCode::kFormat, o.proposals + " / " + o.truth + ": " + e.what()});
+    }
+}
+
+}  // namespace
+
+void add_blocks_eval_command(CLI::App& blocks) {
+    auto opts = std::make_shared<EvalOptions>();
+    auto* cmd =
+        blocks.add_subcommand("eval", "Ranks of the true neighbours (simulated monument truth)");
+    cmd->add_option("proposals", opts->proposals, "Proposals of blocks match")
+        ->required()
+        ->check(CLI::ExistingFile);
+    cmd->add_option("--truth", opts->truth, "truth.json of sim export-monument")
+        ->required()
+        ->check(CLI::ExistingFile);
+    cmd->add_flag("--json", opts->as_json, "JSON on stdout");
+    cmd->callback([opts] { run_eval(*opts); });
+}
+
+}  // namespace anascan::cli

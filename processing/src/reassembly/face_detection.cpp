@@ -1,0 +1,152 @@
+// Planar faces: CGAL Efficient RANSAC on a subsample, every input point assigned to the
+// best plane, planes refitted by least squares, parallel close planes merged.
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "cgal_geometry.hpp"
+#include "feature_steps.hpp"
+
+namespace anascan::reassembly::detail {
+namespace {
+
+constexpr double kDegToRad = std::numbers::pi / 180.0;
+
+std::vector<std::size_t> stride_sample(std::size_t n, std::size_t max_count) {
+    const std::size_t stride = std::max<std::size_t>(1, (n + max_count - 1) / max_count);
+    std::vector<std::size_t> out;
+    for (std::size_t i = 0; i < n; i += stride) out.push_back(i);
+    return out;
+}
+
+// Least-squares plane of the inliers (double, relative to their centroid); the normal
+// keeps the side of `like`.
+void refit_plane(const FeatureInput& in, FaceBuild& f, const Eigen::Vector3d& like) {
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (std::size_t i : f.inliers) mean += in.points[i].cast<double>();
+    mean /= double(f.inliers.size());
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    for (std::size_t i : f.inliers) {
+        const Eigen::Vector3d d = in.points[i].cast<double>() - mean;
+        cov += d * d.transpose();
+    }
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+    Eigen::Vector3d n = eig.eigenvectors().col(0);
+    if (n.dot(like) < 0.0) n = -n;
+    f.face.normal = n;
+    // The dressed surface is the outer envelope: tool marks, a recessed centre and carving
+    // lie below it. The offset is the 95th percentile of the inliers' heights.
+    std::vector<double> heights;
+    heights.reserve(f.inliers.size());
+    for (std::size_t i : f.inliers) heights.push_back(n.dot(in.points[i].cast<double>()));
+    const auto k = heights.begin() + std::ptrdiff_t(0.95 * double(heights.size() - 1));
+    std::nth_element(heights.begin(), k, heights.end());
+    f.face.offset_m = *k;
+    f.face.num_points = f.inliers.size();
+    f.face.rms_m = std::sqrt(std::max(0.0, eig.eigenvalues()(0)) / double(f.inliers.size()));
+}
+
+// Bounding rectangle of the inliers in the plane (the long side is the width).
+void fit_rectangle(const FeatureInput& in, FaceBuild& f) {
+    PlanarFace& face = f.face;
+    const Eigen::Vector3d u0 = face.normal.unitOrthogonal(), v0 = face.normal.cross(u0);
+    std::vector<Eigen::Vector2d> uv;
+    uv.reserve(f.inliers.size());
+    for (std::size_t i : f.inliers) {
+        const Eigen::Vector3d p = in.points[i].cast<double>();
+        uv.emplace_back(p.dot(u0), p.dot(v0));
+    }
+    const Rectangle2 r = min_area_rectangle(uv);
+    face.width_axis = (r.long_axis.x() * u0 + r.long_axis.y() * v0).normalized();
+    face.height_axis = face.normal.cross(face.width_axis);
+    face.centre_m = r.centre.x() * u0 + r.centre.y() * v0 + face.offset_m * face.normal;
+    face.width_m = r.long_m;
+    face.height_m = r.short_m;
+    face.area_m2 = r.long_m * r.short_m;
+}
+
+// Assigns every input point to the plane it lies on best (distance and normal), so that
+// all points count, not only the RANSAC subsample.
+std::vector<FaceBuild> assign_points(const FeatureInput& in,
+                                     const std::vector<DetectedPlane>& planes,
+                                     const FaceDetectionConfig& c) {
+    std::vector<FaceBuild> faces(planes.size());
+    const double cos_max = std::cos(c.normal_threshold_deg * kDegToRad);
+    for (std::size_t i = 0; i < in.points.size(); ++i) {
+        const Eigen::Vector3d p = in.points[i].cast<double>(), n = in.normals[i].cast<double>();
+        int best = -1;
+        double best_d = c.epsilon_m;
+        for (std::size_t f = 0; f < planes.size(); ++f) {
+            const double d = std::abs(planes[f].normal.dot(p) - planes[f].offset_m);
+            if (d < best_d && n.dot(planes[f].normal) > cos_max) best = int(f), best_d = d;
+        }
+        if (best >= 0) faces[best].inliers.push_back(i);
+    }
+    for (std::size_t f = 0; f < planes.size(); ++f) {
+        faces[f].face.normal = planes[f].normal;
+        faces[f].face.offset_m = planes[f].offset_m;
+    }
+    return faces;
+}
+
+// Merges each face into a larger one that is parallel and within merge_offset_m (a recess
+// or a carved band of the same dressed face).
+std::vector<FaceBuild> merge_parallel(std::vector<FaceBuild> faces, const FaceDetectionConfig& c) {
+    std::sort(faces.begin(), faces.end(), [](const FaceBuild& a, const FaceBuild& b) {
+        return a.inliers.size() > b.inliers.size();
+    });
+    const double cos_merge = std::cos(c.merge_angle_deg * kDegToRad);
+    std::vector<FaceBuild> kept;
+    for (FaceBuild& f : faces) {
+        if (f.inliers.empty()) continue;
+        auto host = std::find_if(kept.begin(), kept.end(), [&](const FaceBuild& k) {
+            return k.face.normal.dot(f.face.normal) > cos_merge &&
+                   std::abs(k.face.offset_m - f.face.offset_m) < c.merge_offset_m;
+        });
+        if (host == kept.end()) {
+            kept.push_back(std::move(f));
+        } else {
+            host->inliers.insert(host->inliers.end(), f.inliers.begin(), f.inliers.end());
+        }
+    }
+    return kept;
+}
+
+}  // namespace
+
+std::vector<FaceBuild> find_faces(const FeatureInput& in, const FaceDetectionConfig& c) {
+    const std::vector<std::size_t> sample = stride_sample(in.points.size(), c.max_ransac_points);
+    std::vector<Eigen::Vector3f> sp, sn;
+    for (std::size_t i : sample) sp.push_back(in.points[i]), sn.push_back(in.normals[i]);
+    const double sample_spacing_m =
+        in.spacing_m * std::sqrt(double(in.points.size()) / double(sample.size()));
+    const double point_area_m2 = sample_spacing_m * sample_spacing_m;
+    const RansacParams params{.epsilon_m = c.epsilon_m,
+                              .cluster_epsilon_m = 4.0 * sample_spacing_m,
+                              .normal_cos = std::cos(c.normal_threshold_deg * kDegToRad),
+                              .min_points = std::max<std::size_t>(
+                                  30, std::size_t(0.3 * c.min_face_area_m2 / point_area_m2)),
+                              .probability = c.probability,
+                              .seed = c.seed};
+    std::vector<FaceBuild> faces = assign_points(in, detect_planes(sp, sn, params), c);
+    for (FaceBuild& f : faces)
+        if (f.inliers.size() >= 3) refit_plane(in, f, f.face.normal);
+    faces = merge_parallel(std::move(faces), c);
+    std::vector<FaceBuild> out;
+    for (FaceBuild& f : faces) {
+        if (f.inliers.size() < 3) continue;
+        refit_plane(in, f, f.face.normal);
+        fit_rectangle(in, f);
+        if (f.face.area_m2 >= c.min_face_area_m2) out.push_back(std::move(f));
+    }
+    for (std::size_t i = 0; i < out.size(); ++i) out[i].face.id = static_cast<int>(i);
+    return out;
+}
+
+Eigen::Vector2d face_uv(const PlanarFace& face, const Eigen::Vector3d& p) {
+    const Eigen::Vector3d d = p - face.centre_m;
+    return {d.dot(face.width_axis), d.dot(face.height_axis)};
+}
+
+}  // namespace anascan::reassembly::detail

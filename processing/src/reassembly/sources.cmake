@@ -1,0 +1,12 @@
+# processing/reassembly: block features (planar faces, adjacency, roughness, holes), face
+# matching and neighbour proposals (method paper §5.1-5.2). CGAL only in cgal_geometry.cpp.
+list(APPEND ANASCAN_PROCESSING_SOURCES
+    src/reassembly/block_features.cpp
+    src/reassembly/cgal_geometry.cpp
+    src/reassembly/face_adjacency.cpp
+    src/reassembly/face_detection.cpp
+    src/reassembly/face_holes.cpp
+    src/reassembly/face_matching.cpp
+    src/reassembly/face_roughness.cpp
+    src/reassembly/proposals.cpp
+)

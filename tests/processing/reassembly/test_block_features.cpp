@@ -1,0 +1,125 @@
+// Block features on analytic shapes: boxes with known size (faces, normals, width and
+// height, adjacency), a bumpy face (roughness order), and the bad inputs (empty, no
+// normals, a bad or non-manifold mesh, heavy noise).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <numbers>
+#include <random>
+
+#include "anascan/processing/reassembly/block_features.hpp"
+
+namespace anascan::reassembly {
+namespace {
+
+using Relief = std::function<double(int face, double u, double v)>;
+
+// A box centred at the origin, one grid of vertices per face (relief pushed inward), so
+// that every face's normals are its own.
+Mesh box_mesh(const Eigen::Vector3d& size_m, double step_m, const Relief& relief = {}) {
+    Mesh mesh;
+    for (int f = 0; f < 6; ++f) {
+        const int axis = f / 2;
+        const double sign = f % 2 == 0 ? 1.0 : -1.0;
+        const int ua = (axis + 1) % 3, va = (axis + 2) % 3;
+        const int nu = int(std::round(size_m[ua] / step_m)),
+                  nv = int(std::round(size_m[va] / step_m));
+        const int base = int(mesh.vertices.size());
+        for (int j = 0; j <= nv; ++j) {
+            for (int i = 0; i <= nu; ++i) {
+                Eigen::Vector3d p;
+                p[axis] = sign * 0.5 * size_m[axis];
+                p[ua] = (double(i) / nu - 0.5) * size_m[ua];
+                p[va] = (double(j) / nv - 0.5) * size_m[va];
+                if (relief) p[axis] -= sign * relief(f, p[ua], p[va]);
+                mesh.vertices.positions.push_back(p.cast<float>());
+            }
+        }
+        for (int j = 0; j < nv; ++j) {
+            for (int i = 0; i < nu; ++i) {
+                const int a = base + j * (nu + 1) + i, b = a + 1, c = a + nu + 1, d = c + 1;
+                if (sign > 0) {
+                    mesh.triangles.emplace_back(a, b, d), mesh.triangles.emplace_back(a, d, c);
+                } else {
+                    mesh.triangles.emplace_back(a, d, b), mesh.triangles.emplace_back(a, c, d);
+                }
+            }
+        }
+    }
+    return mesh;
+}
+
+const PlanarFace* face_along(const BlockFeatures& f, const Eigen::Vector3d& n) {
+    for (const PlanarFace& face : f.faces)
+        if (face.normal.dot(n) > std::cos(5.0 * std::numbers::pi / 180.0)) return &face;
+    return nullptr;
+}
+
+TEST(BlockFeatures, BoxFacesSizesAndAdjacency) {
+    for (const Eigen::Vector3d& size :
+         {Eigen::Vector3d(1.0, 0.6, 0.5), Eigen::Vector3d(0.45, 0.7, 0.4)}) {
+        const BlockFeatures f = extract_block_features(box_mesh(size, 0.01), {});
+        ASSERT_EQ(f.status, BlockStatus::kOk) << f.message;
+        ASSERT_EQ(f.faces.size(), 6u);
+        EXPECT_EQ(f.edges.size(), 24u);  // 12 box edges, both directions.
+        for (int axis = 0; axis < 3; ++axis) {
+            for (double sign : {1.0, -1.0}) {
+                const Eigen::Vector3d n = sign * Eigen::Vector3d::Unit(axis);
+                const PlanarFace* face = face_along(f, n);
+                ASSERT_NE(face, nullptr);
+                const double angle_deg =
+                    std::acos(std::min(1.0, face->normal.dot(n))) * 180 / std::numbers::pi;
+                EXPECT_LT(angle_deg, 0.3);
+                const double a = size[(axis + 1) % 3], b = size[(axis + 2) % 3];
+                EXPECT_NEAR(face->width_m, std::max(a, b), 0.005);
+                EXPECT_NEAR(face->height_m, std::min(a, b), 0.005);
+                EXPECT_EQ(f.neighbours(face->id).size(), 4u);
+            }
+        }
+    }
+}
+
+TEST(BlockFeatures, RoughnessOrdersFinishes) {
+    // +x rough (3 mm pits), -x medium (1 mm), the rest smooth.
+    const Relief relief = [](int face, double u, double v) {
+        const double amplitude = face == 0 ? 0.003 : (face == 1 ? 0.001 : 0.0);
+        return amplitude * (0.5 + 0.25 * std::sin(u * 400.0) + 0.25 * std::sin(v * 330.0));
+    };
+    const BlockFeatures f = extract_block_features(box_mesh({0.8, 0.6, 0.5}, 0.005, relief), {});
+    ASSERT_EQ(f.status, BlockStatus::kOk) << f.message;
+    const PlanarFace* rough = face_along(f, Eigen::Vector3d::UnitX());
+    const PlanarFace* medium = face_along(f, -Eigen::Vector3d::UnitX());
+    const PlanarFace* smooth = face_along(f, Eigen::Vector3d::UnitY());
+    ASSERT_TRUE(rough && medium && smooth);
+    EXPECT_GT(rough->roughness_per_m2, medium->roughness_per_m2);
+    EXPECT_GT(medium->roughness_per_m2, 2.0 * smooth->roughness_per_m2);
+}
+
+TEST(BlockFeatures, BadInputsHaveAStatus) {
+    EXPECT_EQ(extract_block_features(Mesh{}, {}).status, BlockStatus::kEmpty);
+    PointCloud no_normals;
+    no_normals.positions.assign(100, Eigen::Vector3f::Zero());
+    EXPECT_EQ(extract_block_features(no_normals, {}).status, BlockStatus::kNoNormals);
+    Mesh bad = box_mesh({0.5, 0.5, 0.5}, 0.05);
+    bad.triangles.emplace_back(0, 1, int(bad.vertices.size()) + 3);
+    EXPECT_EQ(extract_block_features(bad, {}).status, BlockStatus::kBadMesh);
+    Mesh non_manifold = box_mesh({0.6, 0.5, 0.4}, 0.01);
+    non_manifold.triangles.push_back(non_manifold.triangles.front());
+    const BlockFeatures nm = extract_block_features(non_manifold, {});
+    EXPECT_EQ(nm.status, BlockStatus::kNonManifold) << nm.message;
+    EXPECT_TRUE(nm.matchable());  // Flagged, still usable.
+}
+
+TEST(BlockFeatures, HeavyNoiseIsNotMatched) {
+    Mesh noisy = box_mesh({0.8, 0.6, 0.5}, 0.01);
+    std::mt19937 rng(3);
+    std::normal_distribution<float> noise(0.0f, 0.01f);  // 1 cm on a 1 cm grid.
+    for (Eigen::Vector3f& p : noisy.vertices.positions)
+        p += Eigen::Vector3f(noise(rng), noise(rng), noise(rng));
+    const BlockFeatures f = extract_block_features(noisy, {});
+    EXPECT_FALSE(f.matchable()) << to_string(f.status) << ": " << f.message;
+}
+
+}  // namespace
+}  // namespace anascan::reassembly
