@@ -43,7 +43,7 @@ std::string conf_name(const std::string& scan, const std::string& conf) {
 
 std::size_t refined_pair_count(const ScanRegistrationResult& r) {
     return static_cast<std::size_t>(std::count_if(r.pairs.begin(), r.pairs.end(),
-                                                  [](const auto& p) { return p.global_refined; }));
+                                                  [](const auto& p) { return p.global.refined; }));
 }
 
 void print_result(const ScanRegistrationResult& r) {
@@ -78,11 +78,11 @@ nlohmann::json fine_summary(const ScanRegistrationResult& r) {
     int iterations = 0, count = 0;
     double time_s = 0.0, rms_sq = 0.0, overlap = 0.0;
     for (const PairOutcome& p : r.pairs) {
-        if (p.fine_status == FineRegistrationStatus::kInvalidInput) continue;  // Not tried.
-        iterations += p.fine_iterations;
-        time_s += p.fine_time_s;
-        rms_sq += p.fine_rms_m * p.fine_rms_m;
-        overlap += p.fine_overlap_fraction;
+        if (p.fine.status == FineRegistrationStatus::kInvalidInput) continue;  // Not tried.
+        iterations += p.fine.iterations;
+        time_s += p.fine.time_s;
+        rms_sq += p.fine.rms_m * p.fine.rms_m;
+        overlap += p.fine.overlap_fraction;
         ++count;
     }
     const double n = std::max(count, 1);
@@ -106,28 +106,28 @@ nlohmann::json pair_json(const ScanRegistrationResult& r, const PairOutcome& p) 
             {"target", r.scans[p.target].name},
             {"match_score", p.match_score},
             {"hypotheses", p.hypotheses},
-            {"global_skipped", p.global_skipped},
-            {"global_status", p.global_skipped ? std::string("skipped (already connected)")
-                                               : std::string(to_string(p.global_status))},
-            {"global_refined", p.global_refined},
+            {"global_skipped", p.global.skipped},
+            {"global_status", p.global.skipped ? std::string("skipped (already connected)")
+                                               : std::string(to_string(p.global.status))},
+            {"global_refined", p.global.refined},
             {"verified", p.verified},
             {"above_rms_gate", p.above_rms_gate},
             {"free_space_rejections", p.free_space_rejections},
-            {"slide_probes", p.slide_probes},
-            {"slide_ambiguous", p.slide_ambiguous},
-            {"slide_m", p.slide_m},
+            {"slide_probes", p.slides.probes},
+            {"slide_ambiguous", p.slides.ambiguous},
+            {"slide_m", p.slides.slide_m},
             {"in_tree", p.in_tree},
             {"weight", p.weight},
             {"T_target_source", matrix_json(p.T_target_source)},
-            {"global_rms_m", p.global_rms_m},
-            {"global_overlap", p.global_overlap_fraction},
-            {"global_time_s", p.global_time_s},
-            {"fine_status", std::string(to_string(p.fine_status))},
-            {"fine_iterations", p.fine_iterations},
-            {"fine_rms_m", p.fine_rms_m},
-            {"fine_overlap", p.fine_overlap_fraction},
-            {"fine_eigenvalue_ratio", p.fine_eigenvalue_ratio},
-            {"fine_time_s", p.fine_time_s},
+            {"global_rms_m", p.global.rms_m},
+            {"global_overlap", p.global.overlap_fraction},
+            {"global_time_s", p.global.time_s},
+            {"fine_status", std::string(to_string(p.fine.status))},
+            {"fine_iterations", p.fine.iterations},
+            {"fine_rms_m", p.fine.rms_m},
+            {"fine_overlap", p.fine.overlap_fraction},
+            {"fine_eigenvalue_ratio", p.fine.eigenvalue_ratio},
+            {"fine_time_s", p.fine.time_s},
             {"linked", p.linked},
             {"link_dropped", p.link_dropped}};
 }

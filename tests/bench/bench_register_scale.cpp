@@ -258,8 +258,8 @@ std::string pair_state(const ScanRegistrationResult& r, std::size_t ia, std::siz
     for (const PairOutcome& p : r.pairs) {
         if (p.source != s || p.target != t) continue;
         if (p.hypotheses == 0) return "no-hypotheses";
-        if (p.global_skipped) return "skipped";
-        return std::string(to_string(p.global_status)) + "(score " +
+        if (p.global.skipped) return "skipped";
+        return std::string(to_string(p.global.status)) + "(score " +
                std::to_string(static_cast<int>(p.match_score)) + ")";
     }
     return "not-candidate";

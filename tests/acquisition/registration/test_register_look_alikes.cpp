@@ -68,17 +68,17 @@ std::size_t register_and_check(const std::vector<TrueScan>& scans) {
     }
     const ScanRegistrationResult result = register_scans(inputs, config, {});
     for (const PairOutcome& p : result.pairs) {  // What each refined pair gave.
-        if (!p.global_refined || p.global_status == GlobalRegistrationStatus::kFailedVerification)
+        if (!p.global.refined || p.global.status == GlobalRegistrationStatus::kFailedVerification)
             continue;
         const Pose T_true = scans[p.target].T_true.inverse() * scans[p.source].T_true;
         const PoseDifference d = pose_difference(p.T_target_source, T_true);
         std::printf(
             "pair %zu-%zu: %s%s, rms %.3f mm, overlap %.2f, %.1f deg %.1f mm from the truth%s, "
             "%zu poses rejected by free space, %zu slide probes\n",
-            p.source + 1, p.target + 1, std::string(to_string(p.global_status)).c_str(),
-            p.above_rms_gate ? " (above the gate)" : "", p.global_rms_m * 1e3,
-            p.global_overlap_fraction, d.rotation_deg, d.translation_m * 1e3,
-            p.in_tree ? ", tree" : "", p.free_space_rejections, p.slide_probes);
+            p.source + 1, p.target + 1, std::string(to_string(p.global.status)).c_str(),
+            p.above_rms_gate ? " (above the gate)" : "", p.global.rms_m * 1e3,
+            p.global.overlap_fraction, d.rotation_deg, d.translation_m * 1e3,
+            p.in_tree ? ", tree" : "", p.free_space_rejections, p.slides.probes);
     }
     const std::size_t ref = result.reference_scan;
     std::size_t wrong = 0, near = 0;

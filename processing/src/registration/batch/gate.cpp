@@ -15,9 +15,9 @@ double session_rms_gate_m(const std::vector<PairOutcome>& pairs, std::size_t sca
     std::vector<double> best(scan_count, kOff), spacings;
     for (const PairOutcome& p : pairs) {
         if (!p.verified) continue;
-        best[p.source] = std::min(best[p.source], p.global_rms_m);
-        best[p.target] = std::min(best[p.target], p.global_rms_m);
-        spacings.push_back(p.global_target_spacing_m);
+        best[p.source] = std::min(best[p.source], p.global.rms_m);
+        best[p.target] = std::min(best[p.target], p.global.rms_m);
+        spacings.push_back(p.global.target_spacing_m);
     }
     std::erase_if(best, [](double rms) { return rms == kOff; });
     if (best.empty() || best.size() < config.min_scans_for_rms_gate) return kOff;
@@ -26,7 +26,7 @@ double session_rms_gate_m(const std::vector<PairOutcome>& pairs, std::size_t sca
 }
 
 bool apply_rms_gate(PairOutcome& pair, double gate_m) {
-    if (!pair.verified || pair.global_rms_m <= gate_m) return false;
+    if (!pair.verified || pair.global.rms_m <= gate_m) return false;
     pair.verified = false;
     pair.above_rms_gate = true;
     pair.weight = 0.0;

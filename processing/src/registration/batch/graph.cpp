@@ -73,16 +73,16 @@ std::vector<Pose> walk_trees(const std::vector<PairOutcome>& pairs, DisjointSets
 }
 
 void copy_fine_figures(const FineRegistrationResult& fine, PairOutcome& pair) {
-    pair.fine_status = fine.status;
-    pair.fine_iterations = fine.iterations;
-    pair.fine_rms_m = fine.rms_m;
-    pair.fine_overlap_fraction = fine.overlap_fraction;
-    pair.fine_normal_deviation_deg = fine.normal_deviation_deg;
-    pair.fine_eigenvalue_ratio = fine.degeneracy.eigenvalue_ratio;
+    pair.fine.status = fine.status;
+    pair.fine.iterations = fine.iterations;
+    pair.fine.rms_m = fine.rms_m;
+    pair.fine.overlap_fraction = fine.overlap_fraction;
+    pair.fine.normal_deviation_deg = fine.normal_deviation_deg;
+    pair.fine.eigenvalue_ratio = fine.degeneracy.eigenvalue_ratio;
     const Eigen::Vector3d weakest = fine.degeneracy.weakest_direction.tail<3>();
-    pair.fine_weakest_translation =
+    pair.fine.weakest_translation =
         weakest.norm() > 0.0 ? Eigen::Vector3d(weakest.normalized()) : Eigen::Vector3d::Zero();
-    pair.fine_time_s = fine.time_s;
+    pair.fine.time_s = fine.time_s;
 }
 
 /// Scans of one group whose spheres meet (with a margin of the fine search distance).

@@ -63,7 +63,7 @@ void match_pairs(PairStages& s,
                 match_features(source_patches, s.scans.patches(target), s.config.global.matching);
             pair.hypotheses = matching.hypotheses.size();
             if (!matching.hypotheses.empty()) pair.match_score = matching.hypotheses.front().score;
-            pair.global_status = GlobalRegistrationStatus::kNoConsensus;
+            pair.global.status = GlobalRegistrationStatus::kNoConsensus;
         }
         s.pairs.push_back(pair);
         s.matchings.append(detail::to_bytes(matching));
@@ -71,18 +71,18 @@ void match_pairs(PairStages& s,
 }
 
 void copy_global_figures(const GlobalRegistrationResult& g, PairOutcome& pair) {
-    pair.global_status = g.status;
+    pair.global.status = g.status;
     pair.verified = g.status == GlobalRegistrationStatus::kSuccess;
     pair.weight = pair.verified ? pair_weight(g) : 0.0;
     pair.T_target_source = g.T_target_source;
-    pair.global_rms_m = g.rms_m;
-    pair.global_target_spacing_m = g.target_spacing_m;
-    pair.global_overlap_fraction = g.overlap_fraction;
-    pair.global_time_s = g.timing.total_s;
+    pair.global.rms_m = g.rms_m;
+    pair.global.target_spacing_m = g.target_spacing_m;
+    pair.global.overlap_fraction = g.overlap_fraction;
+    pair.global.time_s = g.timing.total_s;
     pair.free_space_rejections = g.free_space_rejections;
-    pair.slide_probes = g.slide_probes;
-    pair.slide_ambiguous = g.slide_ambiguous;
-    pair.slide_m = g.slide_m;
+    pair.slides.probes = g.slide_probes;
+    pair.slides.ambiguous = g.slide_ambiguous;
+    pair.slides.slide_m = g.slide_m;
 }
 
 /// The matched pairs from `first` on not refined yet, best consensus score first.
@@ -90,7 +90,7 @@ std::vector<std::size_t> refinement_order(const std::vector<PairOutcome>& pairs,
                                           std::size_t first) {
     std::vector<std::size_t> order;
     for (std::size_t p = first; p < pairs.size(); ++p) {
-        if (pairs[p].hypotheses > 0 && !pairs[p].global_refined) order.push_back(p);
+        if (pairs[p].hypotheses > 0 && !pairs[p].global.refined) order.push_back(p);
     }
     std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
         return pairs[a].match_score > pairs[b].match_score;
@@ -110,7 +110,7 @@ void refine_pair(PairStages& s, std::size_t p, double gate_m) {
                                   {*target, target_f, s.scans.viewpoint_m[pair.target]},
                                   detail::matching_from(s.matchings.read(p)), s.config.global);
     copy_global_figures(g, pair);
-    pair.global_refined = true;
+    pair.global.refined = true;
     detail::apply_rms_gate(pair, gate_m);
 }
 
@@ -118,7 +118,7 @@ void report_refined(PairStages& s, const PairOutcome& pair, std::size_t tried) {
     report(s.progress, "global registration " + std::to_string(tried) + ": scan " +
                            std::to_string(pair.source) + " onto " + std::to_string(pair.target) +
                            " (score " + std::to_string(static_cast<int>(pair.match_score)) +
-                           "): " + std::string(to_string(pair.global_status)) +
+                           "): " + std::string(to_string(pair.global.status)) +
                            (pair.above_rms_gate ? " above the session RMS gate" : ""));
 }
 
@@ -140,10 +140,10 @@ void verify_pairs(PairStages& s, std::size_t first, double gate_m, bool every_pa
     std::size_t tried = 0;
     for (std::size_t p : refinement_order(s.pairs, first)) {
         PairOutcome& pair = s.pairs[p];
-        pair.global_skipped =
+        pair.global.skipped =
             (!every_pair && connected.find(pair.source) == connected.find(pair.target)) ||
             gave_up(pair.source) || gave_up(pair.target);
-        if (pair.global_skipped) continue;
+        if (pair.global.skipped) continue;
         refine_pair(s, p, gate_m);
         if (pair.verified) {
             connected.unite(pair.source, pair.target);
@@ -221,12 +221,12 @@ std::string not_connected_reason(const ScanRegistrationResult& result, std::size
     for (const PairOutcome& p : result.pairs) {
         if (p.source != i && p.target != i) continue;
         matched += p.hypotheses > 0;
-        refined += p.global_refined;
+        refined += p.global.refined;
         verified += p.verified;
         gated += p.above_rms_gate;
         free_space += p.free_space_rejections > 0;
-        slid += p.slide_ambiguous;
-        if (p.slide_ambiguous) slide_m = std::max(slide_m, p.slide_m);
+        slid += p.slides.ambiguous;
+        if (p.slides.ambiguous) slide_m = std::max(slide_m, p.slides.slide_m);
     }
     std::string reason = "no verified chain of pairs to the largest group (in group " +
                          std::to_string(result.scans[i].group) + "): ";

@@ -35,14 +35,14 @@ void warn_sliding_scans(const ScanRegistrationConfig& config, ScanRegistrationRe
         for (const PairOutcome& p : result.pairs) {
             if ((p.source != i && p.target != i) || !p.linked || p.link_dropped) continue;
             ++links;
-            if (p.fine_status != FineRegistrationStatus::kMaxIterations ||
-                p.fine_eigenvalue_ratio >= limit)
+            if (p.fine.status != FineRegistrationStatus::kMaxIterations ||
+                p.fine.eigenvalue_ratio >= limit)
                 continue;
             ++sliding;
-            if (p.fine_eigenvalue_ratio < worst_ratio) {
-                worst_ratio = p.fine_eigenvalue_ratio;
+            if (p.fine.eigenvalue_ratio < worst_ratio) {
+                worst_ratio = p.fine.eigenvalue_ratio;
                 direction_world =
-                    result.scans[p.target].T_world_scan.linear() * p.fine_weakest_translation;
+                    result.scans[p.target].T_world_scan.linear() * p.fine.weakest_translation;
             }
         }
         if (links == 0 || sliding < links) continue;

@@ -136,9 +136,9 @@ PairOutcome link(std::size_t source, std::size_t target, FineRegistrationStatus 
                  double ratio) {
     return {.source = source,
             .target = target,
-            .fine_status = status,
-            .fine_eigenvalue_ratio = ratio,
-            .fine_weakest_translation = Eigen::Vector3d::UnitX(),
+            .fine = {.status = status,
+                     .eigenvalue_ratio = ratio,
+                     .weakest_translation = Eigen::Vector3d::UnitX()},
             .linked = true};
 }
 

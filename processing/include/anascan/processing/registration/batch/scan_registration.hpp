@@ -185,45 +185,59 @@ struct ScanOutcome {
 /// One pair's figures: feature matching and, unless skipped, global registration of
 /// `source` onto `target` (source > target); then, for pairs of one group, the final fine
 /// registration from the graph poses.
+/// A pair's global registration (paper §4.2.1) as the pairwise stage left it.
+struct PairGlobalFigures {
+    GlobalRegistrationStatus status = GlobalRegistrationStatus::kInvalidInput;
+    /// Not refined: its scans were already connected by verified pairs of higher score (or
+    /// one of them had max_failed_refinements_per_scan failures).
+    bool skipped = false;
+    bool refined = false;           ///< Refined and verified (not skipped, or not any more).
+    double rms_m = 0.0;             ///< Point-to-plane RMS of the global result, metres.
+    double target_spacing_m = 0.0;  ///< Median target sample spacing, metres.
+    double overlap_fraction = 0.0;
+    double time_s = 0.0;
+};
+
+/// Slide probes of a pair's global pose (GlobalRegistrationConfig::
+/// slide_probe_max_eigenvalue_ratio): how many were refined and whether a slid pose fitted
+/// alike (ambiguous: the overlap does not fix the pose along a direction, by up to slide_m
+/// metres).
+struct PairSlides {
+    std::size_t probes = 0;
+    bool ambiguous = false;
+    double slide_m = 0.0;
+};
+
+/// The final fine registration of a pair from the graph poses (pairs of one group whose
+/// bounding spheres meet; status invalid_input otherwise).
+struct PairFineFigures {
+    FineRegistrationStatus status = FineRegistrationStatus::kInvalidInput;
+    int iterations = 0;
+    double rms_m = 0.0;
+    double overlap_fraction = 0.0;
+    std::optional<double> normal_deviation_deg;
+    double eigenvalue_ratio = 0.0;  ///< Degeneracy figure of the final fine registration.
+    /// Translation part of its weakest direction (target frame, unit; zero when none).
+    Eigen::Vector3d weakest_translation = Eigen::Vector3d::Zero();
+    double time_s = 0.0;
+};
+
 struct PairOutcome {
     std::size_t source = 0, target = 0;  ///< Scan indices (input order).
     double match_score = 0.0;            ///< Best hypothesis's consensus score (0: none).
     std::size_t hypotheses = 0;          ///< Distinct pose hypotheses from matching.
-    /// Not refined: its scans were already connected by verified pairs of higher score (or
-    /// one of them had max_failed_refinements_per_scan failures).
-    bool global_skipped = false;
-    GlobalRegistrationStatus global_status = GlobalRegistrationStatus::kInvalidInput;
-    bool global_refined = false;  ///< Refined and verified (not skipped, or not any more).
-    bool verified = false;        ///< Global status success, within the session RMS gate.
+    PairGlobalFigures global;
+    bool verified = false;  ///< Global status success, within the session RMS gate.
     /// Global status success but its RMS exceeds the session RMS gate: not used.
     bool above_rms_gate = false;
     /// Refined hypotheses that passed the other tests but were rejected by the free-space
     /// check (look-alike poses).
     std::size_t free_space_rejections = 0;
-    /// Slide probes refined (GlobalRegistrationConfig::slide_probe_max_eigenvalue_ratio) and
-    /// whether a slid pose fitted alike (ambiguous: the overlap does not fix the pose along
-    /// a direction, by up to slide_m metres).
-    std::size_t slide_probes = 0;
-    bool slide_ambiguous = false;
-    double slide_m = 0.0;
+    PairSlides slides;
     bool in_tree = false;  ///< An edge of the maximum spanning tree.
     double weight = 0.0;   ///< Tree weight: overlap / (1 + rms / target spacing).
     Pose T_target_source = Pose::Identity();  ///< Global result (when verified).
-    double global_rms_m = 0.0;                ///< Point-to-plane RMS of the global result, metres.
-    double global_target_spacing_m = 0.0;     ///< Median target sample spacing, metres.
-    double global_overlap_fraction = 0.0;
-    double global_time_s = 0.0;
-    /// Final fine registration from the graph poses (pairs of one group whose bounding
-    /// spheres meet; status invalid_input otherwise).
-    FineRegistrationStatus fine_status = FineRegistrationStatus::kInvalidInput;
-    int fine_iterations = 0;
-    double fine_rms_m = 0.0;
-    double fine_overlap_fraction = 0.0;
-    std::optional<double> fine_normal_deviation_deg;
-    double fine_eigenvalue_ratio = 0.0;  ///< Degeneracy figure of the final fine registration.
-    /// Translation part of its weakest direction (target frame, unit; zero when none).
-    Eigen::Vector3d fine_weakest_translation = Eigen::Vector3d::Zero();
-    double fine_time_s = 0.0;
+    PairFineFigures fine;
     bool linked = false;        ///< Gave a multi-view link.
     bool link_dropped = false;  ///< Dropped by the multi-view regression step.
 };
@@ -277,8 +291,9 @@ ScanRegistrationResult register_scans(const std::vector<ScanInput>& scans,
 
 /// Preparation of one loaded cloud: drops non-finite points; when the cloud has no normals
 /// estimates them and orients them toward `sensor_origin_scan_m` (scan frame, metres) or,
-/// without it, as seen from the estimated side (`orient_as_range_scan`); drops points left without a finite unit normal; down-samples
-/// when `config.voxel_size_m` > 0. Returns the number of points kept.
+/// without it, as seen from the estimated side (`orient_as_range_scan`); drops points left without
+/// a finite unit normal; down-samples when `config.voxel_size_m` > 0. Returns the number of points
+/// kept.
 std::size_t prepare_scan(PointCloud& cloud, const std::optional<Eigen::Vector3d>& sensor_origin_m,
                          const ScanRegistrationConfig& config);
 
