@@ -66,92 +66,123 @@ struct JointFaceRank {
     double score = 0.0;
 };
 
+// The true joints: each joint face's true partners and the joint's kind.
+struct TrueJoints {
+    std::map<FaceKey, std::set<FaceKey>> partners;
+    std::map<FaceKey, std::string> kind;
+};
+
+TrueJoints read_joints(const json& truth) {
+    TrueJoints t;
+    for (const json& j : truth.at("joints")) {
+        const FaceKey a{j.at("a").at("block"), j.at("a").at("face")},
+            b{j.at("b").at("block"), j.at("b").at("face")};
+        t.partners[a].insert(b), t.partners[b].insert(a);
+        t.kind[a] = t.kind[b] = j.at("kind").get<std::string>();
+    }
+    return t;
+}
+
+// Ranks of the true partners in the proposal lists, and the scores of the wrong pairs.
+struct Ranking {
+    std::vector<JointFaceRank> ranks;
+    std::map<std::set<std::string>, double> wrong;  ///< Unordered wrong pair -> score.
+};
+
+void rank_one_list(const json& p, const std::map<std::string, FaceKey>& names, TrueJoints& t,
+                   Ranking& out) {
+    const std::string label = p.at("face").get<std::string>();
+    const auto self = names.find(label);
+    const auto& cands = p.at("candidates");
+    for (std::size_t k = 0; k < cands.size(); ++k) {
+        const std::string other = cands[k].at("face").get<std::string>();
+        const auto it = names.find(other);
+        const bool is_true = self != names.end() && it != names.end() &&
+                             t.partners.contains(self->second) &&
+                             t.partners[self->second].contains(it->second);
+        if (!is_true) {
+            out.wrong[{label, other}] = cands[k].at("score").get<double>();
+            continue;
+        }
+        for (JointFaceRank& r : out.ranks)
+            if (r.face == self->second && (r.rank <= 0 || int(k) + 1 < r.rank))
+                r.rank = int(k) + 1, r.score = cands[k].at("score").get<double>();
+        break;
+    }
+    if (self == names.end()) return;
+    for (JointFaceRank& r : out.ranks)
+        if (r.face == self->second && r.rank == 0) r.rank = -1;  // Found, not ranked.
+}
+
+Ranking rank_true_neighbours(const json& proposals, const json& truth) {
+    const std::map<std::string, FaceKey> names = name_faces(proposals, truth);
+    TrueJoints t = read_joints(truth);
+    Ranking out;
+    for (const auto& [face, ps] : t.partners) out.ranks.push_back({face, t.kind[face]});
+    for (const json& p : proposals.at("proposals")) rank_one_list(p, names, t, out);
+    return out;
+}
+
+json summarise(const Ranking& ranking, std::size_t block_count) {
+    const std::vector<JointFaceRank>& ranks = ranking.ranks;
+    int top1 = 0, top3 = 0, missing = 0, top1_vertical = 0, vertical = 0;
+    double lowest_true = 1e300;
+    for (const JointFaceRank& r : ranks) {
+        top1 += r.rank == 1, top3 += r.rank >= 1 && r.rank <= 3, missing += r.rank == 0;
+        vertical += r.kind == "vertical", top1_vertical += r.kind == "vertical" && r.rank == 1;
+        if (r.rank >= 1) lowest_true = std::min(lowest_true, r.score);
+    }
+    int wrong_above = 0;
+    for (const auto& [pair, score] : ranking.wrong) wrong_above += score > lowest_true;
+    const double n = std::max<double>(1.0, double(ranks.size()));
+    const std::size_t beds = ranks.size() - std::size_t(vertical);
+    json out{{"joint_faces", ranks.size()},
+             {"top1_share", top1 / n},
+             {"top3_share", top3 / n},
+             {"faces_not_found", missing},
+             {"vertical_top1_share", vertical ? double(top1_vertical) / vertical : 0.0},
+             {"bed_top1_share", beds ? double(top1 - top1_vertical) / double(beds) : 0.0},
+             {"wrong_pairs_above_lowest_true", wrong_above},
+             {"random_top1", 1.0 / (6.0 * double(block_count))}};
+    json per = json::array();
+    for (const JointFaceRank& r : ranks)
+        per.push_back({{"block", r.face.first},
+                       {"face", r.face.second},
+                       {"kind", r.kind},
+                       {"rank", r.rank},
+                       {"score", r.score}});
+    out["ranks"] = per;
+    return out;
+}
+
+void print_table(const Ranking& ranking, const json& out) {
+    for (const JointFaceRank& r : ranking.ranks)
+        std::printf("%-6s %-3s %-9s rank %s\n", r.face.first.c_str(), r.face.second.c_str(),
+                    r.kind.c_str(),
+                    r.rank > 0 ? std::to_string(r.rank).c_str()
+                               : (r.rank == 0 ? "face not found" : "not ranked"));
+    std::printf(
+        "%zu true joint faces: top-1 %.1f%%, top-3 %.1f%% (vertical top-1 %.1f%%, bed top-1 "
+        "%.1f%%); %d faces not found; %d wrong pairs above the lowest true pair; random top-1 "
+        "%.1f%%\n",
+        ranking.ranks.size(), 100 * out["top1_share"].get<double>(),
+        100 * out["top3_share"].get<double>(), 100 * out["vertical_top1_share"].get<double>(),
+        100 * out["bed_top1_share"].get<double>(), out["faces_not_found"].get<int>(),
+        out["wrong_pairs_above_lowest_true"].get<int>(), 100 * out["random_top1"].get<double>());
+}
+
 void run_eval(const EvalOptions& o) {
     auto proposals = read_json_file(o.proposals);
     if (!proposals) fail_command(proposals.error());
     auto truth = read_json_file(o.truth);
     if (!truth) fail_command(truth.error());
     try {
-        const std::map<std::string, FaceKey> names = name_faces(*proposals, *truth);
-        std::map<FaceKey, std::set<FaceKey>> partners;
-        std::map<FaceKey, std::string> kind;
-        for (const json& j : truth->at("joints")) {
-            const FaceKey a{j.at("a").at("block"), j.at("a").at("face")},
-                b{j.at("b").at("block"), j.at("b").at("face")};
-            partners[a].insert(b), partners[b].insert(a);
-            kind[a] = kind[b] = j.at("kind").get<std::string>();
-        }
-        std::vector<JointFaceRank> ranks;
-        for (const auto& [face, ps] : partners) ranks.push_back({face, kind[face]});
-        std::map<std::set<std::string>, double> wrong;  // Unordered wrong pair -> score.
-        for (const json& p : proposals->at("proposals")) {
-            const std::string label = p.at("face").get<std::string>();
-            const auto self = names.find(label);
-            const auto& cands = p.at("candidates");
-            for (std::size_t k = 0; k < cands.size(); ++k) {
-                const std::string other = cands[k].at("face").get<std::string>();
-                const auto it = names.find(other);
-                const bool is_true = self != names.end() && it != names.end() &&
-                                     partners.contains(self->second) &&
-                                     partners[self->second].contains(it->second);
-                if (!is_true) {
-                    wrong[{label, other}] = cands[k].at("score").get<double>();
-                    continue;
-                }
-                for (JointFaceRank& r : ranks)
-                    if (r.face == self->second && (r.rank <= 0 || int(k) + 1 < r.rank))
-                        r.rank = int(k) + 1, r.score = cands[k].at("score").get<double>();
-                break;
-            }
-            if (self == names.end()) continue;
-            for (JointFaceRank& r : ranks)
-                if (r.face == self->second && r.rank == 0) r.rank = -1;  // Found, not ranked.
-        }
-        int top1 = 0, top3 = 0, missing = 0, top1_vertical = 0, vertical = 0;
-        double lowest_true = 1e300;
-        for (const JointFaceRank& r : ranks) {
-            top1 += r.rank == 1, top3 += r.rank >= 1 && r.rank <= 3, missing += r.rank == 0;
-            vertical += r.kind == "vertical", top1_vertical += r.kind == "vertical" && r.rank == 1;
-            if (r.rank >= 1) lowest_true = std::min(lowest_true, r.score);
-        }
-        int wrong_above = 0;
-        for (const auto& [pair, score] : wrong) wrong_above += score > lowest_true;
-        const double n = std::max<double>(1.0, double(ranks.size()));
-        const double random_top1 = 1.0 / (6.0 * double(truth->at("blocks").size()));
-        json out{{"joint_faces", ranks.size()},
-                 {"top1_share", top1 / n},
-                 {"top3_share", top3 / n},
-                 {"faces_not_found", missing},
-                 {"vertical_top1_share", vertical ? double(top1_vertical) / vertical : 0.0},
-                 {"bed_top1_share", ranks.size() - vertical ? double(top1 - top1_vertical) /
-                                                                  double(ranks.size() - vertical)
-                                                            : 0.0},
-                 {"wrong_pairs_above_lowest_true", wrong_above},
-                 {"random_top1", random_top1}};
-        json per = json::array();
-        for (const JointFaceRank& r : ranks)
-            per.push_back({{"block", r.face.first},
-                           {"face", r.face.second},
-                           {"kind", r.kind},
-                           {"rank", r.rank},
-                           {"score", r.score}});
-        out["ranks"] = per;
-        if (o.as_json) {
+        const Ranking ranking = rank_true_neighbours(*proposals, *truth);
+        const json out = summarise(ranking, truth->at("blocks").size());
+        if (o.as_json)
             std::printf("%s\n", out.dump(1).c_str());
-            return;
-        }
-        for (const JointFaceRank& r : ranks)
-            std::printf("%-6s %-3s %-9s rank %s\n", r.face.first.c_str(), r.face.second.c_str(),
-                        r.kind.c_str(),
-                        r.rank > 0 ? std::to_string(r.rank).c_str()
-                                   : (r.rank == 0 ? "face not found" : "not ranked"));
-        std::printf(
-            "%zu true joint faces: top-1 %.1f%%, top-3 %.1f%% (vertical top-1 %.1f%%, bed top-1 "
-            "%.1f%%); "
-            "%d faces not found; %d wrong pairs above the lowest true pair; random top-1 %.1f%%\n",
-            ranks.size(), 100 * top1 / n, 100 * top3 / n,
-            100 * out["vertical_top1_share"].get<double>(),
-            100 * out["bed_top1_share"].get<double>(), missing, wrong_above, 100 * random_top1);
+        else
+            print_table(ranking, out);
     } catch (const json::exception& e) {
         fail_command({ErrorCode::kFormat, o.proposals + " / " + o.truth + ": " + e.what()});
     }

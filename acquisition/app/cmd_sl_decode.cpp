@@ -106,6 +106,43 @@ SlDecodeOptions with_recorded_layout(SlDecodeOptions o) {
     return o;
 }
 
+// Clearly unusable results (docs/exit-codes.md): most matches missing each other, or none.
+void check_decode_quality(const sl::StereoDecodeResult& r, const SlDecodeOptions& o) {
+    if (2 * r.rejected_ray_gap > r.matched) {
+        report_poor_result(
+            fmt::format("{} of {} matches miss by more than {} mm: wrong camera order "
+                        "(--swap-cameras), calibration unit or calibration?",
+                        r.rejected_ray_gap, r.matched, o.max_ray_gap_mm));
+    } else if (r.cloud.empty()) {
+        report_poor_result(
+            "no point triangulated: check the images, --min-contrast and the "
+            "calibration");
+    }
+}
+
+struct DecodeTimes {
+    std::size_t image_count = 0;
+    double load_s = 0.0, decode_s = 0.0, total_s = 0.0;
+};
+
+void print_decode_report(const sl::StereoDecodeResult& r, const SlDecodeOptions& o,
+                         const DecodeTimes& t) {
+    std::printf(
+        "points: %zu (%.1f %% of %zu cam1 pixels; cam1 decoded %.1f %%, cam2 %.1f %%, "
+        "matched %.1f %% of decoded)\n",
+        r.cloud.size(), 100.0 * double(r.cloud.size()) / double(r.pixel_count), r.pixel_count,
+        100.0 * double(r.cam1_valid) / double(r.pixel_count),
+        100.0 * double(r.cam2_valid) / double(r.pixel_count),
+        100.0 * double(r.matched) / double(std::max<std::size_t>(r.cam1_valid, 1)));
+    std::printf("rejected: %zu ray gap > %.1f mm, %zu depth; median ray gap %.2f mm\n",
+                r.rejected_ray_gap, o.max_ray_gap_mm, r.rejected_depth, r.median_ray_gap_m * 1e3);
+    std::printf(
+        "time: %.3f s (load %zu images %.3f s, decode %.3f s [codes %.3f s, matching "
+        "%.3f s, triangulation %.3f s], write %.3f s)\n",
+        t.total_s, t.image_count, t.load_s, t.decode_s, r.decode_s, r.match_s, r.triangulate_s,
+        t.total_s - t.load_s - t.decode_s);
+}
+
 void run_sl_decode(const SlDecodeOptions& options) {
     const SlDecodeOptions o = with_recorded_layout(options);
     check_point_output(o.output);
@@ -131,34 +168,46 @@ void run_sl_decode(const SlDecodeOptions& options) {
     auto result = sl::decode_stereo(all.first(n), all.subspan(n), *calibration, config);
     if (!result) fail_command(result.error());
     const double decode_s = seconds_since(t0) - load_s;
-    if (2 * result->rejected_ray_gap > result->matched) {
-        report_poor_result(
-            fmt::format("{} of {} matches miss by more than {} mm: wrong camera order "
-                        "(--swap-cameras), calibration unit or calibration?",
-                        result->rejected_ray_gap, result->matched, o.max_ray_gap_mm));
-    } else if (result->cloud.empty()) {
-        report_poor_result(
-            "no point triangulated: check the images, --min-contrast and the "
-            "calibration");
-    }
+    check_decode_quality(*result, o);
     write_points(o.output, result->cloud);
     const double total_s = seconds_since(t0);
-    const auto& r = *result;
-    std::printf(
-        "points: %zu (%.1f %% of %zu cam1 pixels; cam1 decoded %.1f %%, cam2 %.1f %%, "
-        "matched %.1f %% of decoded)\n",
-        r.cloud.size(), 100.0 * double(r.cloud.size()) / double(r.pixel_count), r.pixel_count,
-        100.0 * double(r.cam1_valid) / double(r.pixel_count),
-        100.0 * double(r.cam2_valid) / double(r.pixel_count),
-        100.0 * double(r.matched) / double(std::max<std::size_t>(r.cam1_valid, 1)));
-    std::printf("rejected: %zu ray gap > %.1f mm, %zu depth; median ray gap %.2f mm\n",
-                r.rejected_ray_gap, o.max_ray_gap_mm, r.rejected_depth, r.median_ray_gap_m * 1e3);
-    std::printf(
-        "time: %.3f s (load %zu images %.3f s, decode %.3f s [codes %.3f s, matching "
-        "%.3f s, triangulation %.3f s], write %.3f s)\n",
-        total_s, files.size(), load_s, decode_s, r.decode_s, r.match_s, r.triangulate_s,
-        total_s - load_s - decode_s);
+    print_decode_report(*result, o, {files.size(), load_s, decode_s, total_s});
     std::printf("wrote %s (cam1 frame, metres)\n", o.output.c_str());
+}
+
+// The pattern layout and decoder tuning options; the layout's, to tell given from default.
+struct LayoutOptions {
+    CLI::Option *width, *height, *steps, *period;
+};
+
+LayoutOptions add_layout_options(CLI::App* cmd, SlDecodeOptions& o) {
+    // Defaults, unless the calibration records the layout (proj_size, pattern_phase_*).
+    LayoutOptions layout;
+    layout.width = cmd->add_option("--projector-width", o.projector_width_px,
+                                   "Projector width, px (default: the calibration's proj_size)")
+                       ->capture_default_str();
+    layout.height =
+        cmd->add_option("--projector-height", o.projector_height_px, "Projector height, px")
+            ->capture_default_str();
+    layout.steps = cmd->add_option("--phase-steps", o.phase_steps,
+                                   "Phase-shift images per axis after the Gray code (0: none; "
+                                   "default: the calibration's pattern_phase_steps)")
+                       ->capture_default_str();
+    layout.period =
+        cmd->add_option("--phase-period", o.phase_period_px, "Sinusoid period, projector px")
+            ->capture_default_str();
+    cmd->add_option("--min-contrast", o.min_contrast, "White - black, grey levels")
+        ->capture_default_str();
+    cmd->add_option("--min-bit-contrast", o.min_bit_contrast,
+                    "|pattern - inverse| for a certain bit, grey levels")
+        ->capture_default_str();
+    cmd->add_option("--max-ray-gap", o.max_ray_gap_mm, "Largest ray gap, mm")
+        ->capture_default_str();
+    cmd->add_flag("--no-subpixel", o.no_subpixel, "Integer projector coordinates only");
+    cmd->add_option("--threads", o.threads, "Worker threads (0: all cores)")
+        ->capture_default_str()
+        ->check(CLI::NonNegativeNumber);
+    return layout;
 }
 
 }  // namespace
@@ -185,34 +234,10 @@ void add_sl_command(CLI::App& app) {
     cmd->add_option("--calibration-unit", opts->file_unit_m, "Unit of the calibration's T")
         ->transform(CLI::CheckedTransformer(units, CLI::ignore_case))
         ->default_str("mm");
-    // Defaults, unless the calibration records the layout (proj_size, pattern_phase_*).
-    auto* width = cmd->add_option("--projector-width", opts->projector_width_px,
-                                  "Projector width, px (default: the calibration's proj_size)")
-                      ->capture_default_str();
-    auto* height =
-        cmd->add_option("--projector-height", opts->projector_height_px, "Projector height, px")
-            ->capture_default_str();
-    auto* steps = cmd->add_option("--phase-steps", opts->phase_steps,
-                                  "Phase-shift images per axis after the Gray code (0: none; "
-                                  "default: the calibration's pattern_phase_steps)")
-                      ->capture_default_str();
-    auto* period =
-        cmd->add_option("--phase-period", opts->phase_period_px, "Sinusoid period, projector px")
-            ->capture_default_str();
-    cmd->add_option("--min-contrast", opts->min_contrast, "White - black, grey levels")
-        ->capture_default_str();
-    cmd->add_option("--min-bit-contrast", opts->min_bit_contrast,
-                    "|pattern - inverse| for a certain bit, grey levels")
-        ->capture_default_str();
-    cmd->add_option("--max-ray-gap", opts->max_ray_gap_mm, "Largest ray gap, mm")
-        ->capture_default_str();
-    cmd->add_flag("--no-subpixel", opts->no_subpixel, "Integer projector coordinates only");
-    cmd->add_option("--threads", opts->threads, "Worker threads (0: all cores)")
-        ->capture_default_str()
-        ->check(CLI::NonNegativeNumber);
-    cmd->callback([opts, width, height, steps, period] {
-        opts->projector_size_given = width->count() > 0 || height->count() > 0;
-        opts->phase_given = steps->count() > 0 || period->count() > 0;
+    const LayoutOptions layout = add_layout_options(cmd, *opts);
+    cmd->callback([opts, layout] {
+        opts->projector_size_given = layout.width->count() > 0 || layout.height->count() > 0;
+        opts->phase_given = layout.steps->count() > 0 || layout.period->count() > 0;
         run_sl_decode(*opts);
     });
 }

@@ -42,6 +42,12 @@ constexpr int kFullDiskLimitKiB = 800;
 /// A fast simulated device: the terrestrial (time-of-flight) scanner at a coarse step.
 const std::string kDevice = "--device sim:tof/small-block --angular-step-deg 0.5";
 
+int registered_rows(const json& state) {
+    int n = 0;
+    for (const auto& row : state["scans"]) n += row["state"] == "registered";
+    return n;
+}
+
 class FieldSession : public ::testing::Test {
 protected:
     void SetUp() override {
@@ -60,14 +66,68 @@ protected:
         EXPECT_EQ(r.exit_code, 0) << args << ": " << r.output;
         return json::parse(r.output, nullptr, false);
     }
+    // The app's rows and coverage are what `session info` and `coverage` report.
+    void expect_state_as_session_info(const fs::path& session, const fs::path& state_file) {
+        const json state = read_json(state_file);
+        ASSERT_TRUE(state.is_object()) << state_file;
+        const json expected = cli_json("session info " + session.string() + " --json");
+        ASSERT_TRUE(expected.is_object());
+        ASSERT_EQ(state["scans"].size(), expected["scans"].size());
+        for (std::size_t i = 0; i < state["scans"].size(); ++i) {
+            EXPECT_EQ(state["scans"][i]["seq"], expected["scans"][i]["seq"]);
+            EXPECT_EQ(state["scans"][i]["state"], expected["scans"][i]["state"]);
+            EXPECT_EQ(state["scans"][i]["group"], expected["scans"][i]["group"]);
+        }
+        ASSERT_GT(registered_rows(state), 0);
+        EXPECT_GT(state["points_total"].get<double>(), 0.0);
+
+        const json cov = cli_json("coverage " + session.string() + " --json");
+        ASSERT_TRUE(cov.is_object());
+        ASSERT_TRUE(state["coverage_fraction"].is_number()) << state.dump();
+        EXPECT_GT(cov["fraction"].get<double>(), 0.0) << "a session with coverage";
+        EXPECT_NEAR(state["coverage_fraction"].get<double>(), cov["fraction"].get<double>(), 1e-4);
+    }
+
+    void expect_model_drawn(const fs::path& png) {
+        const cv::Mat image = cv::imread(png.string(), cv::IMREAD_COLOR);
+        ASSERT_FALSE(image.empty()) << png;
+        // The view lies between the scan list (450 px) and the device panel (360 px); a banner
+        // (this 2-view session may be split) covers up to about 260 px of its top.
+        EXPECT_GT(fraction_not(image, cv::Rect(500, 300, 370, 300), kClearRgb), 0.05)
+            << "no model drawn in the view";
+    }
+
+    void expect_reregistered_from_the_list(const fs::path& session, const fs::path& state_file) {
+        // Re-register scan 2 from the scan list's action (the session is opened for capture):
+        // the row gets a new decision and the session records the operator's action.
+        const int events_before =
+            cli_json("session info " + session.string() + " --json")["events"];
+        const RunResult again =
+            field("--session " + session.string() +
+                  " --reregister-scan 2 --frames 2 --dump-state " + state_file.string());
+        ASSERT_EQ(again.exit_code, 0) << again.output;
+        const json after = read_json(state_file);
+        ASSERT_EQ(after["scans"].size(), 2u) << after.dump(2);
+        EXPECT_NE(after["scans"][1]["state"], "queued") << after.dump(2);
+        EXPECT_EQ(after["queued_registrations"], 0);
+        EXPECT_EQ(after["last_error"], "") << after.dump(2);
+        const json info = cli_json("session info " + session.string() + " --json");
+        EXPECT_GT(info["events"].get<int>(), events_before) << "the re-register event";
+    }
+
+    void expect_damage_reported(const fs::path& session, const fs::path& state_file) {
+        // After a "crash" that damaged a scan file, reopening shows what `session check` found.
+        fs::resize_file(session / "scans" / "scan_000002.ply", 200);
+        const RunResult reopened = field("--session " + session.string() +
+                                         " --frames 1 --dump-state " + state_file.string());
+        ASSERT_EQ(reopened.exit_code, 0) << reopened.output;
+        const std::string check = read_json(state_file)["session_check"];
+        EXPECT_NE(check.find("scan_000002.ply"), std::string::npos) << check;
+        EXPECT_NE(check.find("--repair"), std::string::npos) << check;
+    }
+
     fs::path dir_;
 };
-
-int registered_rows(const json& state) {
-    int n = 0;
-    for (const auto& row : state["scans"]) n += row["state"] == "registered";
-    return n;
-}
 
 TEST_F(FieldSession, ShowsASessionAsSessionInfoAndCoverageReportIt) {
     const fs::path session = dir_ / "session";
@@ -80,56 +140,10 @@ TEST_F(FieldSession, ShowsASessionAsSessionInfoAndCoverageReportIt) {
     const RunResult r = field("--session " + session.string() + " --screenshot " + png.string() +
                               " --frames 5 --dump-state " + state_file.string());
     ASSERT_EQ(r.exit_code, 0) << r.output;
-
-    const json state = read_json(state_file);
-    ASSERT_TRUE(state.is_object()) << state_file;
-    const json expected = cli_json("session info " + session.string() + " --json");
-    ASSERT_TRUE(expected.is_object());
-    ASSERT_EQ(state["scans"].size(), expected["scans"].size());
-    for (std::size_t i = 0; i < state["scans"].size(); ++i) {
-        EXPECT_EQ(state["scans"][i]["seq"], expected["scans"][i]["seq"]);
-        EXPECT_EQ(state["scans"][i]["state"], expected["scans"][i]["state"]);
-        EXPECT_EQ(state["scans"][i]["group"], expected["scans"][i]["group"]);
-    }
-    ASSERT_GT(registered_rows(state), 0);
-    EXPECT_GT(state["points_total"].get<double>(), 0.0);
-
-    const json cov = cli_json("coverage " + session.string() + " --json");
-    ASSERT_TRUE(cov.is_object());
-    ASSERT_TRUE(state["coverage_fraction"].is_number()) << state.dump();
-    EXPECT_GT(cov["fraction"].get<double>(), 0.0) << "a session with coverage";
-    EXPECT_NEAR(state["coverage_fraction"].get<double>(), cov["fraction"].get<double>(), 1e-4);
-
-    const cv::Mat image = cv::imread(png.string(), cv::IMREAD_COLOR);
-    ASSERT_FALSE(image.empty()) << png;
-    // The view lies between the scan list (450 px) and the device panel (360 px); a banner
-    // (this 2-view session may be split) covers up to about 260 px of its top.
-    EXPECT_GT(fraction_not(image, cv::Rect(500, 300, 370, 300), kClearRgb), 0.05)
-        << "no model drawn in the view";
-
-    // Re-register scan 2 from the scan list's action (the session is opened for capture):
-    // the row gets a new decision and the session records the operator's action.
-    const int events_before = cli_json("session info " + session.string() + " --json")["events"];
-    const RunResult again =
-        field("--session " + session.string() + " --reregister-scan 2 --frames 2 --dump-state " +
-              state_file.string());
-    ASSERT_EQ(again.exit_code, 0) << again.output;
-    const json after = read_json(state_file);
-    ASSERT_EQ(after["scans"].size(), 2u) << after.dump(2);
-    EXPECT_NE(after["scans"][1]["state"], "queued") << after.dump(2);
-    EXPECT_EQ(after["queued_registrations"], 0);
-    EXPECT_EQ(after["last_error"], "") << after.dump(2);
-    const json info = cli_json("session info " + session.string() + " --json");
-    EXPECT_GT(info["events"].get<int>(), events_before) << "the re-register event";
-
-    // After a "crash" that damaged a scan file, reopening shows what `session check` found.
-    fs::resize_file(session / "scans" / "scan_000002.ply", 200);
-    const RunResult reopened =
-        field("--session " + session.string() + " --frames 1 --dump-state " + state_file.string());
-    ASSERT_EQ(reopened.exit_code, 0) << reopened.output;
-    const std::string check = read_json(state_file)["session_check"];
-    EXPECT_NE(check.find("scan_000002.ply"), std::string::npos) << check;
-    EXPECT_NE(check.find("--repair"), std::string::npos) << check;
+    expect_state_as_session_info(session, state_file);
+    expect_model_drawn(png);
+    expect_reregistered_from_the_list(session, state_file);
+    expect_damage_reported(session, state_file);
 }
 
 TEST_F(FieldSession, CapturesFromTheCaptureActionRegisterLive) {

@@ -139,17 +139,16 @@ LocalFit finish_point(const CovarianceArrays& covariances, std::size_t i,
 
 }  // namespace
 
-NormalEstimationResult estimate_normals(PointCloud& cloud, const NormalEstimationConfig& config) {
-    NormalEstimationResult result;
+namespace {
+
+// Each point's neighbourhood covariance, from the k-NN rows as the search finds them (or
+// from the kept graph). Points the search never reaches (non-finite) keep kTooFew.
+std::vector<Fit> neighbourhood_covariances(const PointCloud& cloud,
+                                           const NormalEstimationConfig& config,
+                                           CovarianceArrays& covariances,
+                                           NormalEstimationResult& result) {
     const std::size_t n = cloud.size();
-    if (n == 0) {
-        result.status = NormalStatus::kEmptyCloud;
-        cloud.normals.clear();
-        return result;
-    }
-    // Points the neighbour search never reaches (non-finite) keep kTooFew and a zero normal.
     std::vector<Fit> fits(n, Fit::kTooFew);
-    CovarianceArrays covariances;
     covariances.resize(n);
     const std::size_t min_neighbors = std::size_t(std::max(config.min_neighbors, 2));
     const auto store = [&](std::size_t i, std::span<const std::uint32_t> neighbors) {
@@ -167,6 +166,14 @@ NormalEstimationResult estimate_normals(PointCloud& cloud, const NormalEstimatio
                             [&](std::size_t i, std::span<const std::uint32_t> neighbors,
                                 std::span<const float>) { store(i, neighbors); });
     }
+    return fits;
+}
+
+// The normals and curvatures of the fitted covariances, solved in batches; a normal keeps
+// the side of the one the cloud had before, when it had normals.
+void solve_normals(const CovarianceArrays& covariances, std::vector<Fit>& fits, PointCloud& cloud,
+                   NormalEstimationResult& result) {
+    const std::size_t n = cloud.size();
     std::vector<Eigen::Vector3f> old;
     if (cloud.normals.size() == n) old = std::move(cloud.normals);
     cloud.normals.resize(n);  // Every entry is written below.
@@ -192,6 +199,20 @@ NormalEstimationResult estimate_normals(PointCloud& cloud, const NormalEstimatio
             fits[i] = local.fit;
         }
     });
+}
+
+}  // namespace
+
+NormalEstimationResult estimate_normals(PointCloud& cloud, const NormalEstimationConfig& config) {
+    NormalEstimationResult result;
+    if (cloud.size() == 0) {
+        result.status = NormalStatus::kEmptyCloud;
+        cloud.normals.clear();
+        return result;
+    }
+    CovarianceArrays covariances;
+    std::vector<Fit> fits = neighbourhood_covariances(cloud, config, covariances, result);
+    solve_normals(covariances, fits, cloud, result);
     for (const Fit f : fits) {
         result.num_estimated += f == Fit::kOk;
         result.num_too_few_neighbors += f == Fit::kTooFew;
