@@ -1,5 +1,6 @@
 #include "block_features_json.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 
 #include "anascan/processing/io/file_bytes.hpp"
@@ -99,11 +100,20 @@ json to_json(const NamedBlockFeatures& block) {
             {"edges", edges}};
 }
 
+namespace {
+
+// A string member or "" when absent (json::value trips GCC 12's -Wnull-dereference here).
+std::string string_or_empty(const json& j, const char* key) {
+    return j.contains(key) ? j.at(key).get<std::string>() : std::string();
+}
+
+}  // namespace
+
 Expected<NamedBlockFeatures> block_features_from_json(const json& j,
                                                       const std::string& source_name) {
     try {
         NamedBlockFeatures out{.id = j.at("id").get<std::string>(),
-                               .source = j.value("source", std::string())};
+                               .source = string_or_empty(j, "source")};
         reassembly::BlockFeatures& b = out.features;
         const std::string status = j.at("status").get<std::string>();
         const auto* s = std::find_if(std::begin(kStatuses), std::end(kStatuses),
@@ -111,7 +121,7 @@ Expected<NamedBlockFeatures> block_features_from_json(const json& j,
         if (s == std::end(kStatuses))
             return fail(ErrorCode::kFormat, source_name + ": unknown status '" + status + "'");
         b.status = *s;
-        b.message = j.value("message", std::string());
+        b.message = string_or_empty(j, "message");
         b.num_points = j.at("num_points").get<std::size_t>();
         b.spacing_m = j.at("spacing_m").get<double>();
         for (const json& f : j.at("faces")) b.faces.push_back(face_from(f));

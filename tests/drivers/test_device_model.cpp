@@ -110,7 +110,8 @@ TEST(Registry, HardwareRegistryHasTheRealBackends) {
     const DeviceRegistry registry = make_hardware_registry();
     std::vector<std::string> schemes;
     for (const Backend& b : registry.backends()) schemes.push_back(b.scheme);
-    EXPECT_EQ(schemes, (std::vector<std::string>{"v4l2", "usb", "ptx", "playback", "sl", "depth"}));
+    EXPECT_EQ(schemes,
+              (std::vector<std::string>{"v4l2", "usb", "ptx", "e57", "playback", "sl", "depth"}));
 }
 
 // The composed devices' URIs fail clearly before any part is opened.
