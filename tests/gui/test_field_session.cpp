@@ -133,7 +133,7 @@ TEST_F(FieldSession, ShowsASessionAsSessionInfoAndCoverageReportIt) {
     const fs::path session = dir_ / "session";
     // Two structured-light views of the small block (about 7 s): a coverage figure, holes.
     const RunResult captured =
-        cli("capture --device sim:structured-light --scene small-block --session " +
+        cli("--accept-poor capture --device sim:structured-light --scene small-block --session " +
             session.string() + " --views 2 --flip-after 0");
     ASSERT_EQ(captured.exit_code, 0) << captured.output;
     const fs::path png = dir_ / "out.png", state_file = dir_ / "state.json";
@@ -173,8 +173,8 @@ TEST_F(FieldSession, CapturesFromTheCaptureActionRegisterLive) {
 
 TEST_F(FieldSession, CaptureUsesTheSessionsOwnDeviceAndLoneScansAreUnjoined) {
     const fs::path session = dir_ / "tof";
-    const RunResult captured =
-        cli("capture " + kDevice + " --session " + session.string() + " --views 3 --flip-after 0");
+    const RunResult captured = cli("--accept-poor capture " + kDevice + " --session " +
+                                   session.string() + " --views 3 --flip-after 0");
     ASSERT_EQ(captured.exit_code, 0) << captured.output;
     const json stored = cli_json("session info " + session.string() + " --json");
     ASSERT_TRUE(stored.is_object());

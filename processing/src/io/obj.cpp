@@ -1,5 +1,6 @@
 // Wavefront OBJ read and write.
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 
 #include "anascan/processing/io/mesh_formats.hpp"
@@ -40,6 +41,15 @@ Expected<Eigen::Vector3d> parse_xyz(const text::Fields& f, LineRef where) {
     if (f.count < 4) return text::line_error(ErrorCode::kFormat, where, "expected 3 coordinates");
     double xyz[3];
     if (auto ok = text::parse_doubles(f, 1, xyz, where); !ok) return fail(ok.error());
+    // Positions are stored as floats about an origin: a coordinate beyond this cannot be
+    // stored (and is no stone).
+    constexpr double kMaxCoordinate = 1e9;
+    for (const double c : xyz) {
+        if (!(std::abs(c) <= kMaxCoordinate)) {
+            return text::line_error(ErrorCode::kFormat, where,
+                                    "coordinate out of range (|value| > 1e9)");
+        }
+    }
     return Eigen::Vector3d(xyz[0], xyz[1], xyz[2]);
 }
 

@@ -71,6 +71,8 @@ TEST(MeshFormats, ObjErrorsNameFileAndLine) {
         {"v 0 0 0\nv 1 0 0\nf 1 2 3\n", "bad.obj: line 3: vertex index 3 out of range"},
         {"v 0 0\n", "bad.obj: line 1: expected 3 coordinates"},
         {"v 0 0 nan\n", "bad.obj: line 1"},
+        // Found by fuzz_obj: a finite double that no float position about an origin holds.
+        {"v 0 0 0\nv 2e61 0 0\n", "bad.obj: line 2: coordinate out of range"},
         {"v 0 0 0\nf 1 1\n", "bad.obj: line 2: a face needs 3 corners"},
         {"v 0 0 0\nf 0 1 1\n", "bad.obj: line 2: bad vertex index '0'"},
         {"v 0 0 0\nf 1//7 1 1\n", "bad.obj: line 2: normal index 7 out of range"},
