@@ -180,6 +180,21 @@ void check_joined(const acquisition::SessionStore& store) {
                        "need to overlap (or the device's scans are too sparse to match)");
 }
 
+scanner_sources::SimulatedTour simulated_tour(const CaptureOptions& o) {
+    return {.views = o.views,
+            .flip_after = o.flip_after < 0 ? o.views / 2 : o.flip_after,
+            .distance_m = o.distance_m,
+            .seed = o.tour_seed};
+}
+
+[[noreturn]] void throw_interrupted(const acquisition::SessionStore& store,
+                                    const CaptureOptions& o) {
+    auto scans = store.scans();
+    const std::size_t saved = scans ? scans->size() : 0;
+    throw CommandInterrupted("stopped (Ctrl-C) after scan " + std::to_string(saved) +
+                             "; the session is saved; resume with: " + resume_command(o));
+}
+
 void run_capture(const CaptureOptions& o) {
     const std::string uri = device_uri(o);
     const scanner_sources::ScannerSource source{
@@ -193,11 +208,7 @@ void run_capture(const CaptureOptions& o) {
     const int already = static_cast<int>(existing->size());
     if (already > 0) confirm_same_stone(**store, o, uri);
 
-    const scanner_sources::SimulatedTour tour{
-        .views = o.views,
-        .flip_after = o.flip_after < 0 ? o.views / 2 : o.flip_after,
-        .distance_m = o.distance_m,
-        .seed = o.tour_seed};
+    const scanner_sources::SimulatedTour tour = simulated_tour(o);
     acquisition::CaptureSessionConfig config{.register_live = !o.no_register,
                                              .coverage_live = !o.no_coverage};
     auto session = CaptureSession::start(std::move(*store), config, printing_sink());
@@ -223,12 +234,7 @@ void run_capture(const CaptureOptions& o) {
     if (!o.no_register && !o.no_coverage) store_final_coverage((*session)->store());
     print_capture_summary((*session)->store());
     if (stopped) throw CommandFailed("capture stopped: " + stopped->message);
-    if (g_interrupted) {
-        auto scans = (*session)->store().scans();
-        const std::size_t saved = scans ? scans->size() : 0;
-        throw CommandInterrupted("stopped (Ctrl-C) after scan " + std::to_string(saved) +
-                                 "; the session is saved; resume with: " + resume_command(o));
-    }
+    if (g_interrupted) throw_interrupted((*session)->store(), o);
     if (!o.no_register) check_joined((*session)->store());
 }
 

@@ -80,6 +80,20 @@ KilledRun run_and_kill(const std::vector<std::string>& args, std::chrono::millis
     return run;
 }
 
+// Capture resumes in the same session and adds scans after the last one.
+void expect_capture_resumes(const std::string& session,
+                            const std::map<std::int64_t, std::string>& files) {
+    const std::size_t before = files.size();
+    // --accept-poor: these coarse ToF views need not register (this test is about the files).
+    const auto resumed = run_cli(
+        "--accept-poor capture --device sim:tof --scene small-block --session " + session +
+        " --angular-step-deg 2 --flip-after 0 --no-coverage --views " + std::to_string(before + 2));
+    EXPECT_EQ(resumed.exit_code, 0) << resumed.output;
+    EXPECT_NE(resumed.output.find("saved scan " + std::to_string(files.rbegin()->first + 1)),
+              std::string::npos)
+        << resumed.output;
+}
+
 class CaptureCrash : public testing_util::Cli {};
 
 TEST_F(CaptureCrash, EveryAcknowledgedScanSurvivesSigkillAndCaptureResumes) {
@@ -127,16 +141,7 @@ TEST_F(CaptureCrash, EveryAcknowledgedScanSurvivesSigkillAndCaptureResumes) {
         EXPECT_GT(ply->cloud.size(), 0u) << "scan " << seq;
     }
 
-    // Capture resumes in the same session and adds scans after the last one.
-    const std::size_t before = files.size();
-    // --accept-poor: these coarse ToF views need not register (this test is about the files).
-    const auto resumed = run_cli(
-        "--accept-poor capture --device sim:tof --scene small-block --session " + session +
-        " --angular-step-deg 2 --flip-after 0 --no-coverage --views " + std::to_string(before + 2));
-    EXPECT_EQ(resumed.exit_code, 0) << resumed.output;
-    EXPECT_NE(resumed.output.find("saved scan " + std::to_string(files.rbegin()->first + 1)),
-              std::string::npos)
-        << resumed.output;
+    expect_capture_resumes(session, files);
 }
 
 }  // namespace
