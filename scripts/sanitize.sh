@@ -22,7 +22,7 @@ asan_targets=(anascan_session_store_tests anascan anascan_cli_session_tests
     anascan_sim_scanner_tests anascan_sim_device_tests anascan_device_control_tests
     anascan_live_registration_quick_tests anascan_cli_tests anascan_cli_sl_tests
     fuzz_ply_replay fuzz_text_points_replay fuzz_ptx_replay fuzz_stanford_conf_replay
-    fuzz_xf_replay)
+    fuzz_xf_replay fuzz_obj_replay fuzz_stl_replay fuzz_e57_replay)
 # TSan: everything that runs threads of its own: the capture session (scanner, persistence
 # and registration threads), the session store under concurrent writers, the device
 # layer's stream runner and watcher, and the field app's session link and workers.
@@ -72,12 +72,25 @@ run_tests() {
     return "$status"
 }
 
+# CPU seconds (user + sys) used so far by this shell's finished children, from `times`.
+children_cpu_s() {
+    times | awk 'NR == 2 {
+        n = split($0, f, " "); s = 0
+        for (i = 1; i <= n; i++) { split(f[i], ms, "m"); s += ms[1] * 60 + ms[2] }
+        print s }'
+}
+
+# Runs one part and prints its wall time and its CPU time (user + sys of everything it ran):
+# on a loaded machine the CPU time, divided by the cores, projects the wall time on idle ones.
 part() {
     local name="$1"
     shift
-    local start=$SECONDS status=0
+    local start=$SECONDS status=0 cpu0
+    cpu0=$(children_cpu_s)
     "$@" || status=$?
-    echo "sanitize: $name took $((SECONDS - start)) s (exit $status)"
+    echo "sanitize: $name took $((SECONDS - start)) s wall," \
+        "$(awk -v a="$cpu0" -v b="$(children_cpu_s)" 'BEGIN { printf "%.0f", b - a }') s CPU" \
+        "(exit $status)"
     return "$status"
 }
 
