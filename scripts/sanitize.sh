@@ -80,12 +80,15 @@ run_tests() {
     return "$status"
 }
 
-# CPU seconds (user + sys) used so far by this shell's finished children, from `times`.
+# CPU seconds (user + sys) of this shell's finished children, from the `times` output in
+# $cpu_file: `times` must run in this shell (a command substitution's subshell has none).
+cpu_file="$(mktemp)"
+trap 'rm -f "$cpu_file"' EXIT
 children_cpu_s() {
-    times | awk 'NR == 2 {
+    awk 'NR == 2 {
         n = split($0, f, " "); s = 0
         for (i = 1; i <= n; i++) { split(f[i], ms, "m"); s += ms[1] * 60 + ms[2] }
-        print s }'
+        print s }' "$cpu_file"
 }
 
 # Runs one part and prints its wall time and its CPU time (user + sys of everything it ran):
@@ -94,8 +97,10 @@ part() {
     local name="$1"
     shift
     local start=$SECONDS status=0 cpu0
+    times >"$cpu_file"
     cpu0=$(children_cpu_s)
     "$@" || status=$?
+    times >"$cpu_file"
     echo "sanitize: $name took $((SECONDS - start)) s wall," \
         "$(awk -v a="$cpu0" -v b="$(children_cpu_s)" 'BEGIN { printf "%.0f", b - a }') s CPU" \
         "(exit $status)"
