@@ -1,5 +1,6 @@
 #include "anascan/acquisition/coverage/session_coverage.hpp"
 
+#include "anascan/processing/core/stopwatch.hpp"
 #include "anascan/processing/spatial/voxel_grid.hpp"
 
 namespace anascan::acquisition {
@@ -39,6 +40,39 @@ Expected<CoverageReport> session_coverage(
         if (progress) progress(i + 1, members.size());
     }
     return compute_coverage(views, config.coverage);
+}
+
+ScannerEnvelope session_scanner_envelope(const SessionStore& store) {
+    auto scans = store.scans();
+    if (scans && !scans->empty() && scans->back().device_kind == DeviceKind::kTimeOfFlight)
+        return terrestrial_envelope();
+    return structured_light_envelope();
+}
+
+Expected<SessionNextView> session_next_view(const SessionStore& store,
+                                            const SessionCoverageConfig& coverage_config,
+                                            NextViewConfig config, bool use_session_device) {
+    auto coverage = session_coverage(store, coverage_config);
+    if (!coverage) return fail(coverage.error());
+    if (use_session_device) config.scanner = session_scanner_envelope(store);
+    config.max_incidence_deg = coverage_config.coverage.max_incidence_deg;
+    config.min_density_per_cm2 = coverage_config.coverage.min_density_per_cm2;
+    SessionNextView out;
+    const Stopwatch watch;
+    out.view = plan_next_view(*coverage, config);
+    out.plan_s = watch.seconds();
+    out.coverage = std::move(*coverage);
+    return out;
+}
+
+Expected<std::optional<Pose>> group_to_truth(const SessionStore& store) {
+    auto scans = store.scans();
+    if (!scans) return fail(scans.error());
+    const int group = largest_group(*scans);
+    for (auto it = scans->rbegin(); it != scans->rend(); ++it)
+        if (counts_in_group(*it) && it->group == group && it->pose && it->true_pose)
+            return std::optional<Pose>(*it->true_pose * it->pose->inverse());
+    return std::optional<Pose>();
 }
 
 }  // namespace anascan::acquisition
