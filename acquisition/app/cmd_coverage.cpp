@@ -33,9 +33,11 @@ void print_report(const CoverageReport& r) {
 
 void print_next(const acquisition::SessionNextView& next) {
     std::printf("next: %s\n", next.view.hint.c_str());
-    std::printf("(planned from %zu scanner poses in %.2f s; %.0f cm² unobserved that a view "
-                "from this side can reach, %.0f cm² only after turning the stone over)\n",
-                next.view.candidates, next.plan_s, next.view.visible_now_area_m2 * 1e4,
+    std::printf("(planned from %zu scanner poses in %.2f s; the view keeps %.0f %% overlap with "
+                "what is observed; %.0f cm² unobserved that a view from this side can reach, "
+                "%.0f cm² only after turning the stone over)\n",
+                next.view.candidates, next.plan_s, 100.0 * next.view.overlap_fraction,
+                next.view.visible_now_area_m2 * 1e4,
                 next.view.after_turn_area_m2 * 1e4);
 }
 

@@ -51,8 +51,47 @@ std::vector<Eigen::Vector3d> aim_points(const CoverageReport& coverage,
     return aims;
 }
 
+// Within max_step_deg of a position the model was scanned from, seen from the centre.
+class StepLimit {
+public:
+    StepLimit(const PlanningFrame& frame, const NextViewConfig& config)
+        : centre_(frame.origin_world_m +
+                  frame.R_stone_world.row(2).transpose() * 0.5 * frame.extent_m.z()),
+          cos_max_(std::cos(config.max_step_deg * std::numbers::pi / 180.0)) {
+        for (const Eigen::Vector3d& p : config.scanner_positions_world)
+            if ((p - centre_).norm() > 1e-6) directions_.push_back((p - centre_).normalized());
+    }
+    bool allows(const Eigen::Vector3d& sensor) const {
+        if (directions_.empty()) return true;
+        const Eigen::Vector3d d = (sensor - centre_).normalized();
+        for (const Eigen::Vector3d& known : directions_)
+            if (d.dot(known) >= cos_max_) return true;
+        return false;
+    }
+
+private:
+    Eigen::Vector3d centre_;
+    double cos_max_;
+    std::vector<Eigen::Vector3d> directions_;
+};
+
 double lerp_step(double from, double to, int i, int steps) {
     return steps <= 1 ? 0.5 * (from + to) : from + (to - from) * i / (steps - 1);
+}
+
+}  // namespace
+
+namespace {
+
+std::vector<WantedSample> thinned(const CoverageReport& coverage,
+                                  std::span<const std::size_t> indices, std::size_t max_samples) {
+    std::vector<WantedSample> out;
+    const std::size_t stride = std::max<std::size_t>(
+        1, (indices.size() + max_samples - 1) / std::max<std::size_t>(1, max_samples));
+    for (std::size_t k = 0; k < indices.size(); k += stride)
+        out.push_back({coverage.samples.world_position(indices[k]),
+                       coverage.samples.normals[indices[k]].cast<double>().normalized()});
+    return out;
 }
 
 }  // namespace
@@ -61,18 +100,18 @@ WantedSamples wanted_samples(const CoverageReport& coverage, std::size_t max_sam
     WantedSamples out;
     const std::size_t n = coverage.sample_states.size();
     if (n == 0 || coverage.samples.normals.size() != n) return out;
-    std::vector<std::size_t> wanted;
+    std::vector<std::size_t> wanted, observed;
     for (std::size_t i = 0; i < n; ++i)
-        if (coverage.sample_states[i] != SampleState::kObserved) wanted.push_back(i);
+        (coverage.sample_states[i] == SampleState::kObserved ? observed : wanted).push_back(i);
     const double area_per_sample = coverage.surface_area_m2 / static_cast<double>(n);
     out.total_area_m2 = area_per_sample * static_cast<double>(wanted.size());
-    const std::size_t stride = std::max<std::size_t>(1, (wanted.size() + max_samples - 1) /
-                                                            std::max<std::size_t>(1, max_samples));
-    for (std::size_t k = 0; k < wanted.size(); k += stride)
-        out.samples.push_back({coverage.samples.world_position(wanted[k]),
-                               coverage.samples.normals[wanted[k]].cast<double>().normalized()});
+    out.samples = thinned(coverage, wanted, max_samples);
+    out.observed = thinned(coverage, observed, max_samples);
     if (!out.samples.empty())
         out.area_per_sample_m2 = out.total_area_m2 / static_cast<double>(out.samples.size());
+    if (!out.observed.empty())
+        out.area_per_observed_m2 = area_per_sample * static_cast<double>(observed.size()) /
+                                   static_cast<double>(out.observed.size());
     return out;
 }
 
@@ -82,6 +121,7 @@ std::vector<Candidate> candidate_views(const CoverageReport& coverage,
     const std::vector<FacePlane> planes = face_planes(coverage.surface);
     const ScannerEnvelope& s = config.scanner;
     const Eigen::Matrix3d R_world_stone = frame.R_stone_world.transpose();
+    const StepLimit step_limit(frame, config);
     std::vector<Candidate> out;
     for (const Eigen::Vector3d& aim : aim_points(coverage, wanted, config.max_aim_points))
         for (int e = 0; e < config.elevation_steps; ++e) {
@@ -101,6 +141,7 @@ std::vector<Candidate> candidate_views(const CoverageReport& coverage,
                     if (local.head<2>().norm() > s.max_radius_m) continue;
                     if (!planes.empty() && outside_distance_m(planes, sensor) < s.min_clearance_m)
                         continue;
+                    if (!step_limit.allows(sensor)) continue;
                     out.push_back({sensor, aim, standoff, local.z()});
                 }
             }

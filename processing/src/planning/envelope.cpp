@@ -47,6 +47,7 @@ std::string next_view_to_json(const NextView& view) {
                      {"hint", view.hint},
                      {"gain_percent", 100.0 * view.gain_fraction},
                      {"gain_area_m2", view.gain_area_m2},
+                     {"overlap_percent", 100.0 * view.overlap_fraction},
                      {"visible_now_area_m2", view.visible_now_area_m2},
                      {"after_turn_area_m2", view.after_turn_area_m2},
                      {"candidates", view.candidates}};

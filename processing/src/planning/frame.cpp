@@ -1,8 +1,8 @@
 // The stone's frame the hints speak in: up from the ground the stone rests on now, +x along
 // its longest horizontal extent (the long sides are ±y), origin on the ground under the
-// surface's centre. Without a ground (no view showed one), up is the surface's thinnest
-// direction, turned toward -y of the model frame: the model frame is the first scan's
-// camera frame, whose image y points down when the scanner is held upright.
+// surface's centre. Without a ground (no view showed one), up is the caller's hint, else the
+// surface's thinnest direction turned toward -y of the model frame: the model frame is the
+// first scan's camera frame, whose image y points down when the scanner is held upright.
 
 #include <Eigen/Eigenvalues>
 #include <limits>
@@ -38,13 +38,17 @@ Eigen::Vector3d up_without_ground(const Eigen::Matrix3d& covariance) {
 
 }  // namespace
 
-PlanningFrame planning_frame(const CoverageReport& coverage) {
+PlanningFrame planning_frame(const CoverageReport& coverage,
+                             const std::optional<Eigen::Vector3d>& up_hint_world) {
     PlanningFrame frame;
     const PointCloud& vertices = coverage.surface.vertices;
     const SurfaceMoments m = moments(vertices);
     frame.ground_known = coverage.ground_world.has_value();
-    const Eigen::Vector3d up = frame.ground_known ? coverage.ground_world->normal.normalized()
-                                                  : up_without_ground(m.covariance);
+    Eigen::Vector3d up = up_without_ground(m.covariance);
+    if (frame.ground_known)
+        up = coverage.ground_world->normal.normalized();
+    else if (up_hint_world && up_hint_world->norm() > 0.0)
+        up = up_hint_world->normalized();
     const Eigen::Matrix3d across = Eigen::Matrix3d::Identity() - up * up.transpose();
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(across * m.covariance * across);
     Eigen::Vector3d x = solver.eigenvectors().col(2).normalized();

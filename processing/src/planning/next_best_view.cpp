@@ -14,20 +14,29 @@ using planning_detail::Candidate;
 
 struct Best {
     std::size_t index = 0;
-    std::size_t observed = 0;
+    planning_detail::ViewScore score;
 };
 
+// The largest gain among the views that keep the overlap; when none does (early in a
+// session, or a stone seen from one side only), the view with the most overlap that still
+// adds something.
 Best best_candidate(std::span<const Candidate> candidates,
                     const planning_detail::WantedSamples& wanted, const Eigen::Vector3d& up,
                     const NextViewConfig& config) {
-    std::vector<std::size_t> counts(candidates.size(), 0);
+    std::vector<planning_detail::ViewScore> scores(candidates.size());
     tbb::parallel_for(std::size_t{0}, candidates.size(), [&](std::size_t i) {
-        counts[i] = planning_detail::observed_by(candidates[i], wanted, up, config).size();
+        scores[i] = planning_detail::score_view(candidates[i], wanted, up, config);
     });
-    Best best;
-    for (std::size_t i = 0; i < counts.size(); ++i)
-        if (counts[i] > best.observed) best = {i, counts[i]};
-    return best;
+    Best best, fallback;
+    for (std::size_t i = 0; i < scores.size(); ++i) {
+        const planning_detail::ViewScore& s = scores[i];
+        if (s.overlap_fraction() >= config.min_overlap_fraction) {
+            if (s.gain_m2 > best.score.gain_m2) best = {i, s};
+        } else if (s.gain_m2 > 0.0 && s.overlap_fraction() > fallback.score.overlap_fraction()) {
+            fallback = {i, s};
+        }
+    }
+    return best.score.gain_m2 > 0.0 ? best : fallback;
 }
 
 Eigen::Vector3d mean_normal(const planning_detail::WantedSamples& wanted,
@@ -57,7 +66,7 @@ NextView plan_next_view(const CoverageReport& coverage, const NextViewConfig& co
         view.hint = planning_detail::hint_text(view, Eigen::Vector3d::Zero());
         return view;
     }
-    view.frame = planning_frame(coverage);
+    view.frame = planning_frame(coverage, config.up_hint_world);
     const Eigen::Vector3d up = view.frame.R_stone_world.row(2).transpose();
     const planning_detail::WantedSamples wanted =
         planning_detail::wanted_samples(coverage, config.max_samples);
@@ -66,7 +75,8 @@ NextView plan_next_view(const CoverageReport& coverage, const NextViewConfig& co
     view.candidates = candidates.size();
     measure_reach(view, candidates, wanted, up, config);
     const Best best = best_candidate(candidates, wanted, up, config);
-    view.gain_area_m2 = wanted.area_per_sample_m2 * static_cast<double>(best.observed);
+    view.gain_area_m2 = best.score.gain_m2;
+    view.overlap_fraction = best.score.overlap_fraction();
     view.gain_fraction = view.gain_area_m2 / coverage.surface_area_m2;
     Eigen::Vector3d aimed_normal = Eigen::Vector3d::Zero();
     if (view.gain_fraction >= config.min_gain_fraction) {

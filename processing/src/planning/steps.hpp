@@ -22,6 +22,9 @@ struct WantedSamples {
     std::vector<WantedSample> samples;
     double area_per_sample_m2 = 0.0;
     double total_area_m2 = 0.0;  ///< Of all unobserved and sparse samples.
+    /// The samples observed already, thinned alike, for the overlap a view keeps.
+    std::vector<WantedSample> observed;
+    double area_per_observed_m2 = 0.0;
 };
 WantedSamples wanted_samples(const CoverageReport& coverage, std::size_t max_samples);
 
@@ -63,6 +66,17 @@ private:
 /// Indices of the samples the candidate observes.
 std::vector<std::size_t> observed_by(const Candidate& candidate, const WantedSamples& wanted,
                                      const Eigen::Vector3d& up, const NextViewConfig& config);
+
+/// What a candidate observes well: wanted area (the gain) and area observed already.
+struct ViewScore {
+    double gain_m2 = 0.0;
+    double overlap_m2 = 0.0;
+    double overlap_fraction() const {
+        return gain_m2 + overlap_m2 > 0.0 ? overlap_m2 / (gain_m2 + overlap_m2) : 0.0;
+    }
+};
+ViewScore score_view(const Candidate& candidate, const WantedSamples& samples,
+                     const Eigen::Vector3d& up, const NextViewConfig& config);
 
 /// Per sample: whether any candidate observes it.
 std::vector<bool> observable_by_any(std::span<const Candidate> candidates,

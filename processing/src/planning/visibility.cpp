@@ -63,6 +63,17 @@ std::vector<std::size_t> observed_by(const Candidate& candidate, const WantedSam
     return seen;
 }
 
+ViewScore score_view(const Candidate& candidate, const WantedSamples& samples,
+                     const Eigen::Vector3d& up, const NextViewConfig& config) {
+    const ViewModel view(candidate, up, config);
+    if (!view.valid()) return {};
+    std::size_t wanted = 0, observed = 0;
+    for (const WantedSample& s : samples.samples) wanted += view.observes(s) ? 1 : 0;
+    for (const WantedSample& s : samples.observed) observed += view.observes(s) ? 1 : 0;
+    return {samples.area_per_sample_m2 * static_cast<double>(wanted),
+            samples.area_per_observed_m2 * static_cast<double>(observed)};
+}
+
 std::vector<bool> observable_by_any(std::span<const Candidate> candidates,
                                     const WantedSamples& wanted, const Eigen::Vector3d& up,
                                     const NextViewConfig& config) {

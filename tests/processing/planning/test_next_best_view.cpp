@@ -76,10 +76,34 @@ TEST(NextBestView, AimsAtTheUnseenSideFromWhereAnOperatorCanStand) {
     // 1.6 m a view takes a good part of it, never more than what is unseen.
     EXPECT_GT(view.gain_fraction, 0.05);
     EXPECT_LE(view.gain_area_m2, 0.30 + 0.60 + 1e-6);
+    EXPECT_GE(view.overlap_fraction, 0.4);  // The new scan must register to the model.
     EXPECT_NE(view.hint.find("-y"), std::string::npos) << view.hint;
     EXPECT_NE(view.hint.find("% coverage"), std::string::npos) << view.hint;
     // The face it rests on is out of any view's reach until the turn.
     EXPECT_NEAR(view.after_turn_area_m2, kSize.x() * kSize.y(), 0.05);
+}
+
+TEST(NextBestView, WalksOnFromWhereTheModelWasScanned) {
+    NextViewConfig config;
+    config.scanner_positions_world = {Eigen::Vector3d(1.5, 0.0, 0.8)};  // Off the +x end.
+    config.max_step_deg = 40.0;
+    const NextView view =
+        plan_next_view(block_coverage({true, false, false, false, true, false}), config);
+    ASSERT_EQ(view.advice, NextViewAdvice::kScan) << view.hint;
+    const Eigen::Vector3d centre(0.0, 0.0, 0.25);
+    const double step = std::acos((view.sensor_world_m - centre).normalized().dot(
+                                      (config.scanner_positions_world[0] - centre).normalized())) *
+                        180.0 / 3.14159265358979;
+    EXPECT_LE(step, 40.0 + 1e-6);
+}
+
+TEST(NextBestView, TakesTheUpHintWithoutAGround) {
+    NextViewConfig config;
+    config.up_hint_world = Eigen::Vector3d(0.05, 0.0, 1.0);
+    const NextView view = plan_next_view(
+        block_coverage({true, false, true, false, true, false}, /*with_ground=*/false), config);
+    EXPECT_GT(view.frame.R_stone_world.row(2).dot(Eigen::Vector3d::UnitZ()), 0.99);
+    EXPECT_EQ(view.advice, NextViewAdvice::kScan);
 }
 
 TEST(NextBestView, SaysTurnOverWhenOnlyTheRestingFaceIsLeft) {

@@ -11,6 +11,7 @@
 #include <Eigen/Core>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "anascan/processing/cleaning/plane_removal.hpp"
 #include "anascan/processing/coverage/coverage.hpp"
@@ -19,8 +20,8 @@ namespace anascan {
 
 /// Where a scanner can stand and what it sees well (for the coverage criterion).
 struct ScannerEnvelope {
-    double min_standoff_m = 0.6;  ///< Sensor to the aim point, nearest planned.
-    double max_standoff_m = 1.6;  ///< Farthest planned.
+    double min_standoff_m = 0.8;  ///< Sensor to the aim point, nearest planned.
+    double max_standoff_m = 1.4;  ///< Farthest planned.
     /// Field of view of the whole device (structured light: where camera and projector
     /// overlap), full angles.
     double horizontal_fov_deg = 33.0;
@@ -56,6 +57,19 @@ struct NextViewConfig {
     std::size_t max_aim_points = 8;      ///< Largest holes aimed at (plus all unseen's centre).
     std::size_t max_samples = 6000;      ///< Unobserved samples evaluated (evenly thinned).
     double min_gain_fraction = 0.003;    ///< Below this, no view on this side is worth it.
+    /// Of what a planned view observes, at least this much must be observed already, so that
+    /// the new scan registers to the model (a view of only the unseen joins nothing).
+    double min_overlap_fraction = 0.4;
+    /// Up in the model frame when no view showed the ground: for example the mean of the
+    /// scanners' image-up directions (scanners are held upright). Absent: the surface's
+    /// thinnest direction.
+    std::optional<Eigen::Vector3d> up_hint_world;
+    /// Where the model's scans were taken from (model frame). A planned view stays within
+    /// max_step_deg, seen from the stone's centre, of one of them, as an operator walks on
+    /// from where they stand: the new scan then shares faces (not just one flat face) with
+    /// the model. Empty: anywhere.
+    std::vector<Eigen::Vector3d> scanner_positions_world;
+    double max_step_deg = 45.0;
 };
 
 /// The stone's own frame for words: +z up from the ground, origin on the ground under the
@@ -84,6 +98,8 @@ struct NextView {
     Eigen::Vector3d aim_world_m = Eigen::Vector3d::Zero();     ///< Point to aim at.
     double gain_fraction = 0.0;  ///< Expected coverage gain, of the surface's area (0..1).
     double gain_area_m2 = 0.0;
+    /// Of what the view observes, the fraction observed already (registration needs it).
+    double overlap_fraction = 0.0;
     /// Unobserved area some view from this side could still observe, and the area no view
     /// from this side can (the face it rests on, what lies under overhangs).
     double visible_now_area_m2 = 0.0;
@@ -99,8 +115,10 @@ struct NextView {
 /// samples, states, surface and ground).
 NextView plan_next_view(const CoverageReport& coverage, const NextViewConfig& config);
 
-/// The frame the hint's words use, from the report's surface and ground.
-PlanningFrame planning_frame(const CoverageReport& coverage);
+/// The frame the hint's words use, from the report's surface and ground (or the up hint
+/// when the report has no ground).
+PlanningFrame planning_frame(const CoverageReport& coverage,
+                             const std::optional<Eigen::Vector3d>& up_hint_world = {});
 
 /// "scan", "turn-over", "done", "no-coverage".
 const char* to_string(NextViewAdvice advice);
