@@ -40,8 +40,11 @@ struct SimCampaignOptions {
     int background_scans = 0;
     std::string extra_conf;
     unsigned seed = 1;
-    double spacing_mm = 5.0;  ///< Sample spacing at the block.
+    double spacing_mm = 2.5;  ///< Sample spacing at the block.
     double noise_mm = 0.2;
+    /// Mixed pixels at depth edges (probability; a close-range structured-light scanner has
+    /// none, a terrestrial time-of-flight scanner many).
+    double mixed_pixels = 0.0;
     std::string out;
 };
 
@@ -61,7 +64,7 @@ sim::StoneBlockConfig block_config(std::mt19937& rng, int stone) {
     b.size_m = {uniform(rng, 0.5, 1.0), uniform(rng, 0.3, 0.6), uniform(rng, 0.25, 0.5)};
     b.grid_step_m = 0.004;
     b.seed = 1000 + static_cast<std::uint64_t>(stone);
-    const double scale = uniform(rng, 0.6, 1.6);
+    const double scale = uniform(rng, 0.6, 1.4);
     for (sim::FaceFinish& f : b.finishes) f.amplitude_m *= scale;
     b.ornament.enabled = stone % 2 == 0;
     b.chip_count = 4 + stone % 6;
@@ -87,10 +90,13 @@ std::vector<RawScan> scan_stone(std::mt19937& rng, int stone, const SimCampaignO
                                         .elevation_max_deg = -elevation + 30.0,
                                         .min_range_m = 0.3,
                                         .range_noise_sigma_m = o.noise_mm / 1e3,
+                                        .mixed_pixel_probability = o.mixed_pixels,
                                         .seed = o.seed * 7919u + static_cast<unsigned>(stone * 100 + k)};
         auto scan = sim::simulate_tof_scan(*caster, {}, T, tof);
         if (!scan) fail_command(scan.error());
-        scans.push_back({.cloud = std::move(scan->scan.cloud), .T_stone_raw = T, .stone = stone});
+        scans.push_back({.cloud = std::move(scan->scan.cloud),
+                         .T_stone_raw = scan->scan.meta.T_world_scan.value_or(T),
+                         .stone = stone});
     }
     return scans;
 }
@@ -192,6 +198,7 @@ void add_sim_campaign_command(CLI::App& sim) {
     cmd->add_option("--background-scans", o->background_scans, "Scans of bare ground (no stone)");
     cmd->add_option("--spacing-mm", o->spacing_mm, "Sample spacing on the blocks (mm)");
     cmd->add_option("--noise-mm", o->noise_mm, "Range noise, standard deviation (mm)");
+    cmd->add_option("--mixed-pixels", o->mixed_pixels, "Probability of a mixed pixel at depth edges");
     cmd->add_option("--seed", o->seed, "Random seed");
     cmd->add_option("--out", o->out, "Output folder")->required();
     cmd->callback([o] { run_sim_campaign(*o); });

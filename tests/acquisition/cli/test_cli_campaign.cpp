@@ -29,10 +29,10 @@ std::string run_now(const std::string& output, const std::string& stage) {
 
 class CampaignCli : public testing_util::Cli {
 protected:
-    /// A small simulated campaign (two stones of three scans, coarse) in DIR/scans.
-    void simulate(const std::string& extra = "") {
-        const auto run = run_cli("sim campaign --stones 2 --scans-per-stone 3 --spacing-mm 10 "
-                                 "--seed 3 --out " + (dir_ / "scans").string() + " " + extra);
+    /// A small simulated campaign (coarse scans of procedural stones) in DIR/scans.
+    void simulate(const std::string& extra = "--stones 1 --scans-per-stone 1") {
+        const auto run = run_cli("sim campaign --spacing-mm 10 --seed 3 --out " +
+                                 (dir_ / "scans").string() + " " + extra);
         ASSERT_EQ(run.exit_code, 0) << run.output;
     }
     void sql(const std::string& statement) {
@@ -61,7 +61,7 @@ TEST_F(CampaignCli, MissingScanIsNamedAndRepeatsAreRecordedOnce) {
 }
 
 TEST_F(CampaignCli, BadScansAreReportedAndTheRestIsRegisteredOnce) {
-    simulate("--background-scans 1");
+    simulate("--stones 2 --scans-per-stone 3 --background-scans 1");
     const fs::path scans = dir_ / "scans";
     std::ofstream(scans / "broken.ply") << "ply\nformat ascii 1.0\nelement vertex 5\nend_header\n1 2\n";
     fs::copy_file(scans / "scan_0001.ply", scans / "copy.ply");
@@ -103,6 +103,38 @@ TEST_F(CampaignCli, NewerSchemaAndLockedStoreAreRefusedClearly) {
     EXPECT_EQ(run.exit_code, 1);
     EXPECT_NE(run.output.find("newer anascan"), std::string::npos) << run.output;
 }
+
+#ifdef ANASCAN_MPIRUN
+// Two MPI ranks (rank 0 owns the store and works too) give the same stones and poses as one
+// process.
+TEST_F(CampaignCli, TwoMpiRanksGiveTheSameResultAsOneProcess) {
+    simulate("--stones 2 --scans-per-stone 3");
+    const std::string list = (dir_ / "scans" / "list.txt").string();
+    for (const char* name : {"one", "two"}) {
+        const auto run = run_cli("campaign init " + (dir_ / name).string() + " --list " + list +
+                                 " --candidates-per-scan 3");
+        ASSERT_EQ(run.exit_code, 0) << run.output;
+    }
+    auto run = run_cli("campaign register " + (dir_ / "one").string());
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    run = run_shell(std::string("OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 ") +
+                    ANASCAN_MPIRUN + " -np 2 --oversubscribe " + ANASCAN_CLI +
+                    " campaign register " + (dir_ / "two").string() + " 2>&1");
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    EXPECT_NE(run.output.find("ranks: 2"), std::string::npos) << run.output;
+    const std::string query =
+        "SELECT source, target, json_extract(result_json, '$.verified'), "
+        "json_extract(result_json, '$.T_target_source') FROM pairs ORDER BY 1, 2";
+    const auto dump = [&](const char* name) {
+        return run_shell("sqlite3 " + (dir_ / name / "campaign.sqlite").string() + " \"" + query +
+                         "; SELECT scans_json, json_extract(result_json, '$.scans') FROM stones\"")
+            .output;
+    };
+    const std::string one = dump("one");
+    EXPECT_GT(one.size(), 10u);
+    EXPECT_EQ(one, dump("two"));
+}
+#endif
 
 }  // namespace
 }  // namespace anascan
