@@ -50,7 +50,8 @@ std::vector<TruthScan> read_truth(const std::string& path,
     if (truth.is_discarded()) throw CommandFailed(path + ": not JSON");
     std::map<std::string, TruthScan> by_name;
     for (const json& s : truth["scans"]) {
-        by_name[s["file"].get<std::string>()] = {s["stone"].get<int>(), pose_from(s["T_stone_scan"])};
+        by_name[s["file"].get<std::string>()] = {s["stone"].get<int>(),
+                                                 pose_from(s["T_stone_scan"])};
     }
     std::vector<TruthScan> out;
     for (const auto& s : scans) {
@@ -113,7 +114,8 @@ double overlap(const PointCloud& a, const PointCloud& b, double spacing_m) {
     const PointCloud& large = a.size() <= b.size() ? b : a;
     if (small.empty() || large.empty()) return 0.0;
     std::vector<Eigen::Vector3f> target;
-    for (const auto& p : large.positions) target.push_back((large.origin_m + p.cast<double>()).cast<float>());
+    for (const auto& p : large.positions)
+        target.push_back((large.origin_m + p.cast<double>()).cast<float>());
     const KdTree tree(target);
     std::size_t near = 0;
     Neighbor n;
@@ -139,29 +141,35 @@ void eval_pairs(const CampaignStore& store, const std::vector<acquisition::Campa
     for (std::size_t s = 0; s < scans.size(); ++s) {
         if (scans[s].state != "described") continue;
         ++usable;
-        const PointCloud a = stone_frame_cloud(store, static_cast<std::int64_t>(s), truth[s].T_stone_scan);
+        const PointCloud a =
+            stone_frame_cloud(store, static_cast<std::int64_t>(s), truth[s].T_stone_scan);
         const double sa = json::parse(scans[s].summary_json).value("spacing_m", 0.0);
         for (std::size_t t = 0; t < s; ++t) {
-            if (scans[t].state != "described" || truth[s].stone < 0 || truth[s].stone != truth[t].stone)
+            if (scans[t].state != "described" || truth[s].stone < 0 ||
+                truth[s].stone != truth[t].stone)
                 continue;
-            const PointCloud b = stone_frame_cloud(store, static_cast<std::int64_t>(t), truth[t].T_stone_scan);
+            const PointCloud b =
+                stone_frame_cloud(store, static_cast<std::int64_t>(t), truth[t].T_stone_scan);
             const double sb = json::parse(scans[t].summary_json).value("spacing_m", 0.0);
             if (overlap(a, b, std::max(sa, sb)) < min_overlap) continue;
             ++overlapping;
-            const auto it = candidates.find({static_cast<std::int64_t>(s), static_cast<std::int64_t>(t)});
+            const auto it =
+                candidates.find({static_cast<std::int64_t>(s), static_cast<std::int64_t>(t)});
             found += it != candidates.end();
             verified += it != candidates.end() && it->second;
         }
     }
     const std::size_t all = usable * (usable > 0 ? usable - 1 : 0) / 2;
-    std::printf("pairs: %zu truly overlapping (>= %.0f %%), %zu candidates (%.2f %% of %zu), "
-                "recall %.1f %% (%zu), verified %.1f %% (%zu)\n",
-                overlapping, 100.0 * min_overlap, candidate_count,
-                all ? 100.0 * static_cast<double>(candidate_count) / static_cast<double>(all) : 0.0, all,
-                overlapping ? 100.0 * static_cast<double>(found) / static_cast<double>(overlapping) : 0.0,
-                found,
-                overlapping ? 100.0 * static_cast<double>(verified) / static_cast<double>(overlapping) : 0.0,
-                verified);
+    std::printf(
+        "pairs: %zu truly overlapping (>= %.0f %%), %zu candidates (%.2f %% of %zu), "
+        "recall %.1f %% (%zu), verified %.1f %% (%zu)\n",
+        overlapping, 100.0 * min_overlap, candidate_count,
+        all ? 100.0 * static_cast<double>(candidate_count) / static_cast<double>(all) : 0.0, all,
+        overlapping ? 100.0 * static_cast<double>(found) / static_cast<double>(overlapping) : 0.0,
+        found,
+        overlapping ? 100.0 * static_cast<double>(verified) / static_cast<double>(overlapping)
+                    : 0.0,
+        verified);
 }
 
 void run_eval(const EvalOptions& o) {
@@ -174,23 +182,28 @@ void run_eval(const EvalOptions& o) {
     PlacementFigures f;
     for (std::size_t i = 0; i < scans->size(); ++i) {
         const auto& s = (*scans)[i];
-        centre.push_back(s.summary_json.empty() ? Eigen::Vector3d::Zero()
-                                                : Eigen::Vector3d(json::parse(s.summary_json)["centre_m"][0].get<double>(),
-                                                                  json::parse(s.summary_json)["centre_m"][1].get<double>(),
-                                                                  json::parse(s.summary_json)["centre_m"][2].get<double>()));
+        centre.push_back(
+            s.summary_json.empty()
+                ? Eigen::Vector3d::Zero()
+                : Eigen::Vector3d(json::parse(s.summary_json)["centre_m"][0].get<double>(),
+                                  json::parse(s.summary_json)["centre_m"][1].get<double>(),
+                                  json::parse(s.summary_json)["centre_m"][2].get<double>()));
         f.truth_scans += truth[i].stone >= 0;
     }
     std::set<int> seen;
     auto stones = (*store)->stones();
     if (!stones) fail_command(stones.error());
     for (const auto& stone : *stones) {
-        if (!stone.result_json.empty()) eval_stone(json::parse(stone.result_json), truth, centre, seen, f);
+        if (!stone.result_json.empty())
+            eval_stone(json::parse(stone.result_json), truth, centre, seen, f);
     }
-    std::printf("placed %zu of %zu stone scans (%.1f %%); wrong stone %zu (without a warning %zu); "
-                "stones split %zu\n",
-                f.placed, f.truth_scans,
-                f.truth_scans ? 100.0 * static_cast<double>(f.placed) / static_cast<double>(f.truth_scans) : 0.0,
-                f.wrong, f.wrong_silent, f.split_stones);
+    std::printf(
+        "placed %zu of %zu stone scans (%.1f %%); wrong stone %zu (without a warning %zu); "
+        "stones split %zu\n",
+        f.placed, f.truth_scans,
+        f.truth_scans ? 100.0 * static_cast<double>(f.placed) / static_cast<double>(f.truth_scans)
+                      : 0.0,
+        f.wrong, f.wrong_silent, f.split_stones);
     std::printf("max pose error: %.3f deg, %.3f mm (at the scan centres)\n", f.max_rotation_deg,
                 f.max_translation_mm);
     eval_pairs(**store, *scans, truth, o.min_overlap);
@@ -200,7 +213,9 @@ void run_eval(const EvalOptions& o) {
 
 void add_campaign_eval_command(CLI::App& campaign) {
     auto o = std::make_shared<EvalOptions>();
-    auto* cmd = campaign.add_subcommand("eval", "Compare a campaign with the truth of `sim campaign`")->group("");
+    auto* cmd =
+        campaign.add_subcommand("eval", "Compare a campaign with the truth of `sim campaign`")
+            ->group("");
     cmd->add_option("dir", o->dir, "Campaign folder")->required();
     cmd->add_option("--truth", o->truth, "truth.json of `sim campaign`")->required();
     cmd->add_option("--min-overlap", o->min_overlap, "Truly overlapping: at least this fraction");

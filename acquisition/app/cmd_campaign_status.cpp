@@ -56,16 +56,16 @@ Counts count(const CampaignStore& store) {
 void print_problems(const CampaignStore& store) {
     const auto scans = must(store.scans());
     for (const auto& s : scans) {
-        if (s.state == "unusable") std::printf("not used: %s: %s\n", s.file.c_str(), s.problem.c_str());
+        if (s.state == "unusable")
+            std::printf("not used: %s: %s\n", s.file.c_str(), s.problem.c_str());
     }
     for (const auto& stone : must(store.stones())) {
         if (stone.result_json.empty()) continue;
         for (const json& scan : json::parse(stone.result_json)["scans"]) {
             const std::string& file = scans[scan["id"].get<std::size_t>()].file;
             if (!scan["placed"].get<bool>()) {
-                std::printf("not placed (stone %lld): %s: %s\n",
-                            static_cast<long long>(stone.id), file.c_str(),
-                            scan["reason"].get<std::string>().c_str());
+                std::printf("not placed (stone %lld): %s: %s\n", static_cast<long long>(stone.id),
+                            file.c_str(), scan["reason"].get<std::string>().c_str());
             }
             if (!scan["warning"].get<std::string>().empty()) {
                 std::printf("warning (stone %lld): %s: %s\n", static_cast<long long>(stone.id),
@@ -86,7 +86,8 @@ struct ExportOptions {
 };
 
 /// Writes OUT/stone_K/{poses.conf, merged.ply, report.json} for one multi-view result.
-void export_stone(const CampaignStore& store, const std::vector<acquisition::CampaignScanRow>& scans,
+void export_stone(const CampaignStore& store,
+                  const std::vector<acquisition::CampaignScanRow>& scans,
                   const acquisition::CampaignStoneRow& stone, const fs::path& folder) {
     const json result = json::parse(stone.result_json);
     io::StanfordConf conf;
@@ -96,7 +97,8 @@ void export_stone(const CampaignStore& store, const std::vector<acquisition::Cam
         const auto id = scan["id"].get<std::int64_t>();
         Pose T = Pose::Identity();
         for (int i = 0; i < 3; ++i)
-            for (int j = 0; j < 4; ++j) T.matrix()(i, j) = scan["pose"][static_cast<std::size_t>(4 * i + j)];
+            for (int j = 0; j < 4; ++j)
+                T.matrix()(i, j) = scan["pose"][static_cast<std::size_t>(4 * i + j)];
         conf.entries.push_back({scans[static_cast<std::size_t>(id)].file, T});
         auto cloud = io::read_ply(store.prepared_file(id));
         if (!cloud) fail_command(cloud.error());
@@ -125,7 +127,9 @@ void run_export(const ExportOptions& o) {
         ++written;
     }
     std::printf("exported %zu stones to %s\n", written, o.out.c_str());
-    if (written == 0) report_poor_result("no stone has been registered yet: run `anascan campaign register " + o.dir + "`");
+    if (written == 0)
+        report_poor_result("no stone has been registered yet: run `anascan campaign register " +
+                           o.dir + "`");
 }
 
 }  // namespace
@@ -155,12 +159,14 @@ void print_status(const CampaignStore& store) {
 
 void add_campaign_status_commands(CLI::App& campaign) {
     auto dir = std::make_shared<std::string>();
-    auto* status = campaign.add_subcommand("status", "Stages done, stones, scans not used or not placed");
+    auto* status =
+        campaign.add_subcommand("status", "Stages done, stones, scans not used or not placed");
     status->add_option("dir", *dir, "Campaign folder")->required();
     status->callback([dir] { run_status(*dir); });
     auto opts = std::make_shared<ExportOptions>();
     auto* exp = campaign.add_subcommand(
-        "export", "Per stone: poses.conf (metres), merged.ply (prepared points, stone frame), report.json");
+        "export",
+        "Per stone: poses.conf (metres), merged.ply (prepared points, stone frame), report.json");
     exp->add_option("dir", opts->dir, "Campaign folder")->required();
     exp->add_option("--out", opts->out, "Output folder")->required();
     exp->callback([opts] { run_export(*opts); });

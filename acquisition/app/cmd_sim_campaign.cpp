@@ -83,15 +83,16 @@ std::vector<RawScan> scan_stone(std::mt19937& rng, int stone, const SimCampaignO
         const double azimuth = 360.0 * k / o.scans_per_stone + uniform(rng, -10.0, 10.0);
         const double height_m = distance_m * std::tan(elevation * M_PI / 180.0);
         const Pose T = sim::tripod_pose(Eigen::Vector3d::Zero(), azimuth, distance_m, height_m);
-        const sim::TofScannerConfig tof{.angular_step_deg = o.spacing_mm / 1e3 / distance_m * 180.0 / M_PI,
-                                        .azimuth_start_deg = -30.0,
-                                        .azimuth_span_deg = 60.0,
-                                        .elevation_min_deg = -elevation - 30.0,
-                                        .elevation_max_deg = -elevation + 30.0,
-                                        .min_range_m = 0.3,
-                                        .range_noise_sigma_m = o.noise_mm / 1e3,
-                                        .mixed_pixel_probability = o.mixed_pixels,
-                                        .seed = o.seed * 7919u + static_cast<unsigned>(stone * 100 + k)};
+        const sim::TofScannerConfig tof{
+            .angular_step_deg = o.spacing_mm / 1e3 / distance_m * 180.0 / M_PI,
+            .azimuth_start_deg = -30.0,
+            .azimuth_span_deg = 60.0,
+            .elevation_min_deg = -elevation - 30.0,
+            .elevation_max_deg = -elevation + 30.0,
+            .min_range_m = 0.3,
+            .range_noise_sigma_m = o.noise_mm / 1e3,
+            .mixed_pixel_probability = o.mixed_pixels,
+            .seed = o.seed * 7919u + static_cast<unsigned>(stone * 100 + k)};
         auto scan = sim::simulate_tof_scan(*caster, {}, T, tof);
         if (!scan) fail_command(scan.error());
         scans.push_back({.cloud = std::move(scan->scan.cloud),
@@ -108,7 +109,8 @@ std::vector<RawScan> conf_scans(const std::string& conf_path, int stone) {
     for (const io::ConfEntry& entry : conf->entries) {
         auto cloud = load_ply_cloud((fs::path(conf_path).parent_path() / entry.file).string());
         if (!cloud) fail_command(cloud.error());
-        scans.push_back({.cloud = std::move(*cloud), .T_stone_raw = entry.T_world_scan, .stone = stone});
+        scans.push_back(
+            {.cloud = std::move(*cloud), .T_stone_raw = entry.T_world_scan, .stone = stone});
     }
     return scans;
 }
@@ -129,7 +131,8 @@ RawScan ground_scan(std::mt19937& rng, const SimCampaignOptions& o) {
 /// The cloud moved by T and with its points relative to zero, without normals.
 PointCloud plain_points(const PointCloud& cloud, const Pose& T_moved_raw) {
     PointCloud moved = transformed(cloud, T_moved_raw);
-    for (Eigen::Vector3f& p : moved.positions) p = (moved.origin_m + p.cast<double>()).cast<float>();
+    for (Eigen::Vector3f& p : moved.positions)
+        p = (moved.origin_m + p.cast<double>()).cast<float>();
     moved.origin_m.setZero();
     moved.normals.clear();
     return moved;
@@ -150,17 +153,20 @@ void write_campaign(std::vector<RawScan> scans, std::mt19937& rng, const SimCamp
         char name[32];
         std::snprintf(name, sizeof name, "scan_%04zu.ply", i);
         const Pose T_moved_raw = sample_random_pose(rng, 0.5);
-        if (auto ok = io::write_ply(fs::path(o.out) / name, plain_points(scans[i].cloud, T_moved_raw));
+        if (auto ok =
+                io::write_ply(fs::path(o.out) / name, plain_points(scans[i].cloud, T_moved_raw));
             !ok) {
             fail_command(ok.error());
         }
-        truth.push_back({{"file", name},
-                         {"stone", scans[i].stone},
-                         {"T_stone_scan", pose_json(scans[i].T_stone_raw * T_moved_raw.inverse())}});
+        truth.push_back(
+            {{"file", name},
+             {"stone", scans[i].stone},
+             {"T_stone_scan", pose_json(scans[i].T_stone_raw * T_moved_raw.inverse())}});
         list += std::string(name) + "\n";
     }
     const fs::path out(o.out);
-    if (auto ok = io::write_file_atomically(out / "truth.json", json{{"scans", truth}}.dump(1) + "\n");
+    if (auto ok =
+            io::write_file_atomically(out / "truth.json", json{{"scans", truth}}.dump(1) + "\n");
         !ok) {
         fail_command(ok.error());
     }
@@ -189,16 +195,19 @@ void run_sim_campaign(const SimCampaignOptions& o) {
 
 void add_sim_campaign_command(CLI::App& sim) {
     auto o = std::make_shared<SimCampaignOptions>();
-    auto* cmd = sim.add_subcommand("campaign", "A simulated campaign of many stones with its truth");
+    auto* cmd =
+        sim.add_subcommand("campaign", "A simulated campaign of many stones with its truth");
     cmd->add_option("--stones", o->stones, "Procedural stone blocks")->check(CLI::Range(0, 10000));
     cmd->add_option("--scans-per-stone", o->scans_per_stone, "Scans of each block")
         ->check(CLI::Range(1, 1000));
-    cmd->add_option("--extra-conf", o->extra_conf, "Scans and poses (.conf) added as one more stone")
+    cmd->add_option("--extra-conf", o->extra_conf,
+                    "Scans and poses (.conf) added as one more stone")
         ->check(CLI::ExistingFile);
     cmd->add_option("--background-scans", o->background_scans, "Scans of bare ground (no stone)");
     cmd->add_option("--spacing-mm", o->spacing_mm, "Sample spacing on the blocks (mm)");
     cmd->add_option("--noise-mm", o->noise_mm, "Range noise, standard deviation (mm)");
-    cmd->add_option("--mixed-pixels", o->mixed_pixels, "Probability of a mixed pixel at depth edges");
+    cmd->add_option("--mixed-pixels", o->mixed_pixels,
+                    "Probability of a mixed pixel at depth edges");
     cmd->add_option("--seed", o->seed, "Random seed");
     cmd->add_option("--out", o->out, "Output folder")->required();
     cmd->callback([o] { run_sim_campaign(*o); });

@@ -61,8 +61,8 @@ Expected<void> prepare_stage(StageRun& run, CampaignStore& store,
     for (const CampaignScanRow& s : scans) {
         if (s.state != "new") continue;
         const json in = {{"file", s.file}, {"prepared", store.prepared_file(s.id).string()}};
-        tasks.push_back({CampaignTaskKind::kPrepare, s.id, in.dump(),
-                         static_cast<double>(file_bytes(s.file))});
+        tasks.push_back(
+            {CampaignTaskKind::kPrepare, s.id, in.dump(), static_cast<double>(file_bytes(s.file))});
     }
     const std::size_t done = scans.size() - tasks.size();
     return run_stage(run, "prepare", std::move(tasks), done,
@@ -108,24 +108,23 @@ Expected<void> describe_stage(StageRun& run, CampaignStore& store,
         const PreparedSummary summary = summary_of(s);
         const json in = {{"prepared", store.prepared_file(s.id).string()},
                          {"spacing_m", summary.spacing_m}};
-        tasks.push_back({CampaignTaskKind::kDescribe, s.id, in.dump(),
-                         static_cast<double>(summary.points)});
+        tasks.push_back(
+            {CampaignTaskKind::kDescribe, s.id, in.dump(), static_cast<double>(summary.points)});
     }
-    return run_stage(run, "describe", std::move(tasks), done,
-                     [&](CampaignTaskResult r) -> Expected<void> {
-                         CampaignScanRow& row = scans[static_cast<std::size_t>(r.id)];
-                         const json out = json::parse(r.output_json);
-                         const std::string problem = out.contains("error")
-                                                         ? out["error"].get<std::string>()
-                                                         : out.value("problem", std::string());
-                         row.state = problem.empty() ? "described" : "unusable";
-                         row.problem = problem;
-                         row.keys.resize(r.blob.size() / sizeof(std::uint64_t));
-                         if (!row.keys.empty())
-                             std::memcpy(row.keys.data(), r.blob.data(),
-                                         row.keys.size() * sizeof(std::uint64_t));
-                         return store.save_scan(row);
-                     });
+    return run_stage(
+        run, "describe", std::move(tasks), done, [&](CampaignTaskResult r) -> Expected<void> {
+            CampaignScanRow& row = scans[static_cast<std::size_t>(r.id)];
+            const json out = json::parse(r.output_json);
+            const std::string problem = out.contains("error") ? out["error"].get<std::string>()
+                                                              : out.value("problem", std::string());
+            row.state = problem.empty() ? "described" : "unusable";
+            row.problem = problem;
+            row.keys.resize(r.blob.size() / sizeof(std::uint64_t));
+            if (!row.keys.empty())
+                std::memcpy(row.keys.data(), r.blob.data(),
+                            row.keys.size() * sizeof(std::uint64_t));
+            return store.save_scan(row);
+        });
 }
 
 Expected<void> candidate_stage(StageRun& run, CampaignStore& store,
@@ -145,7 +144,8 @@ Expected<void> candidate_stage(StageRun& run, CampaignStore& store,
     const Stopwatch watch;
     std::vector<CampaignPairRow> rows;
     for (const CandidatePair& c : propose_candidates(keys, config)) {
-        rows.push_back({.source = ids[c.source], .target = ids[c.target], .similarity = c.similarity});
+        rows.push_back(
+            {.source = ids[c.source], .target = ids[c.target], .similarity = c.similarity});
     }
     if (auto ok = store.set_candidates(rows); !ok) return ok;
     const std::size_t n = ids.size();

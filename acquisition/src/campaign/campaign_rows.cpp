@@ -107,8 +107,7 @@ Expected<void> CampaignStore::save_pair_result(std::int64_t source, std::int64_t
         impl_->db, "UPDATE pairs SET result_json = ? WHERE source = ? AND target = ?");
     if (!stmt) return fail(stmt.error());
     stmt->bind(1, std::string_view(result_json)).bind(2, source).bind(3, target);
-    return stmt->run("cannot record pair " + std::to_string(source) + "-" +
-                     std::to_string(target));
+    return stmt->run("cannot record pair " + std::to_string(source) + "-" + std::to_string(target));
 }
 
 Expected<std::vector<CampaignStoneRow>> CampaignStore::stones() const {

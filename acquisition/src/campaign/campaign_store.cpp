@@ -62,11 +62,11 @@ Expected<void> check_schema(const db::Connection& db, const fs::path& dir) {
     auto version = db::schema_version(db);
     if (!version) return fail(version.error());
     if (*version > kCampaignSchemaVersion) {
-        return fail(campaign_error(
-            dir, ErrorCode::kUnsupported,
-            "the campaign was written by a newer anascan (schema " + std::to_string(*version) +
-                ", this program knows up to " + std::to_string(kCampaignSchemaVersion) +
-                "): update anascan to continue it; nothing was changed"));
+        return fail(campaign_error(dir, ErrorCode::kUnsupported,
+                                   "the campaign was written by a newer anascan (schema " +
+                                       std::to_string(*version) + ", this program knows up to " +
+                                       std::to_string(kCampaignSchemaVersion) +
+                                       "): update anascan to continue it; nothing was changed"));
     }
     if (*version < 1) {
         return fail(campaign_error(dir, ErrorCode::kFormat,
@@ -140,8 +140,7 @@ Expected<std::unique_ptr<CampaignStore>> CampaignStore::create(
     return std::unique_ptr<CampaignStore>(new CampaignStore(std::move(*impl)));
 }
 
-Expected<std::unique_ptr<CampaignStore>> CampaignStore::open(const fs::path& dir,
-                                                             bool read_only) {
+Expected<std::unique_ptr<CampaignStore>> CampaignStore::open(const fs::path& dir, bool read_only) {
     std::error_code ec;
     if (!fs::exists(dir / "campaign.sqlite", ec)) {
         return fail(campaign_error(dir, ErrorCode::kIo,

@@ -32,7 +32,8 @@ json prepare(const json& in, const CampaignConfig& config) {
 json describe(const json& in, const CampaignConfig& config, std::vector<unsigned char>& blob) {
     auto cloud = read_cloud(in.at("prepared").get<std::string>());
     if (!cloud) return {{"error", "cannot read the prepared scan: " + cloud.error().message}};
-    const ScanDescriptor d = describe_campaign_scan(*cloud, in.at("spacing_m").get<double>(), config);
+    const ScanDescriptor d =
+        describe_campaign_scan(*cloud, in.at("spacing_m").get<double>(), config);
     blob.resize(d.keys.size() * sizeof(std::uint64_t));
     if (!blob.empty()) std::memcpy(blob.data(), d.keys.data(), blob.size());
     return {{"patches", d.patches}, {"keys", d.keys.size()}, {"problem", d.problem}};
@@ -73,14 +74,17 @@ json stone(const json& in, const CampaignConfig& config) {
             {"time_s", r.timings.total_s}};
 }
 
-json run(const CampaignTask& task, const CampaignConfig& config,
-         std::vector<unsigned char>& blob) {
+json run(const CampaignTask& task, const CampaignConfig& config, std::vector<unsigned char>& blob) {
     const json in = json::parse(task.input_json);
     switch (task.kind) {
-        case CampaignTaskKind::kPrepare: return prepare(in, config);
-        case CampaignTaskKind::kDescribe: return describe(in, config, blob);
-        case CampaignTaskKind::kPair: return pair(in, config);
-        case CampaignTaskKind::kStone: return stone(in, config);
+        case CampaignTaskKind::kPrepare:
+            return prepare(in, config);
+        case CampaignTaskKind::kDescribe:
+            return describe(in, config, blob);
+        case CampaignTaskKind::kPair:
+            return pair(in, config);
+        case CampaignTaskKind::kStone:
+            return stone(in, config);
     }
     return {{"error", "unknown task kind"}};
 }

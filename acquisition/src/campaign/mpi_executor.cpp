@@ -44,7 +44,8 @@ CampaignTask unpack_task(const Bytes& in) {
     CampaignTask t;
     t.kind = static_cast<CampaignTaskKind>(take<int>(in, at));
     t.id = take<std::int64_t>(in, at);
-    t.input_json.assign(in.begin() + static_cast<std::ptrdiff_t>(std::min(at, in.size())), in.end());
+    t.input_json.assign(in.begin() + static_cast<std::ptrdiff_t>(std::min(at, in.size())),
+                        in.end());
     return t;
 }
 

@@ -65,8 +65,8 @@ std::vector<CandidatePair> propose_candidates(const std::vector<std::vector<std:
     std::vector<std::vector<std::size_t>> similar(n);
     tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) {
         if (votes.key_count[i] > 0)
-            similar[i] = votes.most_similar(i, config.candidates_per_scan,
-                                            [](std::size_t) { return true; });
+            similar[i] =
+                votes.most_similar(i, config.candidates_per_scan, [](std::size_t) { return true; });
     });
     std::set<std::pair<std::size_t, std::size_t>> unique;
     for (std::size_t i = 0; i < n; ++i) {

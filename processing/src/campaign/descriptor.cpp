@@ -27,15 +27,15 @@ struct Ladder {
 
 Ladder ladder_for(double diagonal_m) {
     const double r0 = radii_for_object_size_m(diagonal_m)[0];
-    const int level = static_cast<int>(std::lround(std::log(r0 / kLadderUnit_m) /
-                                                   std::log(kLadderRatio)));
+    const int level =
+        static_cast<int>(std::lround(std::log(r0 / kLadderUnit_m) / std::log(kLadderRatio)));
     return {.radii_m = geometric_radii_m(kLadderUnit_m * std::pow(kLadderRatio, level)),
             .first_level = level};
 }
 
 std::uint64_t corner_kind(const FeaturePatch& p, int first_level) {
-    const auto level = static_cast<std::uint64_t>(first_level + 64 +
-                                                  static_cast<int>(p.radius_index));
+    const auto level =
+        static_cast<std::uint64_t>(first_level + 64 + static_cast<int>(p.radius_index));
     return (level << 1) | static_cast<std::uint64_t>(p.side);
 }
 
@@ -51,7 +51,7 @@ void triangle_keys(const KeyContext& c, const std::array<std::size_t, 3>& corner
     std::array<std::array<std::uint64_t, 2>, 3> bins{};
     for (std::size_t k = 0; k < 3; ++k) {
         const double length_m = (c.patches[corner[(k + 1) % 3]].barycentre_m -
-                                  c.patches[corner[(k + 2) % 3]].barycentre_m)
+                                 c.patches[corner[(k + 2) % 3]].barycentre_m)
                                     .norm();
         const double x = std::log(length_m / kLadderUnit_m) / c.log_ratio + 64.0;
         const auto bin = static_cast<std::uint64_t>(std::max(x, 1.0));
@@ -115,7 +115,8 @@ double rotation_free_size_m(const PointCloud& cloud) {
     for (const Eigen::Vector3f& p : cloud.positions) mean += p.cast<double>();
     mean /= static_cast<double>(cloud.size());
     double sum_sq = 0.0;
-    for (const Eigen::Vector3f& p : cloud.positions) sum_sq += (p.cast<double>() - mean).squaredNorm();
+    for (const Eigen::Vector3f& p : cloud.positions)
+        sum_sq += (p.cast<double>() - mean).squaredNorm();
     return 2.5 * std::sqrt(sum_sq / static_cast<double>(cloud.size()));
 }
 

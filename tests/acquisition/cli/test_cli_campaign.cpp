@@ -47,8 +47,8 @@ protected:
 TEST_F(CampaignCli, MissingScanIsNamedAndRepeatsAreRecordedOnce) {
     simulate();
     const std::string scan = (dir_ / "scans" / "scan_0000.ply").string();
-    auto run = run_cli("campaign init " + campaign() + " " + scan + " " +
-                       (dir_ / "nope.ply").string());
+    auto run =
+        run_cli("campaign init " + campaign() + " " + scan + " " + (dir_ / "nope.ply").string());
     EXPECT_EQ(run.exit_code, 1);
     EXPECT_NE(run.output.find("nope.ply: no such scan file"), std::string::npos) << run.output;
     run = run_cli("campaign init " + campaign() + " " + scan + " " + scan);
@@ -63,7 +63,8 @@ TEST_F(CampaignCli, MissingScanIsNamedAndRepeatsAreRecordedOnce) {
 TEST_F(CampaignCli, BadScansAreReportedAndTheRestIsRegisteredOnce) {
     simulate("--stones 2 --scans-per-stone 3 --background-scans 1");
     const fs::path scans = dir_ / "scans";
-    std::ofstream(scans / "broken.ply") << "ply\nformat ascii 1.0\nelement vertex 5\nend_header\n1 2\n";
+    std::ofstream(scans / "broken.ply")
+        << "ply\nformat ascii 1.0\nelement vertex 5\nend_header\n1 2\n";
     fs::copy_file(scans / "scan_0001.ply", scans / "copy.ply");
     std::ofstream(scans / "list.txt", std::ios::app) << "broken.ply\ncopy.ply\n";
     auto run = run_cli("campaign init " + campaign() + " --list " + (scans / "list.txt").string() +
@@ -89,10 +90,11 @@ TEST_F(CampaignCli, BadScansAreReportedAndTheRestIsRegisteredOnce) {
 
 TEST_F(CampaignCli, NewerSchemaAndLockedStoreAreRefusedClearly) {
     simulate();
-    auto run = run_cli("campaign init " + campaign() + " " + (dir_ / "scans" / "scan_0000.ply").string());
+    auto run =
+        run_cli("campaign init " + campaign() + " " + (dir_ / "scans" / "scan_0000.ply").string());
     ASSERT_EQ(run.exit_code, 0) << run.output;
-    run = run_shell("flock " + campaign() + "/campaign.lock " + ANASCAN_CLI + " campaign register " +
-                    campaign() + " 2>&1");
+    run = run_shell("flock " + campaign() + "/campaign.lock " + ANASCAN_CLI +
+                    " campaign register " + campaign() + " 2>&1");
     EXPECT_EQ(run.exit_code, 1);
     EXPECT_NE(run.output.find("in use by another job"), std::string::npos) << run.output;
     sql("PRAGMA user_version = 99");

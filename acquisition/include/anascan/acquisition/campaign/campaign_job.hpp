@@ -77,9 +77,9 @@ struct CampaignJobReport {
 };
 
 /// Runs the stages not finished yet; `progress` (may be empty) after every result.
-Expected<CampaignJobReport> run_campaign(CampaignStore& store, CampaignExecutor& executor,
-                                         const CampaignConfig& config,
-                                         const std::function<void(const CampaignProgress&)>& progress);
+Expected<CampaignJobReport> run_campaign(
+    CampaignStore& store, CampaignExecutor& executor, const CampaignConfig& config,
+    const std::function<void(const CampaignProgress&)>& progress);
 
 /// True when built with MPI and started under mpirun/srun (the launcher's environment).
 bool campaign_mpi_launched();

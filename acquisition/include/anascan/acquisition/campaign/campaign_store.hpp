@@ -28,8 +28,8 @@ struct CampaignScanRow {
     std::string file;     ///< Absolute path of the scan file.
     /// "new", "prepared", "described", or "unusable" (with `problem`).
     std::string state = "new";
-    std::string problem;       ///< Why it is not used (unreadable, empty, duplicate...).
-    std::string summary_json;  ///< PreparedSummary as JSON (prepared and later).
+    std::string problem;              ///< Why it is not used (unreadable, empty, duplicate...).
+    std::string summary_json;         ///< PreparedSummary as JSON (prepared and later).
     std::vector<std::uint64_t> keys;  ///< Global descriptor (described).
 };
 
