@@ -5,8 +5,9 @@
 # fuzzers). A test fails on any finding, in the test itself or in a child it runs (the
 # `anascan` and `anascan-field` commands are instrumented too): reports go to
 # <tree>/sanitizer-reports/, and any report there fails this script, whatever the exit code
-# the test saw. Usage: scripts/sanitize.sh [asan|tsan|all] (default all). The sets and why
-# they are what they are: docs/reliability.md.
+# the test saw. Usage: scripts/sanitize.sh [ci|asan|tsan|all] (default all; `ci` is the
+# reduced ASan + UBSan set that CI runs, in ./build-asan too). The sets, why they are what they
+# are, and the time each takes: docs/reliability.md.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs="${JOBS:-$(nproc)}"
@@ -22,7 +23,14 @@ asan_targets=(anascan_session_store_tests anascan anascan_cli_session_tests
     anascan_sim_scanner_tests anascan_sim_device_tests anascan_device_control_tests
     anascan_live_registration_quick_tests anascan_cli_tests anascan_cli_sl_tests
     fuzz_ply_replay fuzz_text_points_replay fuzz_ptx_replay fuzz_stanford_conf_replay
-    fuzz_xf_replay)
+    fuzz_xf_replay fuzz_obj_replay fuzz_stl_replay fuzz_e57_replay)
+# The CI set, ASan + UBSan: the processing library (every parser and every algorithm) with
+# its unit tests and the corpus replays of every fuzz harness. Projected to fit CI's budget
+# (about 25 minutes on 2 cores, build included; docs/reliability.md); the acquisition,
+# driver and command-line tests need three more libraries built: full `asan` set only.
+ci_targets=(anascan_processing_tests fuzz_ply_replay fuzz_text_points_replay fuzz_ptx_replay
+    fuzz_stanford_conf_replay fuzz_xf_replay fuzz_obj_replay fuzz_stl_replay fuzz_e57_replay)
+
 # TSan: everything that runs threads of its own: the capture session (scanner, persistence
 # and registration threads), the session store under concurrent writers, the device
 # layer's stream runner and watcher, and the field app's session link and workers.
@@ -72,16 +80,39 @@ run_tests() {
     return "$status"
 }
 
+# CPU seconds (user + sys) of this shell's finished children, from the `times` output in
+# $cpu_file: `times` must run in this shell (a command substitution's subshell has none).
+cpu_file="$(mktemp)"
+trap 'rm -f "$cpu_file"' EXIT
+children_cpu_s() {
+    awk 'NR == 2 {
+        n = split($0, f, " "); s = 0
+        for (i = 1; i <= n; i++) { split(f[i], ms, "m"); s += ms[1] * 60 + ms[2] }
+        print s }' "$cpu_file"
+}
+
+# Runs one part and prints its wall time and its CPU time (user + sys of everything it ran):
+# on a loaded machine the CPU time, divided by the cores, projects the wall time on idle ones.
 part() {
     local name="$1"
     shift
-    local start=$SECONDS status=0
+    local start=$SECONDS status=0 cpu0
+    times >"$cpu_file"
+    cpu0=$(children_cpu_s)
     "$@" || status=$?
-    echo "sanitize: $name took $((SECONDS - start)) s (exit $status)"
+    times >"$cpu_file"
+    echo "sanitize: $name took $((SECONDS - start)) s wall," \
+        "$(awk -v a="$cpu0" -v b="$(children_cpu_s)" 'BEGIN { printf "%.0f", b - a }') s CPU" \
+        "(exit $status)"
     return "$status"
 }
 
 status=0
+if [ "$which" = ci ]; then
+    part "asan (CI set) build" configure_and_build build-asan "address;undefined" \
+        "${ci_targets[@]}"
+    part "asan (CI set) tests" run_tests build-asan -E "$common_exclude" || status=1
+fi
 if [ "$which" = asan ] || [ "$which" = all ]; then
     part "asan build" configure_and_build build-asan "address;undefined" "${asan_targets[@]}"
     part "asan tests" run_tests build-asan -E "$common_exclude" || status=1

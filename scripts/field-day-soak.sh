@@ -1,0 +1,95 @@
+#!/usr/bin/env bash
+# A long field day, simulated and headless: STONES stones (simulated structured light, the
+# scenes below in turn), each captured in one `anascan capture` run of SCANS/STONES views and
+# turned over half way, then re-registered in part (`session register --scan`), one scan
+# excluded, and checked. While each capture runs, its resident memory (VmRSS), open file
+# descriptors and threads are sampled every second. Prints, per stone: RSS and descriptors
+# after warm-up (the first 10 % of the scans) against the end, and the time per scan (saved
+# to registered, and between two registrations) over the first 10 scans against the last 10;
+# the database size. Usage: scripts/field-day-soak.sh [SCANS] [STONES] [BUILD_DIR] [OUT_DIR]
+# (defaults 300, 3, build, a new temporary folder). Kept there: capture logs and samples.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+scans="${1:-300}"
+stones="${2:-3}"
+build="${3:-build}"
+out="${4:-$(mktemp -d /tmp/field-day.XXXXXX)}"
+cli="$PWD/$build/acquisition/anascan"
+scenes=(small-block octagon-block large-block)
+per_stone=$((scans / stones))
+mkdir -p "$out"
+echo "field day: $stones stones x $per_stone scans in $out"
+
+# Samples PID every second into FILE: seconds since start, scans saved so far, RSS kB, fds,
+# threads; until the process ends.
+sample() {
+    local pid="$1" file="$2" log="$3" start=$SECONDS
+    while [ -d "/proc/$pid" ]; do
+        local rss fds threads saved
+        rss=$(awk '/^VmRSS:/ { print $2 }' "/proc/$pid/status" 2>/dev/null) || break
+        threads=$(awk '/^Threads:/ { print $2 }' "/proc/$pid/status" 2>/dev/null) || break
+        fds=$(find "/proc/$pid/fd" -mindepth 1 -maxdepth 1 2>/dev/null | wc -l)
+        saved=$(grep -c '^saved scan ' "$log" || true)
+        [ -n "$rss" ] && echo "$((SECONDS - start)) $saved $rss $fds $threads" >>"$file"
+        sleep 1
+    done
+}
+
+# The figures of one stone from its samples and capture log.
+report() {
+    local samples="$1" log="$2" n="$3"
+    awk -v n="$n" '
+        { t[NR] = $1; s[NR] = $2; rss[NR] = $3; fd[NR] = $4; th[NR] = $5 }
+        END {
+            warm = int(n / 10); if (warm < 1) warm = 1
+            for (i = 1; i <= NR; i++) if (s[i] >= warm) { w = i; break }
+            for (i = w; i <= NR; i++) {
+                if (rss[i] > maxrss) maxrss = rss[i]
+                if (fd[i] > maxfd) maxfd = fd[i]
+                if (th[i] > maxth) maxth = th[i]
+            }
+            printf "  RSS after warm-up (scan %d) %d kB, peak after it %d kB (%+.1f %%), at the end %d kB\n",
+                warm, rss[w], maxrss, 100 * (maxrss - rss[w]) / rss[w], rss[NR]
+            printf "  descriptors after warm-up %d, peak after it %d, at the end %d; threads %d, peak %d\n",
+                fd[w], maxfd, fd[NR], th[w], maxth
+        }' "$samples"
+    grep -o 'registered scan [0-9]*: .*, [0-9.]* s after saving' "$log" |
+        awk -v n="$n" '{ lat[NR] = $(NF - 3) }
+            END {
+                k = 10; if (NR < 2 * k) k = int(NR / 2)
+                for (i = 1; i <= k; i++) { a += lat[i]; b += lat[NR - k + i] }
+                printf "  saved to registered: first %d scans %.2f s, last %d %.2f s (%+.0f %%)\n",
+                    k, a / k, k, b / k, 100 * (b - a) / a }'
+    grep '^[0-9.]* registered scan ' "$log.timed" |
+        awk '{ t[NR] = $1 } END {
+            k = 10; if (NR < 2 * k + 1) k = int((NR - 1) / 2)
+            a = (t[k + 1] - t[1]) / k; b = (t[NR] - t[NR - k]) / k
+            printf "  between registrations: first %d scans %.2f s, last %d %.2f s (%+.0f %%)\n",
+                k, a, k, b, 100 * (b - a) / a }'
+}
+
+for ((i = 0; i < stones; i++)); do
+    scene="${scenes[i % ${#scenes[@]}]}"
+    session="$out/stone-$((i + 1))"
+    log="$out/stone-$((i + 1)).log"
+    samples="$out/stone-$((i + 1)).samples"
+    : >"$samples"
+    start=$SECONDS
+    # Each line stamped with the time it arrived (registration times per scan).
+    "$cli" --accept-poor capture --device sim:structured-light --scene "$scene" \
+        --session "$session" --views "$per_stone" --flip-after $((per_stone / 2)) \
+        --tour-seed $((i + 1)) --no-coverage > >(tee "$log" |
+        while IFS= read -r line; do echo "$(date +%s.%N) $line"; done >"$log.timed") 2>&1 &
+    pid=$!
+    sample "$pid" "$samples" "$log"
+    wait "$pid" || { echo "stone $((i + 1)): capture failed (exit $?), see $log" >&2; exit 1; }
+    sleep 1
+    echo "stone $((i + 1)) ($scene): $per_stone scans in $((SECONDS - start)) s"
+    report "$samples" "$log" "$per_stone"
+    "$cli" --accept-poor session register "$session" --scan 2 --scan $((per_stone / 2 + 1)) \
+        >"$out/stone-$((i + 1)).register.log" 2>&1
+    "$cli" session exclude "$session" 3 >/dev/null
+    "$cli" session check "$session" | tail -n 1
+    echo "  database $(du -k "$session/session.sqlite" | cut -f1) kB," \
+        "scans folder $(du -sk "$session/scans" | cut -f1) kB"
+done

@@ -1,0 +1,76 @@
+#pragma once
+// Runs `anascan ARGS` (ANASCAN_CLI) and SIGKILLs it at a chosen moment: the kill tests of the
+// commands that write (capture, session register, session export).
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdint>
+#include <regex>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace anascan::testing_util {
+
+struct KilledRun {
+    std::set<std::int64_t> acknowledged;  ///< Seqs printed as saved before the kill.
+    bool exited_before_kill = false;
+};
+
+/// Starts `anascan ARGS`, reads its stdout until `after` (counted from the start, or with
+/// `after_first_output` from its first output: a loaded machine may take longer than the
+/// longest `after` to start), then SIGKILLs it.
+inline KilledRun run_and_kill(const std::vector<std::string>& args, std::chrono::milliseconds after,
+                              bool after_first_output) {
+    int out[2];
+    EXPECT_EQ(::pipe(out), 0);
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+        ::dup2(out[1], STDOUT_FILENO);
+        const int null = ::open("/dev/null", O_WRONLY);
+        ::dup2(null, STDERR_FILENO);
+        ::close(out[0]);
+        std::vector<char*> argv{const_cast<char*>(ANASCAN_CLI)};
+        for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+        argv.push_back(nullptr);
+        ::execv(ANASCAN_CLI, argv.data());
+        ::_exit(127);
+    }
+    ::close(out[1]);
+    KilledRun run;
+    std::string text;
+    auto deadline = std::chrono::steady_clock::now() +
+                    (after_first_output ? std::chrono::milliseconds(600000) : after);
+    for (;;) {
+        const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+            deadline - std::chrono::steady_clock::now());
+        if (left.count() <= 0) break;
+        pollfd p{.fd = out[0], .events = POLLIN, .revents = 0};
+        if (::poll(&p, 1, static_cast<int>(left.count())) <= 0) continue;
+        char buffer[4096];
+        const ssize_t n = ::read(out[0], buffer, sizeof(buffer));
+        if (n <= 0) {
+            run.exited_before_kill = true;
+            break;
+        }
+        if (after_first_output && text.empty()) deadline = std::chrono::steady_clock::now() + after;
+        text.append(buffer, static_cast<std::size_t>(n));
+    }
+    ::kill(pid, SIGKILL);
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    ::close(out[0]);
+    static const std::regex saved(R"(saved scan (\d+) )");
+    // Only complete lines count: the line is printed after the acknowledgement.
+    const std::string complete = text.substr(0, text.rfind('\n') + 1);
+    for (std::sregex_iterator it(complete.begin(), complete.end(), saved), end; it != end; ++it)
+        run.acknowledged.insert(std::stoll((*it)[1]));
+    return run;
+}
+
+}  // namespace anascan::testing_util
