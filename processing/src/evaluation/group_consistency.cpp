@@ -76,9 +76,10 @@ Prepared prepare(const ConsistencyScan& scan, const GroupConsistencyConfig& conf
     return p;
 }
 
-/// Near points of `from` on `onto`'s surface: counts and normal angles appended.
-void near_points(const Prepared& from, const Prepared& onto, double near_m,
-                 const GroupConsistencyConfig& config, std::vector<double>& angles) {
+/// Near points of `from` on `onto`'s surface: normal angles and offsets appended.
+std::size_t near_points(const Prepared& from, const Prepared& onto, double near_m,
+                        const GroupConsistencyConfig& config, std::vector<double>& angles,
+                        std::vector<double>& offsets) {
     const PointCloud& a = *from.scan->cloud;
     const PointCloud& b = *onto.scan->cloud;
     const Eigen::Isometry3f T_local =
@@ -88,14 +89,20 @@ void near_points(const Prepared& from, const Prepared& onto, double near_m,
     const Eigen::Matrix3f R = T_local.linear();
     const std::size_t stride = std::max<std::size_t>(1, a.size() / config.max_samples);
     Neighbor nearest;
+    std::size_t examined = 0;
     for (std::size_t i = 0; i < a.size(); i += stride) {
         if (!usable_normal(a, i)) continue;
+        ++examined;
         if (!onto.tree->nearest_within(T_local * a.positions[i], static_cast<float>(near_m),
                                        nearest) ||
             !usable_normal(b, nearest.index))
             continue;
-        angles.push_back(unsigned_angle_deg(R * a.normals[i], b.normals[nearest.index]));
+        const Eigen::Vector3f& n = b.normals[nearest.index];
+        const Eigen::Vector3f q = T_local * a.positions[i];
+        angles.push_back(unsigned_angle_deg(R * a.normals[i], n));
+        offsets.push_back(std::abs(n.dot(q - b.positions[nearest.index])));
     }
+    return examined;
 }
 
 /// `other`'s points against `viewed`'s view from its sensor (invalid without a sensor).
@@ -122,8 +129,13 @@ bool has_evidence(const PairConsistency& p, const GroupConsistencyConfig& config
            p.a_seen_from_b.in_view >= view;
 }
 
-void judge(PairConsistency& p, const GroupConsistencyConfig& config) {
+/// Free space, then the angle of the overlap (its near points mostly cross: surfaces that
+/// cut through each other meet only along a line, so their count is not asked for), then,
+/// for an overlap of enough of the points examined, crossing normals and the offset.
+void judge(PairConsistency& p, std::size_t examined, const GroupConsistencyConfig& config) {
     const bool counted = p.near_samples >= config.min_near_samples;
+    const bool overlap = counted && static_cast<double>(p.near_samples) >=
+                                        config.min_near_fraction * static_cast<double>(examined);
     if (violated(p.b_seen_from_a, config.free_space) ||
         violated(p.a_seen_from_b, config.free_space)) {
         p.agrees = false;
@@ -131,9 +143,13 @@ void judge(PairConsistency& p, const GroupConsistencyConfig& config) {
     } else if (counted && p.median_normal_angle_deg > p.crossing_angle_deg) {
         p.agrees = false;
         p.reason = "angle";
-    } else if (counted && p.crossing_fraction > config.max_crossing_fraction) {
+    } else if (overlap && p.crossing_fraction > config.max_crossing_fraction) {
         p.agrees = false;
         p.reason = "normals cross";
+    } else if (overlap && p.noise_m > 0.0 &&
+               p.median_offset_m > config.max_offset_noise_factor * p.noise_m) {
+        p.agrees = false;
+        p.reason = "surfaces apart";
     }
 }
 
@@ -146,9 +162,11 @@ PairConsistency check_prepared(const Prepared& a, const Prepared& b,
     p.crossing_angle_deg =
         std::max(config.min_crossing_angle_deg,
                  config.crossing_noise_factor * std::max(a.normal_noise_deg, b.normal_noise_deg));
-    std::vector<double> angles;
-    near_points(a, b, near_m, config, angles);
-    near_points(b, a, near_m, config, angles);
+    p.noise_m = std::sqrt(0.5 * (a.noise_m * a.noise_m + b.noise_m * b.noise_m));
+    std::vector<double> angles, offsets;
+    const std::size_t examined = near_points(a, b, near_m, config, angles, offsets) +
+                                 near_points(b, a, near_m, config, angles, offsets);
+    p.median_offset_m = median_of(std::move(offsets));
     p.near_samples = angles.size();
     const auto crossing = std::count_if(angles.begin(), angles.end(),
                                         [&](double deg) { return deg > p.crossing_angle_deg; });
@@ -157,7 +175,7 @@ PairConsistency check_prepared(const Prepared& a, const Prepared& b,
     p.median_normal_angle_deg = median_of(std::move(angles));
     p.b_seen_from_a = free_space(a, b, config);
     p.a_seen_from_b = free_space(b, a, config);
-    judge(p, config);
+    judge(p, examined, config);
     return p;
 }
 

@@ -79,7 +79,14 @@ std::string describe(const PairConsistency& p, std::span<const std::string> name
                percent(r.violation_fraction) + ") lie in the space " +
                name_of(b_in_a ? p.a : p.b, names) + "'s sensor saw empty";
     }
-    char figures[160];
+    char figures[200];
+    if (p.reason == "surfaces apart") {
+        std::snprintf(figures, sizeof(figures),
+                      "its surface lies %.2f mm (median of %zu near points) from the other's, "
+                      "%.1f times their noise",
+                      p.median_offset_m * 1e3, p.near_samples, p.median_offset_m / p.noise_m);
+        return text + figures;
+    }
     std::snprintf(figures, sizeof(figures),
                   "normals cross on %s of %zu near points (median angle %.1f°, crossing above "
                   "%.1f°)",
