@@ -188,7 +188,7 @@ void CaptureSession::Impl::record_taken_out(const std::vector<LiveTakenOut>& tak
         const std::string message = "scan " + std::to_string(t.seq) +
                                     " FLAGGED and taken out of group " + std::to_string(t.group) +
                                     ": " + t.reason +
-                                    " — scan that part again, or register it again";
+                                    "; scan that part again, or register it again";
         if (auto ok = store->record_registration(
                 t.seq, {.state = ScanState::kFlagged, .quality_json = reason_json(message)});
             !ok)

@@ -146,7 +146,7 @@ void judge(PairConsistency& p, std::size_t examined, const GroupConsistencyConfi
     } else if (overlap && p.crossing_fraction > config.max_crossing_fraction) {
         p.agrees = false;
         p.reason = "normals cross";
-    } else if (overlap && p.noise_m > 0.0 &&
+    } else if (overlap && config.max_offset_noise_factor > 0.0 && p.noise_m > 0.0 &&
                p.median_offset_m > config.max_offset_noise_factor * p.noise_m) {
         p.agrees = false;
         p.reason = "surfaces apart";
