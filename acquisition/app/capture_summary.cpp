@@ -34,7 +34,7 @@ acquisition::SessionEventSink printing_sink() {
         std::lock_guard lock(*mutex);
         using K = acquisition::SessionEventKind;
         if (event.kind == K::kDeviceError || event.kind == K::kSaveFailed ||
-            event.kind == K::kRegistrationFailed) {
+            event.kind == K::kRegistrationFailed || event.kind == K::kRegistrationFlagged) {
             spdlog::error("{}", event.message);
             return;
         }

@@ -14,6 +14,7 @@
 #include "anascan/processing/registration/batch/scan_registration.hpp"
 #include "commands.hpp"
 #include "point_files.hpp"
+#include "register_consistency.hpp"
 #include "scan_preparation.hpp"
 #include "scan_region.hpp"
 
@@ -196,6 +197,28 @@ void write_outputs(const RegisterOptions& o, const ScanRegistrationResult& r) {
     if (!o.merged.empty()) write_merged(o, r);
 }
 
+/// The placed scans checked against each other when their sensor position is known (the
+/// free-space test needs it; the normal and relief tests alone, calibrated on one scan's own
+/// noise, flagged true bunny pairs); those taken out are reported.
+RegisterConsistency check_consistency(const std::vector<ScanInput>& inputs,
+                                      ScanRegistrationResult& result) {
+    if (inputs.empty() || !inputs[0].sensor_origin_known) {
+        std::printf(
+            "consistency: not checked (give --sensor-origin to check the placed scans "
+            "against each other)\n");
+        return {};
+    }
+    const RegisterConsistency c = check_placed_scans(
+        result, [&](std::size_t i) { return inputs[i].load(); }, inputs[0].sensor_origin_scan_m);
+    std::printf(
+        "consistency: %zu placed scans checked pairwise (%zu overlapping pairs), %zu taken out\n",
+        c.checked, c.pairs, c.taken_out);
+    for (const ScanOutcome& s : result.scans)
+        if (!s.placed && s.reason.starts_with("contradicts"))
+            spdlog::warn("{} taken out: {}", s.name, s.reason);
+    return c;
+}
+
 void run_register(const RegisterOptions& o) {
     check_output_writable(o.out, "--out");
     check_output_writable(o.stats, "--stats");
@@ -219,14 +242,19 @@ void run_register(const RegisterOptions& o) {
                           .sensor_origin_scan_m = sensor_origin(o.sensor),
                           .sensor_origin_known = o.sensor.origin_given && !o.sensor.no_sensor});
     }
-    const ScanRegistrationResult result =
+    ScanRegistrationResult result =
         register_scans(inputs, {}, [](std::string_view m) { spdlog::info("{}", m); });
+    const RegisterConsistency consistency = check_consistency(inputs, result);
     print_result(result);
     if (result.placed_count == 0) throw CommandFailed("no scan could be placed");
     write_outputs(o, result);
     if (result.placed_count < 2 && result.scans.size() >= 2)
         report_poor_result("no two scans were joined (1 of " + std::to_string(result.scans.size()) +
                            " placed): the scans need overlapping views; see the reasons above");
+    else if (2 * consistency.taken_out > consistency.checked)
+        report_poor_result(std::to_string(consistency.taken_out) + " of " +
+                           std::to_string(consistency.checked) +
+                           " placed scans contradicted the others and were taken out");
 }
 
 }  // namespace

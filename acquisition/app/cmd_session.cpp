@@ -84,6 +84,7 @@ void add_session_command(CLI::App& app) {
     add_session_info_commands(*session);
     add_session_export_command(*session);
     add_session_register_command(*session);
+    add_session_consistency_command(*session);
     add_exclude(*session);
     add_note(*session);
     add_turned_over(*session);

@@ -26,11 +26,13 @@ T value_or_fail(Expected<T> result) {
 }
 
 void print_summary(const acquisition::SessionStore& store, const std::vector<ScanRecord>& scans) {
-    std::size_t counts[4] = {0, 0, 0, 0};
+    std::size_t counts[5] = {0, 0, 0, 0, 0};
     for (const ScanRecord& r : scans) ++counts[static_cast<int>(r.state)];
     const auto coverage = value_or_fail(acquisition::coverage_fraction(store));
-    std::printf("session %s: %zu scans (%zu registered, %zu failed, %zu queued, %zu excluded)",
-                store.dir().c_str(), scans.size(), counts[1], counts[2], counts[0], counts[3]);
+    std::printf(
+        "session %s: %zu scans (%zu registered, %zu flagged, %zu failed, %zu queued, %zu "
+        "excluded)",
+        store.dir().c_str(), scans.size(), counts[1], counts[4], counts[2], counts[0], counts[3]);
     if (coverage) std::printf(", coverage %.1f %%", 100.0 * *coverage);
     std::printf("\n");
     for (const auto& d : value_or_fail(store.devices())) {

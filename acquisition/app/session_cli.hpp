@@ -16,6 +16,8 @@ std::unique_ptr<acquisition::SessionStore> open_session(const std::filesystem::p
 void add_session_info_commands(CLI::App& session);
 /// `session register` (registers a session again; re-registers chosen scans).
 void add_session_register_command(CLI::App& session);
+/// `session consistency` (the model's scans checked against each other).
+void add_session_consistency_command(CLI::App& session);
 /// `session export`.
 void add_session_export_command(CLI::App& session);
 

@@ -124,6 +124,7 @@ void SessionLink::drain_events(gui::FieldViewState& view) {
         switch (event.kind) {
             case SessionEventKind::kRegistered:
             case SessionEventKind::kRegistrationFailed:
+            case SessionEventKind::kRegistrationFlagged:
                 reregistering_.erase(event.seq);  // its new result is in the row
                 dirty_ = true;
                 break;

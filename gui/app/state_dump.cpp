@@ -17,6 +17,8 @@ const char* state_name(gui::ScanRowState state) {
             return "failed";
         case gui::ScanRowState::kExcluded:
             return "excluded";
+        case gui::ScanRowState::kFlagged:
+            return "flagged";
     }
     return "queued";
 }
@@ -29,6 +31,8 @@ const char* banner_kind_name(gui::BannerKind kind) {
             return "registration-failed";
         case gui::BannerKind::kSplit:
             return "split";
+        case gui::BannerKind::kDisagree:
+            return "disagree";
     }
     return "?";
 }

@@ -14,6 +14,8 @@ const char* window_name(BannerKind kind) {
             return "Registration failed";
         case BannerKind::kSplit:
             return "Model split";
+        case BannerKind::kDisagree:
+            return "Scans disagree";
     }
     return "Banner";
 }

@@ -16,6 +16,8 @@ const char* to_string(ScanRowState state) {
             return "FAILED";
         case ScanRowState::kExcluded:
             return "excluded";
+        case ScanRowState::kFlagged:
+            return "CONTRADICTS";
     }
     return "?";
 }

@@ -58,6 +58,8 @@ Rgb8 quality_color(const ScanRow& row) {
     switch (row.state) {
         case ScanRowState::kFailed:
             return {230, 40, 30};
+        case ScanRowState::kFlagged:
+            return {230, 60, 220};  // out of the model: drawn only when selected
         case ScanRowState::kQueued:
         case ScanRowState::kExcluded:
             return {120, 120, 120};

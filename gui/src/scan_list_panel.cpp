@@ -18,6 +18,7 @@ ImVec4 state_color(ScanRowState state) {
         case ScanRowState::kUnjoined:
             return detail::kColorApart;
         case ScanRowState::kFailed:
+        case ScanRowState::kFlagged:
             return detail::kColorBad;
         case ScanRowState::kQueued:
             return detail::kColorWarn;
@@ -60,8 +61,8 @@ std::string state_counts(const std::vector<ScanRow>& rows) {
     std::string text = fmt::format("{} scans", rows.size());
     const char* sep = ": ";
     for (const ScanRowState s :
-         {ScanRowState::kRegistered, ScanRowState::kUnjoined, ScanRowState::kFailed,
-          ScanRowState::kQueued, ScanRowState::kExcluded}) {
+         {ScanRowState::kRegistered, ScanRowState::kUnjoined, ScanRowState::kFlagged,
+          ScanRowState::kFailed, ScanRowState::kQueued, ScanRowState::kExcluded}) {
         const auto n =
             std::count_if(rows.begin(), rows.end(), [&](const ScanRow& r) { return r.state == s; });
         if (n == 0) continue;

@@ -61,6 +61,27 @@ std::optional<FailureBanner> split_banner(const FieldViewState& state) {
     return banner;
 }
 
+std::optional<FailureBanner> disagree_banner(const FieldViewState& state) {
+    std::vector<std::int64_t> flagged;
+    const ScanRow* first = nullptr;
+    for (const ScanRow& row : state.scans) {
+        if (row.state != ScanRowState::kFlagged) continue;
+        flagged.push_back(row.seq);
+        if (!first) first = &row;
+    }
+    if (flagged.empty()) return std::nullopt;
+    FailureBanner banner{.kind = BannerKind::kDisagree, .seq = flagged.back()};
+    banner.message = fmt::format(
+        "The scans disagree: {} {} the model and {} taken out", format_scan_list(flagged),
+        flagged.size() == 1 ? "contradicts" : "contradict", flagged.size() == 1 ? "was" : "were");
+    banner.details = first->message;
+    banner.what_to_try =
+        "The model shown keeps only the scans that agree. Scan that part again from a "
+        "viewpoint that overlaps the agreeing scans by about half, or register the flagged "
+        "scan again (R); X excludes it.";
+    return banner;
+}
+
 std::optional<FailureBanner> session_banner(const FieldViewState& state) {
     if (state.capture_problem) {
         return FailureBanner{.kind = BannerKind::kCaptureFailed,
@@ -70,6 +91,7 @@ std::optional<FailureBanner> session_banner(const FieldViewState& state) {
                              .what_to_try = state.capture_problem->what_to_try};
     }
     if (auto failed = failure_banner(state)) return failed;
+    if (auto disagree = disagree_banner(state)) return disagree;
     return split_banner(state);
 }
 

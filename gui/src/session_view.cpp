@@ -21,6 +21,8 @@ ScanRowState row_state(acquisition::ScanState state) {
             return ScanRowState::kFailed;
         case acquisition::ScanState::kExcluded:
             return ScanRowState::kExcluded;
+        case acquisition::ScanState::kFlagged:
+            return ScanRowState::kFlagged;
     }
     return ScanRowState::kQueued;
 }

@@ -42,6 +42,7 @@ std::vector<LegendEntry> quality_legend() {
             {.color = of(ScanRowState::kRegistered, 1.0), .label = "RMS 0.5-1.5 mm"},
             {.color = of(ScanRowState::kRegistered, 2.0), .label = "RMS > 1.5 mm"},
             {.color = of(ScanRowState::kUnjoined, std::nullopt), .label = "unjoined"},
+            {.color = of(ScanRowState::kFlagged, std::nullopt), .label = "contradicts"},
             {.color = of(ScanRowState::kFailed, std::nullopt), .label = "failed"}};
 }
 

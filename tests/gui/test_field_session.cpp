@@ -266,3 +266,39 @@ TEST_F(FieldSession, AnUnwritableFolderIsReportedAndTheAppGoesOn) {
 }
 
 }  // namespace
+
+namespace {
+
+// The small block turned over, four structured-light views: one view matches its look-alike
+// turned by 180° (RMS and overlap like a right match). The app must not show it "ok": it
+// is listed as contradicting the model, left out of the view, and the banner says so.
+TEST_F(FieldSession, AScanThatContradictsItsGroupIsFlaggedAndTheBannerSaysSo) {
+    const fs::path session = dir_ / "turned", png = dir_ / "turned.png",
+                   state_file = dir_ / "state.json";
+    const RunResult captured =
+        cli("--accept-poor capture --device sim:structured-light --scene small-block-turned "
+            "--views 4 --no-coverage --session " +
+            session.string());
+    ASSERT_EQ(captured.exit_code, 0) << captured.output;
+    const RunResult r = field("--session " + session.string() + " --frames 3 --screenshot " +
+                              png.string() + " --dump-state " + state_file.string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const json state = read_json(state_file);
+    ASSERT_TRUE(state.is_object()) << state_file;
+    int flagged = 0;
+    for (const auto& row : state["scans"]) {
+        if (row["state"] != "flagged") continue;
+        ++flagged;
+        EXPECT_EQ(row["list_state"], "CONTRADICTS") << row.dump();
+    }
+    ASSERT_GE(flagged, 1) << state.dump(2) << captured.output;
+    EXPECT_EQ(state["banner_kind"], "disagree") << state.dump(2);
+    EXPECT_NE(state["banner"].get<std::string>().find("contradict"), std::string::npos);
+    const cv::Mat image = cv::imread(png.string(), cv::IMREAD_COLOR);
+    ASSERT_FALSE(image.empty()) << png;
+    const cv::Vec3b banner_red{191, 13, 13};  // ImVec4(0.75, 0.05, 0.05), as the failure's
+    EXPECT_LT(fraction_not(image, cv::Rect(460, 5, 300, 60), banner_red), 0.5)
+        << "no red banner over the view";
+}
+
+}  // namespace

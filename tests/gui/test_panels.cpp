@@ -323,3 +323,34 @@ TEST(ScanListPanel, DeviceNamesAreNotCut) {
 
 }  // namespace
 }  // namespace anascan::gui
+
+namespace anascan::gui {
+namespace {
+
+TEST(DisagreeBanner, ScansThatContradictTheirGroupAreNamedNotShownOk) {
+    HeadlessImGui ui;
+    FieldViewState state = four_registered_scans();
+    EXPECT_FALSE(disagree_banner(state).has_value());
+    state.scans[2].state = ScanRowState::kFlagged;
+    state.scans[2].group = -1;
+    state.scans[2].message = "scan 3 FLAGGED and taken out of group 0: free space";
+    const auto banner = session_banner(state);
+    ASSERT_TRUE(banner.has_value());
+    EXPECT_EQ(banner->kind, BannerKind::kDisagree);
+    EXPECT_EQ(banner->seq, 3);
+    EXPECT_NE(banner->message.find("scan 3 contradicts"), std::string::npos) << banner->message;
+    EXPECT_NE(banner->details.find("free space"), std::string::npos) << banner->details;
+    EXPECT_STREQ(to_string(ScanRowState::kFlagged), "CONTRADICTS");
+    UiActions actions;
+    ui.frame([&] { draw_failure_banner(state, kLayout, actions); });
+    EXPECT_TRUE(HeadlessImGui::window_drawn("Scans disagree"));
+    // A newer failure still comes first; excluding the flagged scan ends the warning.
+    state.scans.push_back(row(5, ScanRowState::kFailed));
+    EXPECT_EQ(session_banner(state)->kind, BannerKind::kFailed);
+    state.scans.pop_back();
+    state.scans[2].state = ScanRowState::kExcluded;
+    EXPECT_FALSE(session_banner(state).has_value());
+}
+
+}  // namespace
+}  // namespace anascan::gui

@@ -14,6 +14,8 @@ std::string_view to_string(SessionEventKind kind) {
             return "registered";
         case SessionEventKind::kRegistrationFailed:
             return "registration-failed";
+        case SessionEventKind::kRegistrationFlagged:
+            return "registration-flagged";
         case SessionEventKind::kPosesRefined:
             return "poses-refined";
         case SessionEventKind::kCoverage:

@@ -77,6 +77,8 @@ struct CaptureSession::Impl {
     /// RMS gate comes from the links; without them look-alikes pass).
     void settle_after_replayed_scan();
     void update_coverage();
+    /// Stores and announces the scans the registrar took out of their groups (state flagged).
+    void record_taken_out(const std::vector<LiveTakenOut>& taken_out);
     void queue_for_registration(SavedScan saved);
     void requeue_session_scans();
 

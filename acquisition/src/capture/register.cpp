@@ -163,8 +163,9 @@ bool CaptureSession::Impl::refine_in_background(bool interruptible) {
     const LiveRefineReport& report = registrar.last_refine_report();
     // refine() works to a budget per call: call again while it still finds work.
     const bool more = !updates.empty() || report.new_links > 0 || report.merges > 0 ||
-                      report.merge_attempts > 0 || report.interrupted;
+                      report.merge_attempts > 0 || report.interrupted || !report.taken_out.empty();
     refine_due = more;
+    record_taken_out(report.taken_out);
     if (updates.empty()) return more;
     std::vector<std::pair<std::int64_t, PoseInGroup>> poses;
     poses.reserve(updates.size());
@@ -180,6 +181,26 @@ bool CaptureSession::Impl::refine_in_background(bool interruptible) {
                   report.new_links, report.merges);
     emit({.kind = SessionEventKind::kPosesRefined, .message = message, .count = updates.size()});
     return more;
+}
+
+void CaptureSession::Impl::record_taken_out(const std::vector<LiveTakenOut>& taken_out) {
+    for (const LiveTakenOut& t : taken_out) {
+        const std::string message = "scan " + std::to_string(t.seq) +
+                                    " FLAGGED and taken out of group " + std::to_string(t.group) +
+                                    ": " + t.reason +
+                                    "; scan that part again, or register it again";
+        if (auto ok = store->record_registration(
+                t.seq, {.state = ScanState::kFlagged, .quality_json = reason_json(message)});
+            !ok)
+            emit({.kind = SessionEventKind::kSaveFailed,
+                  .seq = t.seq,
+                  .message = ok.error().message});
+        (void)store->add_event("registration-flagged", "", message);
+        emit({.kind = SessionEventKind::kRegistrationFlagged,
+              .seq = t.seq,
+              .message = message,
+              .group = t.group});
+    }
 }
 
 void CaptureSession::Impl::update_coverage() {

@@ -102,7 +102,7 @@ std::vector<std::size_t> LiveRegistrar::State::members(int group) const {
     std::vector<std::size_t> out;
     for (std::size_t i = scans.size(); i-- > 0;) {
         const ScanEntry& e = scans[i];
-        if (e.registered && !e.excluded && e.group == group) out.push_back(i);
+        if (live::active(e) && e.group == group) out.push_back(i);
     }
     return out;
 }
@@ -110,7 +110,7 @@ std::vector<std::size_t> LiveRegistrar::State::members(int group) const {
 std::vector<int> LiveRegistrar::State::groups() const {
     std::set<int> ids;
     for (const ScanEntry& e : scans) {
-        if (e.registered && !e.excluded) ids.insert(e.group);
+        if (live::active(e)) ids.insert(e.group);
     }
     return {ids.begin(), ids.end()};
 }
@@ -226,7 +226,7 @@ std::vector<live::Prior> LiveRegistrar::State::priors(std::int64_t seq, int& gro
     // The latest registered scan's group is where the operator is working.
     std::optional<std::size_t> latest;
     for (std::size_t i = 0; i < scans.size(); ++i) {
-        if (scans[i].registered && !scans[i].excluded && scans[i].seq != seq) latest = i;
+        if (live::active(scans[i]) && scans[i].seq != seq) latest = i;
     }
     if (!latest) return hypotheses;
     group = scans[*latest].group;

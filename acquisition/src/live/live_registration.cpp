@@ -178,7 +178,7 @@ void LiveRegistrar::exclude(std::int64_t seq, bool excluded) {
 std::vector<LiveModelScan> LiveRegistrar::model() const {
     std::vector<LiveModelScan> out;
     for (const live::ScanEntry& e : state_->scans) {
-        if (!e.registered || e.excluded) continue;
+        if (!live::active(e)) continue;
         out.push_back({.seq = e.seq,
                        .group = e.group,
                        .cloud = &e.cloud,
@@ -192,7 +192,7 @@ std::optional<PoseUpdate> LiveRegistrar::pose(std::int64_t seq) const {
     const auto it = state_->index_of_seq.find(seq);
     if (it == state_->index_of_seq.end()) return std::nullopt;
     const live::ScanEntry& e = state_->scans[it->second];
-    if (!e.registered) return std::nullopt;
+    if (!e.registered || !e.flagged.empty()) return std::nullopt;
     return PoseUpdate{.seq = e.seq, .group = e.group, .T_group_scan = e.T_group_scan};
 }
 

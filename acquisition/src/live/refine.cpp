@@ -254,6 +254,9 @@ std::vector<PoseUpdate> LiveRegistrar::refine(const std::function<bool()>& inter
     // An interrupted round leaves the solve to the next call: the new scan comes first.
     if (!s.interrupted())
         for (const PoseUpdate& u : s.refine_groups()) changed[u.seq] = u;
+    // The solved poses checked against each other: contradicting scans leave their group.
+    if (!s.interrupted()) s.check_groups();
+    for (const LiveTakenOut& t : s.report.taken_out) changed.erase(t.seq);
     s.interrupt = {};
     s.report.time_s = seconds_since(start);
     std::vector<PoseUpdate> out;

@@ -21,7 +21,7 @@ std::vector<live::Prior> LiveRegistrar::State::sequence_priors(std::size_t i, in
          j >= 0 && j < static_cast<std::ptrdiff_t>(scans.size()) && neighbours.size() < 3;
          j += direction) {
         const live::ScanEntry& n = scans[static_cast<std::size_t>(j)];
-        if (n.excluded) continue;
+        if (n.excluded || !n.flagged.empty()) continue;
         if (!live::active(n) || n.group != group || n.side != scans[i].side) break;
         neighbours.push_back(n.T_group_scan);
     }

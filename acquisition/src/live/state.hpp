@@ -32,12 +32,20 @@ struct ScanEntry {
     std::shared_ptr<const KdTree> tree;  ///< Over cloud.positions, built on first use.
     bool registered = false;
     bool excluded = false;
+    /// Taken out by the group consistency check (why); out of the model like an excluded scan.
+    std::string flagged;
     int group = -1;
     Pose T_group_scan = Pose::Identity();
 };
 
-/// Registered and not excluded: part of its group's model.
-inline bool active(const ScanEntry& e) { return e.registered && !e.excluded; }
+/// Registered, not excluded, not flagged: part of its group's model.
+inline bool active(const ScanEntry& e) { return e.registered && !e.excluded && e.flagged.empty(); }
+
+/// A group's members and their poses when its consistency was last checked.
+struct CheckedGroup {
+    std::vector<std::size_t> scans;
+    std::vector<Pose> poses;
+};
 
 /// A multi-view link between two entries (indices into State::scans).
 struct Link {
@@ -195,6 +203,12 @@ struct LiveRegistrar::State {
     /// Global registration against registered scans of every group, most recent first.
     std::optional<live::Verified> try_global(std::size_t entry_index, int& group,
                                              LiveDecision& decision);
+
+    /// Group consistency (consistency.cpp): each group whose scans or poses changed since its
+    /// last check is checked; the scans to take out are flagged and leave the group.
+    void check_groups();
+    void check_group(int group);
+    std::map<int, live::CheckedGroup> checked_groups;
 
     /// Multi-view refinement machinery (live_registration_refine.cpp).
     std::size_t make_links();

@@ -33,13 +33,16 @@ std::string_view to_string(ScanState state) {
             return "failed";
         case ScanState::kExcluded:
             return "excluded";
+        case ScanState::kFlagged:
+            return "flagged";
     }
     return "queued";
 }
 
 std::optional<ScanState> parse_scan_state(std::string_view name) {
     for (ScanState s :
-         {ScanState::kQueued, ScanState::kRegistered, ScanState::kFailed, ScanState::kExcluded}) {
+         {ScanState::kQueued, ScanState::kRegistered, ScanState::kFailed, ScanState::kExcluded,
+          ScanState::kFlagged}) {
         if (name == to_string(s)) return s;
     }
     return std::nullopt;

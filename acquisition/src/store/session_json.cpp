@@ -4,10 +4,39 @@
 #include <ctime>
 #include <nlohmann/json.hpp>
 
+#include "anascan/acquisition/store/session_truth.hpp"
+
 namespace anascan::acquisition {
 namespace {
 
 using nlohmann::json;
+
+/// Simulated sessions: each scan of the model against its true pose (frame of the model's
+/// first scan, translation at the scan's centroid); the scans off by more than 1° or 5 mm
+/// are the model's wrong placements (flagged and failed scans are not in the model).
+Expected<json> truth_json(const SessionStore& store) {
+    auto truth = evaluate_session_truth(store);
+    if (!truth) return fail(truth.error());
+    if (!*truth) return json(nullptr);
+    const PoseEvaluation& e = **truth;
+    json scans = json::array();
+    std::size_t wrong = 0;
+    for (const ScanPoseError& s : e.scans) {
+        if (!s.placed) continue;
+        const bool off = s.rotation_deg > 1.0 || s.translation_m > 0.005;
+        wrong += off;
+        scans.push_back({{"seq", std::stoll(s.name)},
+                         {"rotation_deg", s.rotation_deg},
+                         {"translation_m", s.translation_m},
+                         {"off", off}});
+    }
+    return json{{"reference_seq", std::stoll(e.reference)},
+                {"model_scans", e.placed},
+                {"max_rotation_deg", e.max_rotation_deg},
+                {"max_translation_m", e.max_translation_m},
+                {"off_1deg_5mm", wrong},
+                {"scans", scans}};
+}
 
 json pose_json(const std::optional<Pose>& T) {
     if (!T) return nullptr;
@@ -91,6 +120,9 @@ Expected<std::string> session_info_json(const SessionStore& store, int indent) {
             {{"id", d.id}, {"kind", to_string(d.kind)}, {"first_seen", format_utc(d.first_seen)}});
     }
     doc["events"] = events->size();
+    auto truth = truth_json(store);
+    if (!truth) return fail(truth.error());
+    doc["truth"] = *truth;
     doc["notes"] = json::array();
     for (const SessionNote& n : *notes) {
         doc["notes"].push_back({{"seq", n.seq ? json(*n.seq) : json(nullptr)},

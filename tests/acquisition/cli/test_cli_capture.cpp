@@ -1,6 +1,9 @@
 // `anascan capture` as a user runs it, on its error paths: a device that vanishes in the
 // middle of a scan (and comes back), scans that register nowhere, a session folder that
 // cannot be written, a disk that is full. Nothing acknowledged is lost.
+#include <unistd.h>
+
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <regex>
 
@@ -68,6 +71,75 @@ TEST_F(CliCapture, ScansThatRegisterNowhereAreReportedAndKept) {
     ASSERT_TRUE(j.is_object());
     ASSERT_EQ(j["scans"].size(), 2u);
     for (const auto& scan : j["scans"]) EXPECT_EQ(scan["state"], "failed") << scan.dump();
+}
+
+// The small block turned over, four structured-light views, captured once for the tests
+// below: on one side two views match their look-alike turned by 180° (RMS and overlap like
+// a right match).
+class CliCaptureTurned : public ::testing::Test {
+protected:
+    static void SetUpTestSuite() {
+        dir_ = std::filesystem::path(::testing::TempDir()) /
+               ("cli-turned-" + std::to_string(::getpid()));
+        std::filesystem::remove_all(dir_);
+        run_ = run_cli(
+            "--accept-poor capture --device sim:structured-light --scene small-block-turned "
+            "--views 4 --session " +
+            (dir_ / "s").string());
+        info_ = nlohmann::json::parse(
+            testing_util::run_cli_stdout("session info " + (dir_ / "s").string() + " --json")
+                .output,
+            nullptr, false);
+    }
+    static void TearDownTestSuite() { std::filesystem::remove_all(dir_); }
+    static inline std::filesystem::path dir_;
+    static inline testing_util::CliRun run_;
+    static inline nlohmann::json info_;
+};
+
+// Every scan the model keeps is within 1° / 5 mm of the truth; one that contradicts its
+// group is flagged and taken out, with its reason and an event, never left in the model as
+// registered.
+TEST_F(CliCaptureTurned, NoScanOfTheModelIsWrongWithoutAWarning) {
+    ASSERT_EQ(run_.exit_code, 0) << run_.output;
+    ASSERT_TRUE(info_.is_object());
+    ASSERT_TRUE(info_["truth"].is_object()) << info_.dump(2);
+    EXPECT_EQ(info_["truth"]["off_1deg_5mm"], 0) << info_["truth"].dump(2) << run_.output;
+    std::size_t flagged = 0;
+    for (const auto& scan : info_["scans"]) {
+        if (scan["state"] != "flagged") continue;
+        ++flagged;
+        EXPECT_EQ(scan["group"], -1) << scan.dump();
+        EXPECT_NE(scan["quality"].dump().find("contradicts its group"), std::string::npos)
+            << scan.dump();
+        EXPECT_NE(run_.output.find("scan " + std::to_string(scan["seq"].get<int>()) + " FLAGGED"),
+                  std::string::npos)
+            << run_.output;
+    }
+    std::printf("%zu flagged; truth %s\n", flagged, info_["truth"].dump().c_str());
+}
+
+// Each coverage line names what it is a percentage of (the surface estimated so far, from
+// how many scans) and says that the estimate grows; the last live figure, the summary and
+// the stored report agree on the holes.
+TEST_F(CliCaptureTurned, CoverageSaysWhatItIsAPercentageOfAndTheHolesAgree) {
+    const std::regex live(
+        R"(coverage ([0-9.]+) % of the ([0-9.]+) m² surface estimated so far from ([0-9]+) )"
+        R"(scans \(the estimate grows until every side is seen\), ([0-9]+) holes)");
+    const std::regex end(
+        R"(coverage at the end: ([0-9.]+) % of the ([0-9.]+) m² surface estimated from all )"
+        R"(registered scans of the model, ([0-9]+) holes)");
+    std::smatch last, summary;
+    std::size_t live_lines = 0;
+    for (auto it = std::sregex_iterator(run_.output.begin(), run_.output.end(), live);
+         it != std::sregex_iterator(); ++it, ++live_lines)
+        last = *it;
+    ASSERT_GT(live_lines, 0u) << run_.output;
+    ASSERT_TRUE(std::regex_search(run_.output, summary, end)) << run_.output;
+    EXPECT_EQ(last[4].str(), summary[3].str()) << "live and final hole counts differ";
+    EXPECT_EQ(last[1].str(), summary[1].str());
+    ASSERT_TRUE(info_["coverage_report"].is_object());
+    EXPECT_EQ(std::to_string(info_["coverage_report"]["hole_count"].get<int>()), summary[3].str());
 }
 
 TEST_F(CliCapture, UnwritableSessionFolderIsAClearError) {

@@ -17,10 +17,11 @@ namespace anascan::gui {
 
 /// Registration state of one scan: acquisition::ScanState, with the registered scans that
 /// joined nothing apart (kUnjoined: placed in a group of their own, no other scan with it).
-enum class ScanRowState { kQueued, kRegistered, kUnjoined, kFailed, kExcluded };
+/// kFlagged: taken out of its group because it contradicts the group's other scans.
+enum class ScanRowState { kQueued, kRegistered, kUnjoined, kFailed, kExcluded, kFlagged };
 
 /// As the scan list shows it: "queued", "ok", "unjoined", "FAILED" (capitals: it must stand
-/// out), "excluded".
+/// out), "excluded", "CONTRADICTS".
 const char* to_string(ScanRowState state);
 
 /// One line of the scan list, in capture order.
@@ -118,6 +119,7 @@ enum class BannerKind {
     kCaptureFailed,  ///< The last capture failed: device gone, disk full, ... (red).
     kFailed,         ///< The newest registration outcome is a failure (red).
     kSplit,  ///< The registered scans sit in more than one group: the model is split (amber).
+    kDisagree,  ///< Scans contradicted their group and were taken out of the model (red).
 };
 
 /// A failed registration or a split model, as the banner shows it: impossible to miss,
@@ -140,8 +142,13 @@ std::optional<FailureBanner> failure_banner(const FieldViewState& state);
 /// there is only one (a stray scan the operator may exclude), else -1.
 std::optional<FailureBanner> split_banner(const FieldViewState& state);
 
+/// The banner for scans that contradicted their group (flagged, not excluded): names them
+/// and the first one's reason; `seq` is the newest of them (the button excludes it).
+std::optional<FailureBanner> disagree_banner(const FieldViewState& state);
+
 /// The banner over the view: the capture problem, else the failure when the newest
-/// registration outcome failed, else the split warning, else none.
+/// registration outcome failed, else the scans that disagree, else the split warning, else
+/// none.
 std::optional<FailureBanner> session_banner(const FieldViewState& state);
 
 /// "scan 4", "scans 2-12", "scans 1, 3-5, 9" (ascending seqs).

@@ -14,6 +14,8 @@ enum class SessionEventKind {
     kSaveFailed,          ///< A captured scan could not be saved (disk full, read-only...).
     kRegistered,          ///< A scan was placed in a group.
     kRegistrationFailed,  ///< A scan could not be placed (state failed).
+    /// A registered scan contradicts its group and was taken out (state flagged).
+    kRegistrationFlagged,
     kPosesRefined,        ///< Background refinement or a group merge moved some poses.
     kCoverage,            ///< Coverage was recomputed.
     kDeviceError,         ///< A capture failed (unplugged, timeout, invalid setting).

@@ -47,6 +47,7 @@
 #include "anascan/processing/cleaning/plane_removal.hpp"
 #include "anascan/processing/core/point_cloud.hpp"
 #include "anascan/processing/core/pose.hpp"
+#include "anascan/processing/evaluation/group_consistency.hpp"
 #include "anascan/processing/registration/fine/fine_registration.hpp"
 #include "anascan/processing/registration/global/global_registration.hpp"
 #include "anascan/processing/registration/multiview/multiview_refinement.hpp"
@@ -217,6 +218,21 @@ struct LiveMergeConfig {
     std::size_t max_attempts = 4;  ///< Global pair attempts per refine() for merges.
 };
 
+/// After each refinement every group's scans are checked against each other in their current
+/// poses (processing's `check_group_consistency`: crossing normals, free space, overlap
+/// angle, at thresholds from the reduced scans' own spacing and noise). The scans whose
+/// removal restores agreement are taken out of the model and flagged.
+struct LiveConsistencyConfig {
+    bool enabled = true;
+    /// The relief test on: a near-symmetric stone's look-alike fits its faces, not its
+    /// relief (calibrated on the simulated structured-light head only; see Known limits).
+    GroupConsistencyConfig check{.max_offset_noise_factor = 1.5};
+    /// A group is checked again once a scan joined or left it, or a pose moved by more than
+    /// these since its last check (degrees, metres at the scan's centroid).
+    double recheck_deg = 0.05;
+    double recheck_m = 0.0005;
+};
+
 /// Settings of a live registration session, by concern. Callers use designated initialisers.
 struct LiveRegistrationConfig {
     LivePrepareConfig prepare{};
@@ -226,6 +242,7 @@ struct LiveRegistrationConfig {
     LiveVoteConfig votes{};
     LiveLinkConfig links{};
     LiveMergeConfig merges{};
+    LiveConsistencyConfig consistency{};
     /// Scans whose features (for a later global registration) refine() computes per call.
     std::size_t max_features_per_refine = 2;
 };
@@ -298,6 +315,14 @@ struct PoseUpdate {
     Pose T_group_scan = Pose::Identity();
 };
 
+/// A scan taken out of its group because it contradicts the group's other scans: it is out
+/// of the model (no group, no links) until the operator registers it again.
+struct LiveTakenOut {
+    std::int64_t seq = 0;
+    int group = -1;      ///< The group it was taken out of.
+    std::string reason;  ///< Its worst disagreement, with figures.
+};
+
 /// What `refine` did.
 struct LiveRefineReport {
     std::size_t new_links = 0;
@@ -307,6 +332,8 @@ struct LiveRefineReport {
     /// The call stopped early because a new scan was waiting; the next call goes on.
     bool interrupted = false;
     double time_s = 0.0;
+    std::size_t groups_checked = 0;       ///< Group consistency checks run.
+    std::vector<LiveTakenOut> taken_out;  ///< Scans taken out and flagged by them.
 };
 
 /// One registered scan of the model (for coverage): its reduced stone-only cloud.
@@ -338,6 +365,8 @@ public:
     /// between merge steps: once it says true the call returns what it has done, so a new
     /// scan waits for one link or merge attempt, not the whole round.
     std::vector<PoseUpdate> refine(const std::function<bool()>& interrupt = {});
+    /// Why a scan was taken out of its group (see LiveTakenOut); none when it was not.
+    std::optional<std::string> flagged(std::int64_t seq) const;
     /// Takes a scan out of the model (excluded = true) or back in; unknown seqs are ignored.
     void exclude(std::int64_t seq, bool excluded);
 

@@ -26,9 +26,11 @@
 
 namespace anascan::acquisition {
 
-enum class ScanState { kQueued, kRegistered, kFailed, kExcluded };
+/// kFlagged: registered, then taken out of its group because it contradicts the group's
+/// other scans (the reason is in its quality JSON and a "registration-flagged" event).
+enum class ScanState { kQueued, kRegistered, kFailed, kExcluded, kFlagged };
 
-/// "queued" "registered" "failed" "excluded".
+/// "queued" "registered" "failed" "excluded" "flagged".
 std::string_view to_string(ScanState state);
 /// Inverse of to_string; nullopt for an unknown name.
 std::optional<ScanState> parse_scan_state(std::string_view name);

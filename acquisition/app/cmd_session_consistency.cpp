@@ -1,0 +1,70 @@
+// anascan session consistency DIR: the scans of a session's model checked against each other
+// in their stored poses (the check the live registrar runs after each refinement).
+#include <cstdio>
+
+#include "anascan/acquisition/store/groups.hpp"
+#include "commands.hpp"
+#include "register_consistency.hpp"
+#include "session_cli.hpp"
+
+namespace anascan::cli {
+namespace {
+
+struct ConsistencyOptions {
+    std::string dir;
+    bool pairs = false;
+};
+
+void run_consistency(const ConsistencyOptions& o) {
+    auto store = open_session(o.dir, acquisition::SessionOpenMode::kReadOnly);
+    auto records = store->scans();
+    if (!records) fail_command(records.error());
+    const int group = acquisition::largest_group(*records);
+    std::vector<PointCloud> clouds;
+    std::vector<ConsistencyScan> scans;
+    std::vector<std::string> names;
+    for (const acquisition::ScanRecord& r : *records) {
+        if (!acquisition::counts_in_group(r) || r.group != group) continue;
+        auto scan = store->load_scan(r.seq);
+        if (!scan) fail_command(scan.error());
+        const auto sensor = r.sensor_origin_scan_m.value_or(Eigen::Vector3d::Zero());
+        clouds.push_back(reduce_for_consistency(scan->cloud, sensor));
+        names.push_back("scan " + std::to_string(r.seq));
+    }
+    std::size_t k = 0;
+    for (const acquisition::ScanRecord& r : *records) {
+        if (!acquisition::counts_in_group(r) || r.group != group) continue;
+        scans.push_back(
+            {.cloud = &clouds[k++],
+             .T_group_scan = *r.pose,
+             .sensor_origin_scan_m = r.sensor_origin_scan_m.value_or(Eigen::Vector3d::Zero())});
+    }
+    const GroupConsistency result = check_group_consistency(scans, {});
+    std::printf(
+        "group %d: %zu scans, %zu overlapping pairs, %zu disagree; %s\n", group, scans.size(),
+        result.pairs.size(),
+        static_cast<std::size_t>(std::count_if(result.pairs.begin(), result.pairs.end(),
+                                               [](const PairConsistency& p) { return !p.agrees; })),
+        result.consistent ? "consistent" : "NOT consistent");
+    if (o.pairs) print_pairs(result, names);
+    for (std::size_t i : result.take_out) {
+        const auto& worst = result.scans[i].worst_pair;
+        std::printf("take out %s: %s\n", names[i].c_str(),
+                    worst ? describe(result.pairs[*worst], names).c_str() : "?");
+    }
+}
+
+}  // namespace
+
+void add_session_consistency_command(CLI::App& session) {
+    auto o = std::make_shared<ConsistencyOptions>();
+    auto* cmd = session.add_subcommand(
+        "consistency",
+        "Check the scans of the session's model against each other in their stored poses "
+        "(crossing normals, free space, overlap angle) and name those that contradict it");
+    cmd->add_option("dir", o->dir, "Session folder")->required();
+    cmd->add_flag("--pairs", o->pairs, "Print every overlapping pair's figures");
+    cmd->callback([o] { run_consistency(*o); });
+}
+
+}  // namespace anascan::cli
