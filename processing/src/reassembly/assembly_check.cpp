@@ -52,16 +52,25 @@ void penetration(const AssemblyProblem& p, int a, int b, const KdTree& tree, con
     const Pose T_b_a = T[std::size_t(b)].inverse() * T[std::size_t(a)];
     const PointCloud& pa = p.blocks[std::size_t(a)].points;
     const PointCloud& pb = p.blocks[std::size_t(b)].points;
+    std::vector<Neighbor> nbs;
+    std::vector<double> sds;
     for (const Eigen::Vector3f& q : pa.positions) {
         const Eigen::Vector3d x = T_b_a * q.cast<double>();
         if ((x.array() < box.lo.array() - c.near_m).any() ||
             (x.array() > box.hi.array() + c.near_m).any())
             continue;
-        Neighbor nb;
-        if (!tree.nearest(x.cast<float>(), nb)) continue;
+        tree.knn(x.cast<float>(), std::size_t(c.sign_neighbours), nbs);
+        if (nbs.empty() || nbs[0].distance_sq_m2 > c.near_m * c.near_m) continue;
         ++out.measured_points;
-        const double sd = pb.normals[nb.index].cast<double>().normalized().dot(
-            x - pb.positions[nb.index].cast<double>());
+        // Inside when both the nearest vertex and the median over the nearest vertices say
+        // so: one vertex in a hole (its normal askew) or the neighbouring faces' vertices
+        // at an edge do not decide alone. The depth is at most the nearest distance.
+        sds.clear();
+        for (const Neighbor& nb : nbs)
+            sds.push_back(pb.normals[nb.index].cast<double>().normalized().dot(
+                x - pb.positions[nb.index].cast<double>()));
+        const double sd =
+            std::max({quantile(sds, 0.5), sds[0], -std::sqrt(double(nbs[0].distance_sq_m2))});
         if (sd >= -c.tolerance_m) continue;
         ++out.penetrating_points;
         depth_sum += -sd;

@@ -8,11 +8,26 @@
 namespace anascan::reassembly::assembly_detail {
 namespace {
 
+constexpr double kEdgeBand_m = 0.004;  // The RANSAC tolerance of the faces.
+
+// A face's inliers and the unassigned points on its plane within its rectangle: the
+// vertices along its edges, whose normals lean toward the next face, touch too.
+bool on_face(const AssemblyBlock& block, int face, std::size_t i) {
+    const int owner = block.features.point_face[i];
+    if (owner == face) return true;
+    if (owner >= 0) return false;
+    const PlanarFace& f = block.features.faces[std::size_t(face)];
+    const Eigen::Vector3d d = block.points.positions[i].cast<double>() - f.centre_m;
+    return std::abs(d.dot(f.normal)) <= kEdgeBand_m &&
+           std::abs(d.dot(f.width_axis)) <= 0.5 * f.width_m + kEdgeBand_m &&
+           std::abs(d.dot(f.height_axis)) <= 0.5 * f.height_m + kEdgeBand_m;
+}
+
 FacePoints face_points(const AssemblyBlock& block, int face, int max_samples) {
     FacePoints out;
-    const auto& owner = block.features.point_face;
-    for (std::size_t i = 0; i < owner.size() && i < block.points.size(); ++i) {
-        if (owner[i] != face) continue;
+    const std::size_t count_all = std::min(block.features.point_face.size(), block.points.size());
+    for (std::size_t i = 0; i < count_all; ++i) {
+        if (!on_face(block, face, i)) continue;
         out.points.push_back(block.points.positions[i]);
         out.normals.push_back(block.points.has_normals() ? block.points.normals[i]
                                                          : Eigen::Vector3f::Zero());

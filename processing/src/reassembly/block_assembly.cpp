@@ -138,6 +138,39 @@ void flag_contradictions(const AssemblyProblem& p, const AssemblyConfig& c, Asse
     out.message = "co-planar or co-linear pairs that cannot all hold";
 }
 
+// One iteration: the rows at the current poses, the QP, the helical motion. Returns the
+// step; sets kInfeasible (with the offending pairs) when the constraints cannot hold.
+double iterate(const AssemblyProblem& p, const Prepared& prep, const AssemblyConfig& c,
+               bool constrained, AssemblyResult& out) {
+    const Rows rows = build_rows(p, prep, out.T_world_block, c);
+    const Frames frames = frames_of(p, out.T_world_block);
+    auto weight = [](const std::vector<Row>& r) {  // Each term a mean: they enter equally.
+        return 1.0 / std::sqrt(std::max<double>(1.0, double(r.size())));
+    };
+    const double w_reg = weight(rows.contact), w_cp = weight(rows.coplanar),
+                 w_cl = weight(rows.colinear);
+    const Eigen::MatrixXd Ar = row_matrix(rows.contact, prep, frames, w_reg);
+    const Eigen::MatrixXd Ap = row_matrix(rows.coplanar, prep, frames, w_cp);
+    const Eigen::MatrixXd Al = row_matrix(rows.colinear, prep, frames, w_cl);
+    const Eigen::MatrixXd H = Ar.transpose() * Ar + Ap.transpose() * Ap + Al.transpose() * Al;
+    const Eigen::VectorXd g = Ar.transpose() * rhs_of(rows.contact, w_reg) +
+                              Ap.transpose() * rhs_of(rows.coplanar, w_cp) +
+                              Al.transpose() * rhs_of(rows.colinear, w_cl);
+    Eigen::MatrixXd C(0, H.cols());
+    Eigen::VectorXd d(0);
+    if (constrained) C = Ar / w_reg, d = rhs_of(rows.contact, 1.0);
+    const QpResult qp = solve_constrained_normal(H, g, C, d);
+    out.history.push_back({rms(rows.contact), rms(rows.coplanar), rms(rows.colinear),
+                           std::size_t(C.rows()), qp.active.size()});
+    if (qp.status == QpStatus::kInfeasible) {
+        out.status = AssemblyStatus::kInfeasible;
+        out.offending = offending_contacts(p, rows.contact, qp.active);
+        out.message = "the matching faces cannot all be made penetration-free";
+        return 0.0;
+    }
+    return apply_step(qp.u, prep, frames, out.T_world_block);
+}
+
 }  // namespace
 
 AssemblyBlock assembly_block(std::string id, const Mesh& mesh, const BlockFeatureConfig& config) {
@@ -187,31 +220,10 @@ Expected<AssemblyResult> assemble_blocks(const AssemblyProblem& p, const std::ve
     AssemblyResult out{.T_world_block = initial};
     out.status = AssemblyStatus::kNotConverged;
     for (; out.iterations < c.max_iterations; ++out.iterations) {
-        const Rows rows = build_rows(p, prep, out.T_world_block, c);
-        const Frames frames = frames_of(p, out.T_world_block);
-        const double w_reg = 1.0 / std::sqrt(std::max<double>(1.0, double(rows.contact.size())));
-        const double w_cp = 1.0 / std::sqrt(std::max<double>(1.0, double(rows.coplanar.size())));
-        const double w_cl = 1.0 / std::sqrt(std::max<double>(1.0, double(rows.colinear.size())));
-        const Eigen::MatrixXd Ar = row_matrix(rows.contact, prep, frames, w_reg);
-        const Eigen::MatrixXd Ap = row_matrix(rows.coplanar, prep, frames, w_cp);
-        const Eigen::MatrixXd Al = row_matrix(rows.colinear, prep, frames, w_cl);
-        const Eigen::MatrixXd H = Ar.transpose() * Ar + Ap.transpose() * Ap + Al.transpose() * Al;
-        const Eigen::VectorXd g = Ar.transpose() * rhs_of(rows.contact, w_reg) +
-                                  Ap.transpose() * rhs_of(rows.coplanar, w_cp) +
-                                  Al.transpose() * rhs_of(rows.colinear, w_cl);
-        Eigen::MatrixXd C(0, H.cols());
-        Eigen::VectorXd d(0);
-        if (c.non_penetration) C = Ar / w_reg, d = rhs_of(rows.contact, 1.0);
-        const QpResult qp = solve_constrained_normal(H, g, C, d);
-        out.history.push_back({rms(rows.contact), rms(rows.coplanar), rms(rows.colinear),
-                               std::size_t(C.rows()), qp.active.size()});
-        if (qp.status == QpStatus::kInfeasible) {
-            out.status = AssemblyStatus::kInfeasible;
-            out.offending = offending_contacts(p, rows.contact, qp.active);
-            out.message = "the matching faces cannot all be made penetration-free";
-            return out;
-        }
-        if (apply_step(qp.u, prep, frames, out.T_world_block) < c.converged_step_m) {
+        const bool constrained = c.non_penetration && out.iterations >= c.free_iterations;
+        const double step = iterate(p, prep, c, constrained, out);
+        if (out.status == AssemblyStatus::kInfeasible) return out;
+        if (step < c.converged_step_m && (constrained || !c.non_penetration)) {
             out.status = AssemblyStatus::kOk;
             ++out.iterations;
             break;

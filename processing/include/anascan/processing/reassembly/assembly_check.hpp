@@ -5,9 +5,14 @@
 /// distribution on every matching face pair, the angle and offset of each co-planar face
 /// pair and the angle and distance of each co-linear line pair.
 ///
-/// Signed distance of a point x of one block to another block: n_yᵀ(x - y) with y the
-/// other block's nearest model point and n_y its outward normal (negative inside). Only
-/// points within `near_m` of the other block's bounding box are measured.
+/// Signed distance of a point x of one block to another block from n_yᵀ(x - y), y the
+/// other block's model points nearest x and n_y their outward normals (negative inside):
+/// x is inside when both the nearest y and the median over the 9 nearest say so (a vertex
+/// in a hole, or the neighbouring faces' vertices at an edge, do not decide alone), and its
+/// depth is the smallest of the two and of the distance to the nearest y.
+/// Only points within `near_m` of the other block's surface are measured: a point deeper
+/// inside than that is not counted (penetrations beyond a few centimetres are gross
+/// misplacements that the pose errors show).
 ///
 /// Pure geometry: no I/O, no logging, no threads.
 
@@ -48,7 +53,8 @@ struct AssemblyCheck {
 };
 
 struct CheckConfig {
-    double near_m = 0.02;          ///< Points this close to another block's box are measured.
+    double near_m = 0.03;          ///< Points this close to another block are measured.
+    int sign_neighbours = 9;       ///< Nearest vertices whose median gives the sign.
     double gate_m = 0.01;          ///< Contact points further along the face are not in front.
     double tolerance_m = 0.00005;  ///< Depths below this are contact, not penetration.
     int line_samples = 5;

@@ -76,6 +76,9 @@ struct AssemblyConfig {
     double contact_gate_m = 0.01;    ///< Closest points further along the face are dropped.
     double min_face_side_m = 0.05;   ///< A face narrower than this is a sliver.
     bool non_penetration = true;
+    /// Iterations without the non-penetration constraints first (from a start far off,
+    /// the soft terms bring the blocks near before the constraints hold them apart).
+    int free_iterations = 0;
     bool use_coplanar = true;
     bool use_colinear = true;
     double contradiction_angle_deg = 0.5;   ///< A co-planar/co-linear pair left worse is
