@@ -78,6 +78,8 @@ int fig15(const std::string& section, std::uint64_t seed, double step_m, bool fl
 
 int wall(int n, int seeds, const std::string& section, std::uint64_t seed, double step_m) {
     const int free_iterations = std::getenv("FREE") ? std::atoi(std::getenv("FREE")) : 0;
+    const double angle_deg = std::getenv("START_DEG") ? std::atof(std::getenv("START_DEG")) : 5.0;
+    const double shift_m = std::getenv("START_MM") ? 1e-3 * std::atof(std::getenv("START_MM")) : 0.02;
     std::vector<std::string> ids{"c0b0", "c0b1", "c1b0"};
     if (n >= 4) ids.push_back("c1b1");
     auto m = monument_assembly(section, seed, ids, step_m);
@@ -96,7 +98,7 @@ int wall(int n, int seeds, const std::string& section, std::uint64_t seed, doubl
     int good = 0;
     double worst_rot = 0.0, worst_trans = 0.0, worst_pen = 0.0;
     for (int s = 1; s <= seeds; ++s) {
-        const Outcome o = run(*m, perturbed_truth(*m, 5.0, 0.02, unsigned(s)),
+        const Outcome o = run(*m, perturbed_truth(*m, angle_deg, shift_m, unsigned(s)),
                               {.free_iterations = free_iterations});
         print(("start seed " + std::to_string(s)).c_str(), o);
         good += o.worst.rotation_deg <= 0.1 && o.worst.translation_m <= 0.0005 &&

@@ -54,8 +54,9 @@ void penetration(const AssemblyProblem& p, int a, int b, const KdTree& tree, con
     const PointCloud& pb = p.blocks[std::size_t(b)].points;
     std::vector<Neighbor> nbs;
     std::vector<double> sds;
-    for (const Eigen::Vector3f& q : pa.positions) {
-        const Eigen::Vector3d x = T_b_a * q.cast<double>();
+    std::vector<float>& depth = out.depth_m[std::size_t(a)];
+    for (std::size_t i = 0; i < pa.positions.size(); ++i) {
+        const Eigen::Vector3d x = T_b_a * pa.positions[i].cast<double>();
         if ((x.array() < box.lo.array() - c.near_m).any() ||
             (x.array() > box.hi.array() + c.near_m).any())
             continue;
@@ -73,6 +74,7 @@ void penetration(const AssemblyProblem& p, int a, int b, const KdTree& tree, con
             std::max({quantile(sds, 0.5), sds[0], -std::sqrt(double(nbs[0].distance_sq_m2))});
         if (sd >= -c.tolerance_m) continue;
         ++out.penetrating_points;
+        depth[i] = std::max(depth[i], float(-sd));
         depth_sum += -sd;
         out.penetration_max_m = std::max(out.penetration_max_m, -sd);
     }
@@ -122,6 +124,7 @@ AssemblyCheck check_assembly(const AssemblyProblem& p, const std::vector<Pose>& 
             boxes[b].hi = boxes[b].hi.cwiseMax(x.cast<double>());
     }
     double depth_sum = 0.0;
+    for (const AssemblyBlock& b : p.blocks) out.depth_m.emplace_back(b.points.size(), 0.0f);
     for (std::size_t a = 0; a < p.blocks.size(); ++a)
         for (std::size_t b = 0; b < p.blocks.size(); ++b)
             if (a != b) penetration(p, int(a), int(b), trees[b], boxes[b], T, c, out, depth_sum);

@@ -48,6 +48,8 @@ struct AssemblyCheck {
     std::size_t penetrating_points = 0;
     std::size_t measured_points = 0;
     std::vector<ContactCheck> contacts;
+    /// Per block and model point: its deepest penetration into another block (0 outside).
+    std::vector<std::vector<float>> depth_m;
     std::vector<CoplanarCheck> coplanar;
     std::vector<ColinearCheck> colinear;
 };
