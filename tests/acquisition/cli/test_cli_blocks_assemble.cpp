@@ -25,11 +25,12 @@ json read_json(const std::filesystem::path& p) {
 
 class BlocksAssembleCli : public testing_util::Cli {
 protected:
-    // The face of block `id` whose normal is the block axis (row of T_ground_block's
-    // rotation) `axis` times `sign`.
+    // The face of block `id` whose normal is the block axis `axis` (a column of
+    // T_ground_block's rotation) times `sign`.
     int face_along(const std::string& id, int axis, double sign) {
         const json f = read_json(dir_ / "f" / (id + ".features.json"));
-        for (const json& b : read_json(dir_ / "m" / "truth.json").at("blocks")) {
+        const json truth = read_json(dir_ / "m" / "truth.json");
+        for (const json& b : truth.at("blocks")) {
             if (b.at("id") != id) continue;
             for (const json& face : f.at("faces")) {
                 double dot = 0.0;
@@ -39,6 +40,7 @@ protected:
                 if (dot > 0.99) return face.at("id").get<int>();
             }
         }
+        ADD_FAILURE() << id << ": no face along axis " << axis << " sign " << sign;
         return -1;
     }
     void export_two_blocks() {
