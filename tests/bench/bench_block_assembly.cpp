@@ -61,7 +61,7 @@ Wall row_wall(int n, double step_m, bool features) {
         const auto& b = w.problem.blocks[std::size_t(i + 1)];
         w.problem.contacts.push_back({{i, face_along(a, Eigen::Vector3d::UnitX())},
                                       {i + 1, face_along(b, -Eigen::Vector3d::UnitX())}});
-        for (const Eigen::Vector3d& n2 : {Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitZ()})
+        for (const Eigen::Vector3d& n2 : {Eigen::Vector3d(0, 1, 0), Eigen::Vector3d(0, 0, 1)})
             w.problem.coplanar.push_back({{i, face_along(a, n2)}, {i + 1, face_along(b, n2)}});
     }
     return w;
