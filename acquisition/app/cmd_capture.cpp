@@ -22,6 +22,7 @@
 #include "anascan/scanner_sources/scanner_source.hpp"
 #include "capture_summary.hpp"
 #include "commands.hpp"
+#include "guided_tour.hpp"
 
 namespace anascan::cli {
 namespace {
@@ -43,6 +44,8 @@ struct CaptureOptions {
     scanner_sources::ScannerSettings settings;  ///< Only the fields given on the command line.
     double reconnect_timeout_s = 10.0;
     double operator_pause_s = 0.0;  ///< Simulated operator's walk between views.
+    std::string tour = "fixed";     ///< Simulated operator: "fixed" walk or "guided" by hints.
+    double target_coverage_percent = 99.0;  ///< A guided tour stops here.
 };
 
 /// `sim:structured-light` + `--scene small-block` → `sim:structured-light/small-block`.
@@ -163,6 +166,7 @@ void operator_pause(double pause_s) {
 std::string resume_command(const CaptureOptions& o) {
     std::string command = "anascan capture --device " + o.device + " --session " + o.session;
     if (!o.scene.empty()) command += " --scene " + o.scene;
+    if (o.tour != "fixed") command += " --tour " + o.tour;
     return command + " --views " + std::to_string(o.views);
 }
 
@@ -195,6 +199,12 @@ scanner_sources::SimulatedTour simulated_tour(const CaptureOptions& o) {
                              "; the session is saved; resume with: " + resume_command(o));
 }
 
+void print_plan_times(const std::vector<double>& times_s) {
+    if (times_s.empty()) return;
+    const double worst = *std::max_element(times_s.begin(), times_s.end());
+    std::printf("guided tour: %zu hints, each planned in at most %.2f s\n", times_s.size(), worst);
+}
+
 void run_capture(const CaptureOptions& o) {
     const std::string uri = device_uri(o);
     const scanner_sources::ScannerSource source{
@@ -219,16 +229,25 @@ void run_capture(const CaptureOptions& o) {
                     already, std::min(already, o.views) + 1, o.views);
     std::optional<Error> stopped;
     const bool simulated = scanner_sources::is_simulated(uri);
+    const bool guided = simulated && o.tour == "guided";
+    GuidedOperator guide(tour, o.target_coverage_percent / 100.0);
     const InterruptGuard interrupt_guard;
     for (int i = already; i < o.views && !stopped && !g_interrupted; ++i) {
         if (!simulated && !operator_ready(i, o.views)) break;
-        if (scanner_sources::tour_turns_over_before(tour, i))
-            std::printf("the stone is turned over before view %d\n", i + 1);
-        stopped =
-            capture_view(**session, scanner_sources::tour_request(tour, i), o.reconnect_timeout_s);
+        std::optional<acquisition::CaptureRequest> request;
+        if (guided) {
+            request = guide.next(**session, i);
+            if (!request) break;
+        } else {
+            if (scanner_sources::tour_turns_over_before(tour, i))
+                std::printf("the stone is turned over before view %d\n", i + 1);
+            request = scanner_sources::tour_request(tour, i);
+        }
+        stopped = capture_view(**session, *request, o.reconnect_timeout_s);
         if (simulated && !stopped && i + 1 < o.views && o.operator_pause_s > 0.0)
             operator_pause(o.operator_pause_s);
     }
+    if (guided) print_plan_times(guide.plan_times_s());
     spdlog::info("capture done; waiting for registration to catch up");
     (*session)->wait_until_idle();
     if (!o.no_register && !o.no_coverage) store_final_coverage((*session)->store());
@@ -260,6 +279,15 @@ void add_capture_command(CLI::App& app) {
                     "Simulated structured-light head to the block, m (default 1.1)")
         ->check(CLI::Range(0.5, 3.0));
     cmd->add_option("--tour-seed", opts->tour_seed, "Seed of the simulated operator's jitter");
+    cmd->add_option("--tour", opts->tour,
+                    "Simulated operator: 'fixed' walks around the block (--views, "
+                    "--flip-after); 'guided' follows the next-best-view hints after each scan, "
+                    "turns the stone over when they say so, and stops at --target-coverage or "
+                    "after --views")
+        ->check(CLI::IsMember({"fixed", "guided"}));
+    cmd->add_option("--target-coverage", opts->target_coverage_percent,
+                    "Guided tour: stop once the coverage reaches this, percent (default 99)")
+        ->check(CLI::Range(1.0, 100.0));
     cmd->add_option("--exposure-us", opts->settings.exposure_us, "Device exposure, microseconds");
     cmd->add_option("--angular-step-deg", opts->settings.angular_step_deg,
                     "Terrestrial scanner angular step, degrees");

@@ -1,5 +1,6 @@
-// anascan coverage DIR [--json] [--out COVERAGE.ply]: how much of the stone the session's
-// registered scans cover, and where the holes are.
+// anascan coverage DIR [--next] [--json] [--out COVERAGE.ply]: how much of the stone the
+// session's registered scans cover, where the holes are, and (--next) where to put the
+// scanner next.
 #include <spdlog/spdlog.h>
 
 #include <cstdio>
@@ -15,6 +16,7 @@ namespace {
 struct CoverageOptions {
     std::string session;
     bool json_output = false;
+    bool next = false;
     std::string out;
     double voxel_mm = 2.0;
 };
@@ -29,26 +31,54 @@ void print_report(const CoverageReport& r) {
                     h.centre_m.z() * 1e3, h.normal.x(), h.normal.y(), h.normal.z());
 }
 
+void print_next(const acquisition::SessionNextView& next) {
+    std::printf("next: %s\n", next.view.hint.c_str());
+    std::printf("(planned from %zu scanner poses in %.2f s; the view keeps %.0f %% overlap with "
+                "what is observed; %.0f cm² unobserved that a view from this side can reach, "
+                "%.0f cm² only after turning the stone over)\n",
+                next.view.candidates, next.plan_s, 100.0 * next.view.overlap_fraction,
+                next.view.visible_now_area_m2 * 1e4,
+                next.view.after_turn_area_m2 * 1e4);
+}
+
+acquisition::SessionNextView compute(const acquisition::SessionStore& store, const CoverageOptions& o) {
+    const acquisition::SessionCoverageConfig config{.voxel_size_m = o.voxel_mm * 1e-3};
+    acquisition::SessionNextView out;
+    if (o.next) {
+        auto next = acquisition::session_next_view(store, config, {});
+        if (!next) fail_command(next.error());
+        return std::move(*next);
+    }
+    auto report = acquisition::session_coverage(store, config, [](std::size_t done,
+                                                                   std::size_t total) {
+        spdlog::info("coverage: scan {}/{} loaded", done, total);
+    });
+    if (!report) fail_command(report.error());
+    out.coverage = std::move(*report);
+    return out;
+}
+
 void run_coverage(const CoverageOptions& o) {
     auto store =
         acquisition::SessionStore::open(o.session, acquisition::SessionOpenMode::kOpenExisting);
     if (!store) fail_command(store.error());
-    auto report = acquisition::session_coverage(
-        **store, {.voxel_size_m = o.voxel_mm * 1e-3}, [](std::size_t done, std::size_t total) {
-            spdlog::info("coverage: scan {}/{} loaded", done, total);
-        });
-    if (!report) fail_command(report.error());
-    const std::string json = coverage_to_json(*report);
+    const acquisition::SessionNextView result = compute(**store, o);
+    const CoverageReport& report = result.coverage;
+    const std::string json = coverage_to_json(report);
     if (auto stored = (*store)->set_value("coverage", json); !stored)
         spdlog::warn("coverage not stored in the session: {}", stored.error().message);
     if (!o.out.empty()) {
-        if (auto ok = io::write_coverage_ply(o.out, *report); !ok) fail_command(ok.error());
+        if (auto ok = io::write_coverage_ply(o.out, report); !ok) fail_command(ok.error());
         spdlog::info("coverage samples (green observed, red holes) written to {}", o.out);
     }
-    if (o.json_output)
-        std::printf("%s\n", nlohmann::json::parse(json).dump(2).c_str());
-    else
-        print_report(*report);
+    if (o.json_output) {
+        nlohmann::json j = nlohmann::json::parse(json);
+        if (o.next) j["next_view"] = nlohmann::json::parse(next_view_to_json(result.view));
+        std::printf("%s\n", j.dump(2).c_str());
+        return;
+    }
+    print_report(report);
+    if (o.next) print_next(result);
 }
 
 }  // namespace
@@ -61,6 +91,9 @@ void add_coverage_command(CLI::App& app) {
         ->required()
         ->check(CLI::ExistingDirectory);
     cmd->add_flag("--json", opts->json_output, "JSON on stdout");
+    cmd->add_flag("--next", opts->next,
+                  "Also say where to put the scanner next (next-best-view), or when to turn "
+                  "the stone over");
     cmd->add_option("--out", opts->out,
                     "Coloured surface samples (.ply): green observed, red holes");
     cmd->add_option("--voxel-mm", opts->voxel_mm,

@@ -84,4 +84,20 @@ bool tour_turns_over_before(const SimulatedTour& tour, int index) {
            steps[static_cast<std::size_t>(index)].turn_now;
 }
 
+CaptureRequest guided_request(const SimulatedTour& tour, const GuidedView& view) {
+    const sim::ScanningTourConfig config = tour_config(tour);
+    const sim::GuidedView guided{.sensor_m = view.sensor_m, .aim_m = view.aim_m,
+                                 .turned = view.turned};
+    return {.before = [config, guided](drivers::Scanner& scanner) {
+        return sim::apply_guided_view(scanner, config, guided);
+    }};
+}
+
+CaptureRequest turned_side_request(const SimulatedTour& tour, int index, int views) {
+    SimulatedTour turned = tour;
+    turned.views = 1 + views;
+    turned.flip_after = 1;
+    return tour_request(turned, 1 + index % views);
+}
+
 }  // namespace anascan::scanner_sources

@@ -1,6 +1,7 @@
 #include "anascan/sim/scanning_tour.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <random>
 
 #include "anascan/sim/sim_structured_light_scanner.hpp"
@@ -67,11 +68,20 @@ BlockPlacement tour_placement(const ScanningTourConfig& config, const BlockPlace
     return turned;
 }
 
-std::optional<Pose> apply_tour_step(drivers::Scanner& scanner, const ScanningTourConfig& config,
-                                    const TourStep& step) {
+namespace {
+
+struct PlacedStep {
+    SimScanner* sim = nullptr;
+    Pose T_truth_world = Pose::Identity();  ///< Device world of the step -> first placement.
+    Eigen::Vector3d block_centre_m = Eigen::Vector3d::Zero();  ///< Device world.
+};
+
+// Lays the block as the step says (the first placement is the named scene's; the
+// scanner's scene holds the current one).
+PlacedStep place_for_step(drivers::Scanner& scanner, const ScanningTourConfig& config,
+                          const TourStep& step) {
     auto* sim = dynamic_cast<SimScanner*>(&scanner);
-    if (sim == nullptr) return std::nullopt;
-    // The first placement is the named scene's; the scanner's scene holds the current one.
+    if (sim == nullptr) return {};
     auto first = named_scene(sim->scene_config().name);
     const BlockPlacement start = first ? first->placement : sim->scene_config().placement;
     const BlockPlacement now = tour_placement(config, start, step);
@@ -80,12 +90,50 @@ std::optional<Pose> apply_tour_step(drivers::Scanner& scanner, const ScanningTou
                        now.yaw_deg != sim->scene_config().placement.yaw_deg ||
                        now.position_m != sim->scene_config().placement.position_m;
     if (moved) sim->place_block(now);
-    if (auto* sl = dynamic_cast<SimStructuredLightScanner*>(sim)) sl->move_to(step.view);
-    if (auto* tof = dynamic_cast<SimTofScanner*>(sim))
+    return {sim, block_pose(start, size) * block_pose(now, size).inverse(),
+            block_pose(now, size).translation()};
+}
+
+}  // namespace
+
+std::optional<Pose> apply_tour_step(drivers::Scanner& scanner, const ScanningTourConfig& config,
+                                    const TourStep& step) {
+    const PlacedStep placed = place_for_step(scanner, config, step);
+    if (placed.sim == nullptr) return std::nullopt;
+    if (auto* sl = dynamic_cast<SimStructuredLightScanner*>(placed.sim)) {
+        sl->aim_at(std::nullopt);
+        sl->move_to(step.view);
+    }
+    if (auto* tof = dynamic_cast<SimTofScanner*>(placed.sim))
         tof->move_to({.azimuth_deg = step.view.azimuth_deg,
                       .distance_m = config.tripod_distance_m,
                       .height_m = config.tripod_height_m});
-    return block_pose(start, size) * block_pose(now, size).inverse();
+    return placed.T_truth_world;
+}
+
+std::optional<Pose> apply_guided_view(drivers::Scanner& scanner, const ScanningTourConfig& config,
+                                      const GuidedView& view) {
+    TourStep step;
+    step.turned = view.turned;
+    const PlacedStep placed = place_for_step(scanner, config, step);
+    if (placed.sim == nullptr) return std::nullopt;
+    const Pose T_world_truth = placed.T_truth_world.inverse();
+    const Eigen::Vector3d sensor = T_world_truth * view.sensor_m, aim = T_world_truth * view.aim_m;
+    const Eigen::Vector3d offset = sensor - aim;
+    constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
+    if (auto* sl = dynamic_cast<SimStructuredLightScanner*>(placed.sim)) {
+        sl->aim_at(aim);
+        sl->move_to({.azimuth_deg = std::atan2(offset.y(), offset.x()) * kRadToDeg,
+                     .elevation_deg = std::asin(offset.z() / offset.norm()) * kRadToDeg,
+                     .distance_m = offset.norm()});
+    }
+    if (auto* tof = dynamic_cast<SimTofScanner*>(placed.sim)) {
+        const Eigen::Vector3d around = sensor - placed.block_centre_m;
+        tof->move_to({.azimuth_deg = std::atan2(around.y(), around.x()) * kRadToDeg,
+                      .distance_m = around.head<2>().norm(),
+                      .height_m = sensor.z()});
+    }
+    return placed.T_truth_world;
 }
 
 }  // namespace anascan::sim

@@ -152,7 +152,9 @@ StructuredLightRig SimStructuredLightScanner::rig() const {
     // Aim at the middle of the block's upper half (as `anascan sim sl-capture`).
     const Eigen::Vector3d size = scene().block.size_m;
     const Eigen::Vector3d target =
-        block_pose(scene().placement, size).translation() + Eigen::Vector3d(0, 0, 0.25 * size.z());
+        aim_ ? *aim_
+             : block_pose(scene().placement, size).translation() +
+                   Eigen::Vector3d(0, 0, 0.25 * size.z());
     return make_structured_light_rig(config_.rig, sensor_looking_at(target, station_));
 }
 

@@ -51,6 +51,16 @@ CoverageReport measure(Mesh surface_rel, const BinnedPoints& points, const Cover
     return report;
 }
 
+// Grounds face their view's sensor, i.e. up toward the stone, in the bins' relative frame.
+std::optional<Plane> last_ground_world(std::span<const std::optional<Plane>> grounds,
+                                       const Eigen::Vector3d& origin_m) {
+    for (auto it = grounds.rbegin(); it != grounds.rend(); ++it)
+        if (*it)
+            return Plane{.normal = (*it)->normal,
+                         .offset_m = (*it)->offset_m - (*it)->normal.dot(origin_m)};
+    return std::nullopt;
+}
+
 bool has_points(std::span<const CoverageScanView> scans) {
     for (const CoverageScanView& view : scans)
         if (view.cloud != nullptr && !view.cloud->empty()) return true;
@@ -73,6 +83,7 @@ CoverageReport compute_coverage(std::span<const CoverageScanView> scans,
         return failed(CoverageStatus::kInvalidSurface, "the stone's points span no volume");
     CoverageReport report = measure(std::move(hull), stone_points, config);
     report.stone_point_count = stone.indices.size();
+    report.ground_world = last_ground_world(stone.grounds, all.origin_m);
     return report;
 }
 

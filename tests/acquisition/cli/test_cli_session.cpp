@@ -215,6 +215,51 @@ TEST_F(SessionCli, ExportDefaultsToAStoneCentredGroundAlignedFrame) {
     EXPECT_LT((top_sum / double(top)).head<2>().norm(), 0.08) << "not centred on the stone";
 }
 
+// One scan of a box-like stone on the ground, from one side: the plan says where to scan
+// next, with a gain, and the JSON holds the same.
+TEST_F(SessionCli, CoverageNextSaysWhereToScanNext) {
+    PointCloud cloud;
+    for (int i = 0; i < 200; ++i)
+        for (int j = 0; j < 200; ++j)
+            cloud.positions.emplace_back(-1.0f + 0.01f * i, -1.0f + 0.01f * j, 0.0f);
+    for (int i = 0; i < 120; ++i)
+        for (int j = 0; j < 80; ++j) {
+            cloud.positions.emplace_back(-0.3f + 0.005f * i, -0.2f + 0.005f * j, 0.4f);  // Top.
+            cloud.positions.emplace_back(-0.3f + 0.005f * i, -0.2f, 0.005f * j);  // -y side.
+        }
+    const Eigen::Vector3d sensor(0.0, -1.2, 1.0);
+    const Pose T_world_scan{Eigen::Translation3d(sensor)};
+    const fs::path session = dir_ / "one-side";
+    {
+        auto store = SessionStore::open(session, SessionOpenMode::kCreateOrOpen);
+        ASSERT_TRUE(store) << store.error().message;
+        Scan scan;
+        scan.cloud = transformed(cloud, T_world_scan.inverse());
+        scan.meta.device_id = "sim:test#0";
+        scan.meta.sensor_origin_scan_m = Eigen::Vector3d::Zero();
+        ASSERT_TRUE((*store)->save_scan(scan, std::nullopt));
+        ASSERT_TRUE((*store)->record_registration(
+            1, {ScanState::kRegistered, 0, T_world_scan, "{}", 0.01}));
+    }
+    const auto text = run_cli("coverage " + session.string() + " --next");
+    ASSERT_EQ(text.exit_code, 0) << text.output;
+    EXPECT_TRUE(contains(text.output, "next: ")) << text.output;
+    EXPECT_TRUE(contains(text.output, "% coverage")) << text.output;
+    const auto json = run_cli("-q coverage " + session.string() + " --next --json");
+    ASSERT_EQ(json.exit_code, 0) << json.output;
+    const auto doc = nlohmann::json::parse(json.output);
+    const auto& next = doc.at("next_view");
+    EXPECT_EQ(next.at("advice"), "scan") << next.dump();
+    EXPECT_GT(next.at("gain_percent").get<double>(), 1.0);
+    EXPECT_TRUE(next.at("stone_frame").at("ground_known").get<bool>());
+    // The planned sensor stands above the ground, outside the stone.
+    const Eigen::Vector3d planned(next.at("sensor_m")[0], next.at("sensor_m")[1],
+                                  next.at("sensor_m")[2]);
+    EXPECT_GT(planned.z(), 0.2);
+    EXPECT_TRUE(std::abs(planned.x()) > 0.3 || std::abs(planned.y()) > 0.2 || planned.z() > 0.4)
+        << planned.transpose();
+}
+
 TEST_F(SessionCli, ExportTruthPosesWritesTheTruePosesForEval) {
     const fs::path truth = session_ / "truth.conf";
     const auto run = run_cli("session export " + quoted() + " --truth-poses " + truth.string());

@@ -59,4 +59,18 @@ BlockPlacement tour_placement(const ScanningTourConfig& config, const BlockPlace
 std::optional<Pose> apply_tour_step(drivers::Scanner& scanner, const ScanningTourConfig& config,
                                     const TourStep& step);
 
+/// A view chosen by the next-best-view, in the frame of the block's first placement (the
+/// session's truth frame, which moves with the stone).
+struct GuidedView {
+    Eigen::Vector3d sensor_m = Eigen::Vector3d::Zero();  ///< Sensor position.
+    Eigen::Vector3d aim_m = Eigen::Vector3d::Zero();     ///< Point aimed at.
+    bool turned = false;                                 ///< The block lies turned over.
+};
+
+/// As apply_tour_step, for a guided view: the structured-light head stands at the sensor
+/// position aiming at the aim point; a terrestrial station stands on its tripod at the
+/// sensor's azimuth and distance around the block.
+std::optional<Pose> apply_guided_view(drivers::Scanner& scanner, const ScanningTourConfig& config,
+                                      const GuidedView& view);
+
 }  // namespace anascan::sim

@@ -69,6 +69,9 @@ public:
 
     /// Sim-only: the viewpoint of the next capture.
     void move_to(const Viewpoint& station) { station_ = station; }
+    /// Sim-only: the point the station's viewpoint is around, world frame; absent (the
+    /// default): the middle of the block's upper half.
+    void aim_at(std::optional<Eigen::Vector3d> target_world_m) { aim_ = target_world_m; }
     /// The rig of the next capture, with its true poses.
     StructuredLightRig rig() const;
     /// Sim-only: the faults of one part (unplug or silence one camera or the projector).
@@ -86,6 +89,7 @@ private:
 
     SimStructuredLightConfig config_;
     Viewpoint station_;
+    std::optional<Eigen::Vector3d> aim_;
     std::shared_ptr<SimDeviceFaults> part_faults_[3];
     SimCamera* cam1_ = nullptr;  ///< Owned by head_.
     SimCamera* cam2_ = nullptr;

@@ -9,6 +9,7 @@
 #include "anascan/acquisition/store/groups.hpp"
 #include "anascan/acquisition/store/session_store.hpp"
 #include "anascan/processing/coverage/coverage.hpp"
+#include "anascan/processing/planning/next_best_view.hpp"
 
 namespace anascan::acquisition {
 
@@ -34,5 +35,26 @@ CoverageCopy make_coverage_copy(const Scan& scan, double voxel_size_m);
 Expected<CoverageReport> session_coverage(
     const SessionStore& store, const SessionCoverageConfig& config,
     const std::function<void(std::size_t, std::size_t)>& progress = {});
+
+/// The scanner envelope of the session's device: that of its last scan's kind (a
+/// time-of-flight station's, else structured light's).
+ScannerEnvelope session_scanner_envelope(const SessionStore& store);
+
+/// The next-best-view from the session's coverage (session_coverage), with the envelope of
+/// the session's device unless `config` gives one (`use_session_device`).
+struct SessionNextView {
+    CoverageReport coverage;
+    NextView view;
+    double plan_s = 0.0;  ///< Time of the plan alone (the coverage before it not counted).
+};
+Expected<SessionNextView> session_next_view(const SessionStore& store,
+                                            const SessionCoverageConfig& coverage_config,
+                                            NextViewConfig config, bool use_session_device = true);
+
+/// For a simulated session: the transform from the largest group's frame (where coverage and
+/// the plan live) to the truth frame, from a registered scan with a true pose; nothing
+/// without one. The simulated operator uses it to walk to a planned view, as an operator
+/// reads the hint against the stone in front of them.
+Expected<std::optional<Pose>> group_to_truth(const SessionStore& store);
 
 }  // namespace anascan::acquisition

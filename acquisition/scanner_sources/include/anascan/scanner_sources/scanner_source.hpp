@@ -5,6 +5,7 @@
 /// that walks a simulated scanner around the block. The field app and `anascan capture`
 /// both use these, so neither needs to know a backend.
 
+#include <Eigen/Core>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -64,5 +65,21 @@ CaptureRequest tour_request(const SimulatedTour& tour, int index);
 
 /// Whether the stone is turned over right before view `index`.
 bool tour_turns_over_before(const SimulatedTour& tour, int index);
+
+/// A view planned by the next-best-view, in the session's truth frame (the frame of the
+/// stone's first placement, which moves with the stone).
+struct GuidedView {
+    Eigen::Vector3d sensor_m = Eigen::Vector3d::Zero();
+    Eigen::Vector3d aim_m = Eigen::Vector3d::Zero();
+    bool turned = false;  ///< The stone lies turned over.
+};
+
+/// The request of a guided view: a simulated scanner stands where the view says; the true
+/// pose is recorded as for the tour.
+CaptureRequest guided_request(const SimulatedTour& tour, const GuidedView& view);
+
+/// The request of view `index` of the turned side's fixed walk (`views` views around), for
+/// the guided operator right after turning the stone over; the first is marked as the turn.
+CaptureRequest turned_side_request(const SimulatedTour& tour, int index, int views);
 
 }  // namespace anascan::scanner_sources

@@ -21,6 +21,7 @@
 #include <string_view>
 #include <vector>
 
+#include "anascan/processing/cleaning/plane_removal.hpp"
 #include "anascan/processing/core/expected.hpp"
 #include "anascan/processing/core/mesh.hpp"
 #include "anascan/processing/core/point_cloud.hpp"
@@ -95,6 +96,10 @@ struct CoverageReport {
     std::vector<SampleState> sample_states;  ///< One per sample.
     Mesh surface;                            ///< The surface used, world frame.
     std::size_t stone_point_count = 0;       ///< Binned points kept as stone (estimate).
+    /// The ground the stone rests on now: that of the last view (in input order) with a
+    /// ground, world frame, normal up (toward the stone). Absent when no view showed one, and
+    /// for compute_coverage_on_surface.
+    std::optional<Plane> ground_world;
     std::string message;                     ///< Why, when not kOk.
 };
 
