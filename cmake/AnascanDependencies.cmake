@@ -16,3 +16,9 @@ find_package(PkgConfig REQUIRED)
 pkg_check_modules(LIBUSB REQUIRED IMPORTED_TARGET GLOBAL libusb-1.0)  # drivers: USB backend
 find_package(glfw3 3.3 REQUIRED)            # drivers: projector output window
 find_package(OpenGL REQUIRED)
+# Campaigns over MPI (Debian openmpi-bin, libopenmpi-dev), optional: without it the same
+# campaign code runs in one process (acquisition/CMakeLists.txt).
+option(ANASCAN_WITH_MPI "Campaigns over MPI when an MPI implementation is found" ON)
+if(ANASCAN_WITH_MPI)
+    find_package(MPI COMPONENTS CXX)
+endif()

@@ -25,6 +25,7 @@ PACKAGES=(
     fonts-dejavu-core                  # gui: anascan-field's large readable font (DejaVu Sans)
     python3-open3d python3-numpy       # peer for the side-by-side benchmarks
     libopen3d-dev                      # Open3D C++: screened Poisson (processing/surface); peer of the benchmarks
+    openmpi-bin libopenmpi-dev         # campaigns over MPI (acquisition/campaign; optional at build time)
 )
 
 missing=()

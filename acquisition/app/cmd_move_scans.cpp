@@ -82,6 +82,7 @@ void add_sim_command(CLI::App& app) {
     cmd->add_option("--out", opts->out_dir, "Output folder")->required();
     cmd->callback([opts] { run_move(*opts); });
     add_sim_scene_commands(*sim);
+    add_sim_campaign_command(*sim);
 }
 
 }  // namespace anascan::cli

@@ -81,5 +81,9 @@ void add_blocks_assemble_command(CLI::App& blocks);
 void run_assembly_eval(const std::string& dir, const std::string& truth, bool as_json);
 /// `session info|check|export|exclude|note|turned-over`: a capture session folder.
 void add_session_command(CLI::App& app);
+/// `campaign init|register|status|export`: many unordered scans of many stones.
+void add_campaign_command(CLI::App& app);
+/// `sim campaign`: a simulated campaign with its truth (registered on the sim group).
+void add_sim_campaign_command(CLI::App& sim);
 
 }  // namespace anascan::cli

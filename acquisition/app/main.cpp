@@ -47,6 +47,7 @@ int main(int argc, char** argv) {
     anascan::cli::add_capture_command(app);
     anascan::cli::add_coverage_command(app);
     anascan::cli::add_session_command(app);
+    anascan::cli::add_campaign_command(app);
     anascan::cli::add_blocks_command(app);
     app.parse_complete_callback([&] {
         configure_logging(verbose, quiet);

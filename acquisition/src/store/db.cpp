@@ -94,6 +94,17 @@ Statement& Statement::bind(int index, std::nullopt_t) {
     return *this;
 }
 
+Statement& Statement::bind_blob(int index, const void* data, std::size_t bytes) {
+    sqlite3_bind_blob64(stmt_, index, data, bytes, SQLITE_TRANSIENT);
+    return *this;
+}
+
+std::vector<unsigned char> Statement::blob(int col) const {
+    const auto* p = static_cast<const unsigned char*>(sqlite3_column_blob(stmt_, col));
+    const int bytes = sqlite3_column_bytes(stmt_, col);
+    return p == nullptr ? std::vector<unsigned char>() : std::vector<unsigned char>(p, p + bytes);
+}
+
 Expected<bool> Statement::step(std::string_view what) {
     const int rc = sqlite3_step(stmt_);
     if (rc == SQLITE_ROW) return true;

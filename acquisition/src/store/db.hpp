@@ -56,6 +56,8 @@ public:
     Statement& bind(int index, double v);
     Statement& bind(int index, std::string_view v);
     Statement& bind(int index, std::nullopt_t);
+    /// Binds bytes as a BLOB (copied).
+    Statement& bind_blob(int index, const void* data, std::size_t bytes);
     template <class T>
     Statement& bind(int index, const std::optional<T>& v) {
         return v ? bind(index, *v) : bind(index, std::nullopt);
@@ -69,6 +71,8 @@ public:
     double real(int col) const;
     std::string text(int col) const;
     bool is_null(int col) const;
+    /// A BLOB column's bytes (empty for NULL).
+    std::vector<unsigned char> blob(int col) const;
 
 private:
     Statement(const Connection* db, sqlite3_stmt* stmt) : db_(db), stmt_(stmt) {}

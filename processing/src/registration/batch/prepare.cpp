@@ -42,6 +42,16 @@ std::string unusable_reason(std::size_t loaded_count, std::size_t finite_count,
     return {};
 }
 
+bool same_positions(const PointCloud& a, const PointCloud& b) {
+    return a.size() == b.size() && a.origin_m == b.origin_m &&
+           std::memcmp(a.positions.data(), b.positions.data(),
+                       sizeof(Eigen::Vector3f) * a.size()) == 0;
+}
+
+}  // namespace
+
+namespace detail {
+
 /// FNV-1a over the origin and local positions: equal clouds give equal hashes.
 std::uint64_t position_hash(const PointCloud& cloud) {
     std::uint64_t hash = 1469598103934665603ull;
@@ -54,12 +64,6 @@ std::uint64_t position_hash(const PointCloud& cloud) {
     return hash;
 }
 
-bool same_positions(const PointCloud& a, const PointCloud& b) {
-    return a.size() == b.size() && a.origin_m == b.origin_m &&
-           std::memcmp(a.positions.data(), b.positions.data(),
-                       sizeof(Eigen::Vector3f) * a.size()) == 0;
-}
-
 // Bounding sphere, diagonal and hash of a prepared cloud (points set by the caller).
 detail::ScanSummary summarize(const PointCloud& cloud) {
     const Bounds bounds = local_bounds(cloud);
@@ -69,7 +73,7 @@ detail::ScanSummary summarize(const PointCloud& cloud) {
             .position_hash = position_hash(cloud)};
 }
 
-}  // namespace
+}  // namespace detail
 
 std::size_t prepare_scan(PointCloud& cloud, const std::optional<Eigen::Vector3d>& sensor_origin_m,
                          const ScanRegistrationConfig& config) {

@@ -49,6 +49,12 @@ struct ScanSummary {
     std::uint64_t position_hash = 0;
 };
 
+/// FNV-1a over the origin and local positions: equal clouds give equal hashes.
+std::uint64_t position_hash(const PointCloud& cloud);
+
+/// Bounding sphere, diagonal and hash of a prepared cloud (points left to the caller).
+ScanSummary summarize(const PointCloud& cloud);
+
 /// The prepared clouds (in `store` under key 2i; not there: not usable), their summaries,
 /// median sample spacings (metres) and features (filled by the features stage). When
 /// spilling, the features' sites live in `store` under key 2i + 1 and `features` holds

@@ -1,0 +1,175 @@
+// anascan campaign status DIR, campaign export DIR --out OUT/.
+#include <spdlog/spdlog.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "anascan/processing/io/file_bytes.hpp"
+#include "anascan/processing/io/ply.hpp"
+#include "anascan/processing/io/stanford_conf.hpp"
+#include "campaign_cli.hpp"
+#include "commands.hpp"
+
+namespace anascan::cli {
+namespace {
+
+namespace fs = std::filesystem;
+using acquisition::CampaignStore;
+using nlohmann::json;
+
+struct Counts {
+    std::size_t scans = 0, prepared = 0, described = 0, unusable = 0;
+    std::size_t pairs = 0, registered = 0, verified = 0;
+    std::size_t stones = 0, stones_done = 0, placed = 0;
+};
+
+template <class T>
+T must(Expected<T> v) {
+    if (!v) fail_command(v.error());
+    return std::move(*v);
+}
+
+Counts count(const CampaignStore& store) {
+    Counts c;
+    for (const auto& s : must(store.scans())) {
+        ++c.scans;
+        c.prepared += s.state == "prepared" || s.state == "described";
+        c.described += s.state == "described";
+        c.unusable += s.state == "unusable";
+    }
+    for (const auto& p : must(store.pairs())) {
+        ++c.pairs;
+        if (p.result_json.empty()) continue;
+        ++c.registered;
+        c.verified += json::parse(p.result_json).value("verified", false);
+    }
+    for (const auto& stone : must(store.stones())) {
+        ++c.stones;
+        if (stone.result_json.empty()) continue;
+        ++c.stones_done;
+        c.placed += json::parse(stone.result_json).value("placed", std::size_t{0});
+    }
+    return c;
+}
+
+void print_problems(const CampaignStore& store) {
+    const auto scans = must(store.scans());
+    for (const auto& s : scans) {
+        if (s.state == "unusable")
+            std::printf("not used: %s: %s\n", s.file.c_str(), s.problem.c_str());
+    }
+    for (const auto& stone : must(store.stones())) {
+        if (stone.result_json.empty()) continue;
+        for (const json& scan : json::parse(stone.result_json)["scans"]) {
+            const std::string& file = scans[scan["id"].get<std::size_t>()].file;
+            if (!scan["placed"].get<bool>()) {
+                std::printf("not placed (stone %lld): %s: %s\n", static_cast<long long>(stone.id),
+                            file.c_str(), scan["reason"].get<std::string>().c_str());
+            }
+            if (!scan["warning"].get<std::string>().empty()) {
+                std::printf("warning (stone %lld): %s: %s\n", static_cast<long long>(stone.id),
+                            file.c_str(), scan["warning"].get<std::string>().c_str());
+            }
+        }
+    }
+}
+
+void run_status(const std::string& dir) {
+    auto store = CampaignStore::open(dir, true);
+    if (!store) fail_command(store.error());
+    print_status(**store);
+}
+
+struct ExportOptions {
+    std::string dir, out;
+};
+
+/// Writes OUT/stone_K/{poses.conf, merged.ply, report.json} for one multi-view result.
+void export_stone(const CampaignStore& store,
+                  const std::vector<acquisition::CampaignScanRow>& scans,
+                  const acquisition::CampaignStoneRow& stone, const fs::path& folder) {
+    const json result = json::parse(stone.result_json);
+    io::StanfordConf conf;
+    PointCloud merged;
+    for (const json& scan : result["scans"]) {
+        if (!scan["placed"].get<bool>()) continue;
+        const auto id = scan["id"].get<std::int64_t>();
+        Pose T = Pose::Identity();
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 4; ++j)
+                T.matrix()(i, j) = scan["pose"][static_cast<std::size_t>(4 * i + j)];
+        conf.entries.push_back({scans[static_cast<std::size_t>(id)].file, T});
+        auto cloud = io::read_ply(store.prepared_file(id));
+        if (!cloud) fail_command(cloud.error());
+        append(merged, transformed(cloud->cloud, T));
+    }
+    std::error_code ec;
+    fs::create_directories(folder, ec);
+    if (ec) throw CommandFailed(folder.string() + ": cannot create: " + ec.message());
+    if (auto ok = io::write_conf(folder / "poses.conf", conf); !ok) fail_command(ok.error());
+    if (auto ok = io::write_ply(folder / "merged.ply", merged); !ok) fail_command(ok.error());
+    if (auto ok = io::write_file_atomically(folder / "report.json", result.dump(2) + "\n"); !ok) {
+        fail_command(ok.error());
+    }
+}
+
+void run_export(const ExportOptions& o) {
+    auto store = CampaignStore::open(o.dir, true);
+    if (!store) fail_command(store.error());
+    const auto scans = must((*store)->scans());
+    std::size_t written = 0;
+    for (const auto& stone : must((*store)->stones())) {
+        if (stone.result_json.empty()) continue;
+        char name[32];
+        std::snprintf(name, sizeof name, "stone_%03lld", static_cast<long long>(stone.id));
+        export_stone(**store, scans, stone, fs::path(o.out) / name);
+        ++written;
+    }
+    std::printf("exported %zu stones to %s\n", written, o.out.c_str());
+    if (written == 0)
+        report_poor_result("no stone has been registered yet: run `anascan campaign register " +
+                           o.dir + "`");
+}
+
+}  // namespace
+
+CampaignConfig stored_config(const CampaignStore& store) {
+    CampaignConfig config;
+    auto value = store.value("config");
+    if (value && *value) {
+        config.candidates_per_scan =
+            json::parse(**value).value("candidates_per_scan", config.candidates_per_scan);
+    }
+    return config;
+}
+
+void print_status(const CampaignStore& store) {
+    const Counts c = count(store);
+    std::printf("scans: %zu (prepared %zu, described %zu, not used %zu)\n", c.scans, c.prepared,
+                c.described, c.unusable);
+    const std::size_t all = c.described * (c.described > 0 ? c.described - 1 : 0) / 2;
+    std::printf("candidate pairs: %zu of %zu possible (%.2f %%)\n", c.pairs, all,
+                all > 0 ? 100.0 * static_cast<double>(c.pairs) / static_cast<double>(all) : 0.0);
+    std::printf("pairs registered: %zu of %zu, verified %zu\n", c.registered, c.pairs, c.verified);
+    std::printf("stones: %zu (multi-view done %zu); scans placed %zu of %zu\n", c.stones,
+                c.stones_done, c.placed, c.scans);
+    print_problems(store);
+}
+
+void add_campaign_status_commands(CLI::App& campaign) {
+    auto dir = std::make_shared<std::string>();
+    auto* status =
+        campaign.add_subcommand("status", "Stages done, stones, scans not used or not placed");
+    status->add_option("dir", *dir, "Campaign folder")->required();
+    status->callback([dir] { run_status(*dir); });
+    auto opts = std::make_shared<ExportOptions>();
+    auto* exp = campaign.add_subcommand(
+        "export",
+        "Per stone: poses.conf (metres), merged.ply (prepared points, stone frame), report.json");
+    exp->add_option("dir", opts->dir, "Campaign folder")->required();
+    exp->add_option("--out", opts->out, "Output folder")->required();
+    exp->callback([opts] { run_export(*opts); });
+}
+
+}  // namespace anascan::cli

@@ -1,0 +1,158 @@
+// The campaign's global descriptor of a scan: hashed feature triangles of its
+// integral-invariant patches, free of pose and of the scan's size.
+//
+// A triangle joins a patch and two of its nearest patches of the same radius; its key holds
+// per side a log-scale length bin and the kind (absolute radius level, side) of the
+// opposite corner, in sorted order. Two overlapping scans share the triangles of their
+// common part; unrelated scans share only what chance gives.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <string>
+#include <utility>
+
+#include "anascan/processing/campaign/campaign_stages.hpp"
+#include "anascan/processing/features/integral_invariants.hpp"
+
+namespace anascan {
+namespace {
+
+constexpr double kLadderRatio = 1.5;    // Radii ladder shared by the campaign (= geometric).
+constexpr double kLadderUnit_m = 1e-3;  // Ladder level 0.
+
+struct Ladder {
+    InvariantRadii radii_m{};
+    int first_level = 0;  ///< Absolute level of radii_m[0].
+};
+
+Ladder ladder_for(double diagonal_m) {
+    const double r0 = radii_for_object_size_m(diagonal_m)[0];
+    const int level =
+        static_cast<int>(std::lround(std::log(r0 / kLadderUnit_m) / std::log(kLadderRatio)));
+    return {.radii_m = geometric_radii_m(kLadderUnit_m * std::pow(kLadderRatio, level)),
+            .first_level = level};
+}
+
+std::uint64_t corner_kind(const FeaturePatch& p, int first_level) {
+    const auto level =
+        static_cast<std::uint64_t>(first_level + 64 + static_cast<int>(p.radius_index));
+    return (level << 1) | static_cast<std::uint64_t>(p.side);
+}
+
+struct KeyContext {
+    const std::vector<FeaturePatch>& patches;
+    int first_level = 0;
+    double log_ratio = 0.0;
+};
+
+// Keys of triangle (a, b, c): per side its bin and the nearer neighbouring bin (2^3 keys).
+void triangle_keys(const KeyContext& c, const std::array<std::size_t, 3>& corner,
+                   std::vector<std::uint64_t>& keys) {
+    std::array<std::array<std::uint64_t, 2>, 3> bins{};
+    for (std::size_t k = 0; k < 3; ++k) {
+        const double length_m = (c.patches[corner[(k + 1) % 3]].barycentre_m -
+                                 c.patches[corner[(k + 2) % 3]].barycentre_m)
+                                    .norm();
+        const double x = std::log(length_m / kLadderUnit_m) / c.log_ratio + 64.0;
+        const auto bin = static_cast<std::uint64_t>(std::max(x, 1.0));
+        const bool upper = x - static_cast<double>(bin) >= 0.5;
+        bins[k] = {bin, upper ? bin + 1 : bin - 1};
+    }
+    for (unsigned combo = 0; combo < 8; ++combo) {
+        std::array<std::uint64_t, 3> t{};
+        for (std::size_t k = 0; k < 3; ++k) {
+            t[k] = (bins[k][(combo >> k) & 1u] & 0x7ff) << 10 |
+                   corner_kind(c.patches[corner[k]], c.first_level);
+        }
+        std::sort(t.begin(), t.end());
+        keys.push_back(t[0] << 42 | t[1] << 21 | t[2]);
+    }
+}
+
+// Patch a's nearest patches of its radius within [min_side_m, max_side_m].
+std::vector<std::size_t> partners(const std::vector<FeaturePatch>& p, std::size_t a,
+                                  double min_side_m, double max_side_m, std::size_t count) {
+    std::vector<std::pair<double, std::size_t>> near;
+    for (std::size_t b = 0; b < p.size(); ++b) {
+        const double d = (p[a].barycentre_m - p[b].barycentre_m).norm();
+        if (b != a && p[b].radius_index == p[a].radius_index && d <= max_side_m &&
+            d >= min_side_m) {
+            near.emplace_back(d, b);
+        }
+    }
+    const std::size_t keep = std::min(count, near.size());
+    std::partial_sort(near.begin(), near.begin() + static_cast<std::ptrdiff_t>(keep), near.end());
+    std::vector<std::size_t> out;
+    for (std::size_t i = 0; i < keep; ++i) out.push_back(near[i].second);
+    return out;
+}
+
+std::vector<std::uint64_t> feature_keys(const KeyContext& c, double min_side_m, double max_side_m,
+                                        std::size_t nearest) {
+    std::vector<std::uint64_t> keys;
+    for (std::size_t a = 0; a < c.patches.size(); ++a) {
+        const std::vector<std::size_t> near =
+            partners(c.patches, a, min_side_m, max_side_m, nearest);
+        for (std::size_t i = 0; i < near.size(); ++i) {
+            for (std::size_t j = i + 1; j < near.size(); ++j) {
+                const double bc =
+                    (c.patches[near[i]].barycentre_m - c.patches[near[j]].barycentre_m).norm();
+                if (bc > max_side_m || bc < min_side_m) continue;
+                triangle_keys(c, {a, near[i], near[j]}, keys);
+            }
+        }
+    }
+    std::sort(keys.begin(), keys.end());
+    keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+    return keys;
+}
+
+/// A size that does not depend on the frame (a bounding box's diagonal does): 2.5 times the
+/// RMS distance from the centroid (a box's diagonal for a cube's six faces seen whole).
+double rotation_free_size_m(const PointCloud& cloud) {
+    if (cloud.empty()) return 0.0;
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (const Eigen::Vector3f& p : cloud.positions) mean += p.cast<double>();
+    mean /= static_cast<double>(cloud.size());
+    double sum_sq = 0.0;
+    for (const Eigen::Vector3f& p : cloud.positions)
+        sum_sq += (p.cast<double>() - mean).squaredNorm();
+    return 2.5 * std::sqrt(sum_sq / static_cast<double>(cloud.size()));
+}
+
+}  // namespace
+
+ScanDescriptor describe_campaign_scan(const PointCloud& prepared, double spacing_m,
+                                      const CampaignConfig& config) {
+    ScanDescriptor out;
+    const double diagonal_m = rotation_free_size_m(prepared);
+    const Ladder ladder = ladder_for(diagonal_m);
+    const GlobalRegistrationConfig& global = config.registration.global;
+    std::vector<IntegralInvariantResult> invariants;
+    invariants.push_back(describe_scan(prepared, ladder.radii_m, global));
+    if (invariants.front().status != IntegralInvariantStatus::kOk) {
+        out.problem = "no valid integral-invariant descriptor (too few points or no interior)";
+        return out;
+    }
+    const std::vector<double> spacings{spacing_m};
+    const std::vector<ScanFeatures> features =
+        scan_features(std::move(invariants), spacings, global);
+    std::vector<FeaturePatch> middle;
+    for (const FeaturePatch& patch : features.front().patches.patches) {
+        if (patch.level == kSaliencyLevels / 2) middle.push_back(patch);
+    }
+    out.patches = middle.size();
+    const KeyContext context{.patches = middle,
+                             .first_level = ladder.first_level,
+                             .log_ratio = std::log(config.key_length_ratio)};
+    out.keys = feature_keys(context, 2.0 * ladder.radii_m[0], 0.25 * diagonal_m,
+                            config.key_nearest_patches);
+    if (out.keys.empty()) {
+        out.problem = std::to_string(middle.size()) +
+                      " feature patches and no feature triangle: a featureless surface (a plane, "
+                      "the ground or background only?)";
+    }
+    return out;
+}
+
+}  // namespace anascan
