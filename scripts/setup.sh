@@ -10,6 +10,7 @@ PACKAGES=(
     libeigen3-dev libnanoflann-dev libtbb-dev
     libqhull-dev                       # processing: convex hull of a stone (coverage)
     libcgal-dev                        # processing: efficient RANSAC planes of block features
+    coinor-libclp-dev                  # peer of the block-assembly QP solver (test and benchmark only)
     libopencv-dev libopencv-contrib-dev
     libembree-dev                      # ray caster of the simulated scanners (sim/)
     libusb-1.0-0-dev libv4l-dev

@@ -125,6 +125,7 @@ void add_blocks_command(CLI::App& app) {
     cmd->callback([opts] { run_features(*opts); });
     add_blocks_match_commands(*blocks);
     add_blocks_eval_command(*blocks);
+    add_blocks_assemble_command(*blocks);
 }
 
 }  // namespace anascan::cli

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <map>
 #include <set>
 
@@ -172,6 +173,8 @@ void print_table(const Ranking& ranking, const json& out) {
 }
 
 void run_eval(const EvalOptions& o) {
+    if (std::filesystem::is_directory(o.proposals))
+        return run_assembly_eval(o.proposals, o.truth, o.as_json);
     auto proposals = read_json_file(o.proposals);
     if (!proposals) fail_command(proposals.error());
     auto truth = read_json_file(o.truth);
@@ -194,9 +197,10 @@ void add_blocks_eval_command(CLI::App& blocks) {
     auto opts = std::make_shared<EvalOptions>();
     auto* cmd =
         blocks.add_subcommand("eval", "Ranks of the true neighbours (simulated monument truth)");
-    cmd->add_option("proposals", opts->proposals, "Proposals of blocks match")
+    cmd->add_option("proposals", opts->proposals,
+                    "Proposals of blocks match, or an ASSEMBLY/ folder of blocks assemble")
         ->required()
-        ->check(CLI::ExistingFile);
+        ->check(CLI::ExistingPath);
     cmd->add_option("--truth", opts->truth, "truth.json of sim export-monument")
         ->required()
         ->check(CLI::ExistingFile);

@@ -75,6 +75,10 @@ void add_blocks_command(CLI::App& app);
 void add_blocks_match_commands(CLI::App& blocks);
 /// `blocks eval` (registered by add_blocks_command on its group).
 void add_blocks_eval_command(CLI::App& blocks);
+/// `blocks assemble` (registered by add_blocks_command on its group).
+void add_blocks_assemble_command(CLI::App& blocks);
+/// `blocks eval ASSEMBLY/`: an assembly folder against the truth (cmd_blocks_eval.cpp).
+void run_assembly_eval(const std::string& dir, const std::string& truth, bool as_json);
 /// `session info|check|export|exclude|note|turned-over`: a capture session folder.
 void add_session_command(CLI::App& app);
 /// `campaign init|register|status|export`: many unordered scans of many stones.

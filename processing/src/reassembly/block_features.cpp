@@ -61,8 +61,9 @@ void set_status(BlockFeatures& out, const BlockFeatureConfig& config) {
     }
 }
 
-// Area-weighted triangle normals at the vertices; false when an edge has > 2 triangles.
-bool mesh_normals(const Mesh& mesh, std::vector<Eigen::Vector3f>& normals) {
+}  // namespace
+
+bool mesh_vertex_normals(const Mesh& mesh, std::vector<Eigen::Vector3f>& normals) {
     std::vector<Eigen::Vector3d> sums(mesh.vertices.size(), Eigen::Vector3d::Zero());
     std::vector<std::uint64_t> edges;  // (min, max) vertex pairs, sorted to count repeats.
     edges.reserve(3 * mesh.triangles.size());
@@ -86,8 +87,6 @@ bool mesh_normals(const Mesh& mesh, std::vector<Eigen::Vector3f>& normals) {
         if (edges[i] == edges[i - 2]) return false;
     return true;
 }
-
-}  // namespace
 
 std::vector<int> BlockFeatures::neighbours(int face) const {
     std::vector<int> out;
@@ -147,7 +146,7 @@ BlockFeatures extract_block_features(const Mesh& mesh, const BlockFeatureConfig&
     }
     PointCloud cloud;
     cloud.positions = mesh.vertices.positions;
-    const bool manifold = mesh_normals(mesh, cloud.normals);
+    const bool manifold = mesh_vertex_normals(mesh, cloud.normals);
     BlockFeatures out = extract_block_features(cloud, config);
     if (!manifold && out.status == BlockStatus::kOk) {
         out.status = BlockStatus::kNonManifold;

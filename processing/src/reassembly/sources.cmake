@@ -10,3 +10,11 @@ list(APPEND ANASCAN_PROCESSING_SOURCES
     src/reassembly/face_roughness.cpp
     src/reassembly/proposals.cpp
 )
+# Penetration-free alignment of neighbouring blocks (paper §5.3).
+list(APPEND ANASCAN_PROCESSING_SOURCES
+    src/reassembly/assembly_check.cpp
+    src/reassembly/assembly_terms.cpp
+    src/reassembly/block_assembly.cpp
+    src/reassembly/constrained_lsq.cpp
+    src/reassembly/horn_placement.cpp
+)

@@ -133,6 +133,10 @@ BlockFeatures extract_block_features(const PointCloud& cloud, const BlockFeature
 /// clockwise from outside). An empty mesh gives kEmpty; a non-manifold one kNonManifold.
 BlockFeatures extract_block_features(const Mesh& mesh, const BlockFeatureConfig& config);
 
+/// Area-weighted triangle normals at the vertices (unit, zero for unused vertices); false
+/// when an edge is shared by more than two triangles.
+bool mesh_vertex_normals(const Mesh& mesh, std::vector<Eigen::Vector3f>& normals);
+
 /// Short English name of a status ("ok", "no planar face", ...).
 const char* to_string(BlockStatus status);
 const char* to_string(HoleKind kind);

@@ -1,0 +1,149 @@
+// Verification of an assembly on the dense models (see the header).
+#include "anascan/processing/reassembly/assembly_check.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+
+#include "anascan/processing/spatial/kdtree.hpp"
+#include "assembly_steps.hpp"
+
+namespace anascan::reassembly {
+namespace {
+
+using assembly_detail::edge_line;
+
+double angle_deg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+    return std::atan2(a.cross(b).norm(), a.dot(b)) * 180.0 / M_PI;
+}
+
+double quantile(std::vector<double> v, double q) {
+    if (v.empty()) return 0.0;
+    const auto k = std::size_t(q * double(v.size() - 1));
+    std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(k), v.end());
+    return v[k];
+}
+
+// Signed distances of the points of face `from` to block `to` in front of it.
+void face_gaps(const AssemblyProblem& p, const FaceRef& from, int to, const KdTree& tree,
+               const std::vector<Pose>& T, const CheckConfig& c, std::vector<double>& out) {
+    const AssemblyBlock& a = p.blocks[std::size_t(from.block)];
+    const AssemblyBlock& b = p.blocks[std::size_t(to)];
+    const Pose T_b_a = T[std::size_t(to)].inverse() * T[std::size_t(from.block)];
+    for (std::size_t i = 0; i < a.features.point_face.size(); ++i) {
+        if (a.features.point_face[i] != from.face) continue;
+        const Eigen::Vector3d x = T_b_a * a.points.positions[i].cast<double>();
+        Neighbor nb;
+        if (!tree.nearest(x.cast<float>(), nb)) continue;
+        const Eigen::Vector3d d = x - b.points.positions[nb.index].cast<double>();
+        const Eigen::Vector3d n = b.points.normals[nb.index].cast<double>().normalized();
+        if ((d - d.dot(n) * n).norm() <= c.gate_m) out.push_back(d.dot(n));
+    }
+}
+
+struct Box {
+    Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = Eigen::Vector3d::Constant(-1e300);
+};
+
+// Penetration of block a's points into block b (signed distance below -tolerance).
+void penetration(const AssemblyProblem& p, int a, int b, const KdTree& tree, const Box& box,
+                 const std::vector<Pose>& T, const CheckConfig& c, AssemblyCheck& out,
+                 double& depth_sum) {
+    const Pose T_b_a = T[std::size_t(b)].inverse() * T[std::size_t(a)];
+    const PointCloud& pa = p.blocks[std::size_t(a)].points;
+    const PointCloud& pb = p.blocks[std::size_t(b)].points;
+    std::vector<Neighbor> nbs;
+    std::vector<double> sds;
+    std::vector<float>& depth = out.depth_m[std::size_t(a)];
+    for (std::size_t i = 0; i < pa.positions.size(); ++i) {
+        const Eigen::Vector3d x = T_b_a * pa.positions[i].cast<double>();
+        if ((x.array() < box.lo.array() - c.near_m).any() ||
+            (x.array() > box.hi.array() + c.near_m).any())
+            continue;
+        tree.knn(x.cast<float>(), std::size_t(c.sign_neighbours), nbs);
+        if (nbs.empty() || nbs[0].distance_sq_m2 > c.near_m * c.near_m) continue;
+        ++out.measured_points;
+        // Inside when both the nearest vertex and the median over the nearest vertices say
+        // so: one vertex in a hole (its normal askew) or the neighbouring faces' vertices
+        // at an edge do not decide alone. The depth is at most the nearest distance.
+        sds.clear();
+        for (const Neighbor& nb : nbs)
+            sds.push_back(pb.normals[nb.index].cast<double>().normalized().dot(
+                x - pb.positions[nb.index].cast<double>()));
+        const double sd =
+            std::max({quantile(sds, 0.5), sds[0], -std::sqrt(double(nbs[0].distance_sq_m2))});
+        if (sd >= -c.tolerance_m) continue;
+        ++out.penetrating_points;
+        depth[i] = std::max(depth[i], float(-sd));
+        depth_sum += -sd;
+        out.penetration_max_m = std::max(out.penetration_max_m, -sd);
+    }
+}
+
+}  // namespace
+
+void check_links(const AssemblyProblem& p, const std::vector<Pose>& T, const CheckConfig& c,
+                 AssemblyCheck& out) {
+    auto face = [&](const FaceRef& r) -> const PlanarFace& {
+        return p.blocks[std::size_t(r.block)].features.faces[std::size_t(r.face)];
+    };
+    for (const FaceLink& l : p.coplanar) {
+        const PlanarFace &a = face(l.a), &b = face(l.b);
+        const Pose &Ta = T[std::size_t(l.a.block)], &Tb = T[std::size_t(l.b.block)];
+        const Eigen::Vector3d na = Ta.linear() * a.normal, nb = Tb.linear() * b.normal;
+        const double offset = 0.5 * (std::abs(nb.dot(Ta * a.centre_m - Tb * b.centre_m)) +
+                                     std::abs(na.dot(Tb * b.centre_m - Ta * a.centre_m)));
+        out.coplanar.push_back({link_name(p, l), angle_deg(na, nb), offset});
+    }
+    for (const LineLink& l : p.colinear) {
+        Eigen::Vector3d pa, da, pb, db;
+        double la = 0.0, lb = 0.0;
+        if (!edge_line(p, l.a, T[std::size_t(l.a.block)], pa, da, la) ||
+            !edge_line(p, l.b, T[std::size_t(l.b.block)], pb, db, lb))
+            continue;
+        double far = 0.0;
+        for (int s = 0; s < std::max(2, c.line_samples); ++s) {
+            const Eigen::Vector3d x =
+                pa + (double(s) / (std::max(2, c.line_samples) - 1) - 0.5) * la * da;
+            far = std::max(far, (x - pb - (x - pb).dot(db) * db).norm());
+        }
+        out.colinear.push_back(
+            {link_name(p, l), std::min(angle_deg(da, db), angle_deg(da, -db)), far});
+    }
+}
+
+AssemblyCheck check_assembly(const AssemblyProblem& p, const std::vector<Pose>& T,
+                             const CheckConfig& c) {
+    AssemblyCheck out;
+    std::vector<KdTree> trees;
+    std::vector<Box> boxes(p.blocks.size());
+    for (std::size_t b = 0; b < p.blocks.size(); ++b) {
+        trees.emplace_back(p.blocks[b].points.positions);
+        for (const auto& x : p.blocks[b].points.positions)
+            boxes[b].lo = boxes[b].lo.cwiseMin(x.cast<double>()),
+            boxes[b].hi = boxes[b].hi.cwiseMax(x.cast<double>());
+    }
+    double depth_sum = 0.0;
+    for (const AssemblyBlock& b : p.blocks) out.depth_m.emplace_back(b.points.size(), 0.0f);
+    for (std::size_t a = 0; a < p.blocks.size(); ++a)
+        for (std::size_t b = 0; b < p.blocks.size(); ++b)
+            if (a != b) penetration(p, int(a), int(b), trees[b], boxes[b], T, c, out, depth_sum);
+    out.penetration_mean_m =
+        out.penetrating_points ? depth_sum / double(out.penetrating_points) : 0.0;
+    for (const FaceLink& l : p.contacts) {
+        std::vector<double> gaps;
+        face_gaps(p, l.a, l.b.block, trees[std::size_t(l.b.block)], T, c, gaps);
+        face_gaps(p, l.b, l.a.block, trees[std::size_t(l.a.block)], T, c, gaps);
+        ContactCheck cc{.pair = link_name(p, l), .points = gaps.size()};
+        if (!gaps.empty()) {
+            cc.gap_median_m = quantile(gaps, 0.5), cc.gap_p95_m = quantile(gaps, 0.95);
+            cc.gap_max_m = *std::ranges::max_element(gaps);
+            cc.gap_min_m = *std::ranges::min_element(gaps);
+        }
+        out.contacts.push_back(cc);
+    }
+    check_links(p, T, c, out);
+    return out;
+}
+
+}  // namespace anascan::reassembly

@@ -1,0 +1,17 @@
+# The block assembly: one iteration of 4 blocks with 50k constraint samples (its QP also by
+# Debian's Clp when found, the peer) and a 12-block assembly whole-process.
+find_package(benchmark QUIET)
+if(benchmark_FOUND)
+    add_executable(anascan_bench_block_assembly ${CMAKE_CURRENT_LIST_DIR}/bench_block_assembly.cpp)
+    target_link_libraries(anascan_bench_block_assembly PRIVATE anascan::processing benchmark::benchmark)
+    target_include_directories(anascan_bench_block_assembly PRIVATE ${PROJECT_SOURCE_DIR}/processing/src)
+    find_package(PkgConfig QUIET)
+    if(PkgConfig_FOUND)
+        pkg_check_modules(ANASCAN_BENCH_CLP QUIET IMPORTED_TARGET clp)
+    endif()
+    if(ANASCAN_BENCH_CLP_FOUND)
+        target_link_libraries(anascan_bench_block_assembly PRIVATE PkgConfig::ANASCAN_BENCH_CLP)
+        target_compile_definitions(anascan_bench_block_assembly PRIVATE ANASCAN_HAVE_CLP=1)
+    endif()
+    anascan_set_warnings(anascan_bench_block_assembly)
+endif()
