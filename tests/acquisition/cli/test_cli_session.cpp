@@ -78,7 +78,7 @@ TEST_F(SessionCli, InfoJsonListsScansPosesAndCoverage) {
 TEST_F(SessionCli, InfoPrintsATableWithUnits) {
     const auto run = run_cli("session info " + quoted());
     ASSERT_EQ(run.exit_code, 0) << run.output;
-    EXPECT_TRUE(contains(run.output, "4 scans (3 registered, 1 failed, 0 queued, 0 excluded)"))
+    EXPECT_TRUE(contains(run.output, "4 scans (3 registered, 0 flagged, 1 failed, 0 queued, 0 excluded)"))
         << run.output;
     EXPECT_TRUE(contains(run.output, "coverage 62.5 %"));
     EXPECT_TRUE(contains(run.output, "latency s"));
@@ -315,7 +315,7 @@ TEST_F(SessionCli, InfoReadsAReadOnlyCopyWithAnUnmergedLog) {
         GTEST_SKIP() << "cannot make a read-only mount here: " << probe.output;
     const auto run = testing_util::run_shell(bind);
     EXPECT_TRUE(contains(run.output, "exit=0")) << run.output;
-    EXPECT_TRUE(contains(run.output, "3 scans (0 registered, 0 failed, 3 queued")) << run.output;
+    EXPECT_TRUE(contains(run.output, "3 scans (0 registered, 0 flagged, 0 failed, 3 queued")) << run.output;
 }
 
 TEST_F(SessionCli, ExportLeavesExcludedScansOutOfTheGroupChoice) {
