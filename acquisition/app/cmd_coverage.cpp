@@ -33,15 +33,16 @@ void print_report(const CoverageReport& r) {
 
 void print_next(const acquisition::SessionNextView& next) {
     std::printf("next: %s\n", next.view.hint.c_str());
-    std::printf("(planned from %zu scanner poses in %.2f s; the view keeps %.0f %% overlap with "
-                "what is observed; %.0f cm² unobserved that a view from this side can reach, "
-                "%.0f cm² only after turning the stone over)\n",
-                next.view.candidates, next.plan_s, 100.0 * next.view.overlap_fraction,
-                next.view.visible_now_area_m2 * 1e4,
-                next.view.after_turn_area_m2 * 1e4);
+    std::printf(
+        "(planned from %zu scanner poses in %.2f s; the view keeps %.0f %% overlap with "
+        "what is observed; %.0f cm² unobserved that a view from this side can reach, "
+        "%.0f cm² only after turning the stone over)\n",
+        next.view.candidates, next.plan_s, 100.0 * next.view.overlap_fraction,
+        next.view.visible_now_area_m2 * 1e4, next.view.after_turn_area_m2 * 1e4);
 }
 
-acquisition::SessionNextView compute(const acquisition::SessionStore& store, const CoverageOptions& o) {
+acquisition::SessionNextView compute(const acquisition::SessionStore& store,
+                                     const CoverageOptions& o) {
     const acquisition::SessionCoverageConfig config{.voxel_size_m = o.voxel_mm * 1e-3};
     acquisition::SessionNextView out;
     if (o.next) {
@@ -49,10 +50,10 @@ acquisition::SessionNextView compute(const acquisition::SessionStore& store, con
         if (!next) fail_command(next.error());
         return std::move(*next);
     }
-    auto report = acquisition::session_coverage(store, config, [](std::size_t done,
-                                                                   std::size_t total) {
-        spdlog::info("coverage: scan {}/{} loaded", done, total);
-    });
+    auto report =
+        acquisition::session_coverage(store, config, [](std::size_t done, std::size_t total) {
+            spdlog::info("coverage: scan {}/{} loaded", done, total);
+        });
     if (!report) fail_command(report.error());
     out.coverage = std::move(*report);
     return out;

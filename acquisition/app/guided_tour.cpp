@@ -53,10 +53,10 @@ std::optional<acquisition::CaptureRequest> GuidedOperator::next(
         auto to_truth = acquisition::group_to_truth(session.store());
         if (to_truth && *to_truth) {
             const Pose& T = **to_truth;
-            return scanner_sources::guided_request(
-                tour_, {.sensor_m = T * plan->view.sensor_world_m,
-                        .aim_m = T * plan->view.aim_world_m,
-                        .turned = turned_});
+            return scanner_sources::guided_request(tour_,
+                                                   {.sensor_m = T * plan->view.sensor_world_m,
+                                                    .aim_m = T * plan->view.aim_world_m,
+                                                    .turned = turned_});
         }
         spdlog::warn("guided tour: no registered scan with a true pose to walk by");
     }

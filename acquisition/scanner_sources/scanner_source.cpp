@@ -86,8 +86,8 @@ bool tour_turns_over_before(const SimulatedTour& tour, int index) {
 
 CaptureRequest guided_request(const SimulatedTour& tour, const GuidedView& view) {
     const sim::ScanningTourConfig config = tour_config(tour);
-    const sim::GuidedView guided{.sensor_m = view.sensor_m, .aim_m = view.aim_m,
-                                 .turned = view.turned};
+    const sim::GuidedView guided{
+        .sensor_m = view.sensor_m, .aim_m = view.aim_m, .turned = view.turned};
     return {.before = [config, guided](drivers::Scanner& scanner) {
         return sim::apply_guided_view(scanner, config, guided);
     }};

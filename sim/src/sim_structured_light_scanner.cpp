@@ -151,10 +151,9 @@ std::string SimStructuredLightScanner::calibration_json() const {
 StructuredLightRig SimStructuredLightScanner::rig() const {
     // Aim at the middle of the block's upper half (as `anascan sim sl-capture`).
     const Eigen::Vector3d size = scene().block.size_m;
-    const Eigen::Vector3d target =
-        aim_ ? *aim_
-             : block_pose(scene().placement, size).translation() +
-                   Eigen::Vector3d(0, 0, 0.25 * size.z());
+    const Eigen::Vector3d target = aim_ ? *aim_
+                                        : block_pose(scene().placement, size).translation() +
+                                              Eigen::Vector3d(0, 0, 0.25 * size.z());
     return make_structured_light_rig(config_.rig, sensor_looking_at(target, station_));
 }
 

@@ -79,7 +79,8 @@ int fig15(const std::string& section, std::uint64_t seed, double step_m, bool fl
 int wall(int n, int seeds, const std::string& section, std::uint64_t seed, double step_m) {
     const int free_iterations = std::getenv("FREE") ? std::atoi(std::getenv("FREE")) : 0;
     const double angle_deg = std::getenv("START_DEG") ? std::atof(std::getenv("START_DEG")) : 5.0;
-    const double shift_m = std::getenv("START_MM") ? 1e-3 * std::atof(std::getenv("START_MM")) : 0.02;
+    const double shift_m =
+        std::getenv("START_MM") ? 1e-3 * std::atof(std::getenv("START_MM")) : 0.02;
     std::vector<std::string> ids{"c0b0", "c0b1", "c1b0"};
     if (n >= 4) ids.push_back("c1b1");
     auto m = monument_assembly(section, seed, ids, step_m);

@@ -40,9 +40,8 @@ std::string_view to_string(ScanState state) {
 }
 
 std::optional<ScanState> parse_scan_state(std::string_view name) {
-    for (ScanState s :
-         {ScanState::kQueued, ScanState::kRegistered, ScanState::kFailed, ScanState::kExcluded,
-          ScanState::kFlagged}) {
+    for (ScanState s : {ScanState::kQueued, ScanState::kRegistered, ScanState::kFailed,
+                        ScanState::kExcluded, ScanState::kFlagged}) {
         if (name == to_string(s)) return s;
     }
     return std::nullopt;

@@ -39,8 +39,8 @@ double outside_distance_m(std::span<const FacePlane> planes, const Eigen::Vector
     return d;
 }
 
-std::vector<Eigen::Vector3d> aim_points(const CoverageReport& coverage,
-                                        const WantedSamples& wanted, std::size_t max_holes) {
+std::vector<Eigen::Vector3d> aim_points(const CoverageReport& coverage, const WantedSamples& wanted,
+                                        std::size_t max_holes) {
     std::vector<Eigen::Vector3d> aims;
     for (std::size_t h = 0; h < coverage.holes.size() && h < max_holes; ++h)
         aims.push_back(coverage.holes[h].centre_m);
@@ -115,9 +115,8 @@ WantedSamples wanted_samples(const CoverageReport& coverage, std::size_t max_sam
     return out;
 }
 
-std::vector<Candidate> candidate_views(const CoverageReport& coverage,
-                                       const WantedSamples& wanted, const PlanningFrame& frame,
-                                       const NextViewConfig& config) {
+std::vector<Candidate> candidate_views(const CoverageReport& coverage, const WantedSamples& wanted,
+                                       const PlanningFrame& frame, const NextViewConfig& config) {
     const std::vector<FacePlane> planes = face_planes(coverage.surface);
     const ScannerEnvelope& s = config.scanner;
     const Eigen::Matrix3d R_world_stone = frame.R_stone_world.transpose();
@@ -125,8 +124,8 @@ std::vector<Candidate> candidate_views(const CoverageReport& coverage,
     std::vector<Candidate> out;
     for (const Eigen::Vector3d& aim : aim_points(coverage, wanted, config.max_aim_points))
         for (int e = 0; e < config.elevation_steps; ++e) {
-            const double el = lerp_step(-15.0, 75.0, e, config.elevation_steps) *
-                              std::numbers::pi / 180.0;
+            const double el =
+                lerp_step(-15.0, 75.0, e, config.elevation_steps) * std::numbers::pi / 180.0;
             for (int a = 0; a < config.azimuth_steps; ++a) {
                 const double az = 2.0 * std::numbers::pi * a / config.azimuth_steps;
                 const Eigen::Vector3d dir =

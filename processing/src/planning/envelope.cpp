@@ -58,12 +58,10 @@ std::string next_view_to_json(const NextView& view) {
         j["height_m"] = view.height_m;
     }
     const Eigen::Matrix3d& R = view.frame.R_stone_world;
-    j["stone_frame"] = {{"x", vec(R.row(0).transpose())},
-                        {"y", vec(R.row(1).transpose())},
-                        {"up", vec(R.row(2).transpose())},
-                        {"origin_m", vec(view.frame.origin_world_m)},
-                        {"extent_m", vec(view.frame.extent_m)},
-                        {"ground_known", view.frame.ground_known}};
+    j["stone_frame"] = {
+        {"x", vec(R.row(0).transpose())},       {"y", vec(R.row(1).transpose())},
+        {"up", vec(R.row(2).transpose())},      {"origin_m", vec(view.frame.origin_world_m)},
+        {"extent_m", vec(view.frame.extent_m)}, {"ground_known", view.frame.ground_known}};
     return j.dump();
 }
 

@@ -22,7 +22,8 @@ std::string side_word(const PlanningFrame& frame, char axis) {
 std::string where_to_stand(const PlanningFrame& frame, const Eigen::Vector3d& sensor_stone) {
     const double dx = std::abs(sensor_stone.x()) - 0.5 * frame.extent_m.x();
     const double dy = std::abs(sensor_stone.y()) - 0.5 * frame.extent_m.y();
-    const std::string ax = signed_axis('x', sensor_stone.x()), ay = signed_axis('y', sensor_stone.y());
+    const std::string ax = signed_axis('x', sensor_stone.x()),
+                      ay = signed_axis('y', sensor_stone.y());
     if (dx <= 0.0 && dy <= 0.0) return "above the stone";
     if (dx > 0.0 && dy > 0.0 && std::min(dx, dy) > 0.5 * std::max(dx, dy))
         return "at the " + ax + "/" + ay + " corner of the stone";
@@ -34,10 +35,10 @@ std::string face_name(const PlanningFrame& frame, const Eigen::Vector3d& normal_
     if (normal_stone.z() > 0.7) return "the top";
     if (normal_stone.z() < -0.7) return "the underside";
     const bool along_x = std::abs(normal_stone.x()) >= std::abs(normal_stone.y());
-    return along_x ? "the " + signed_axis('x', normal_stone.x()) + " " + side_word(frame, 'x') +
-                         " face"
-                   : "the " + signed_axis('y', normal_stone.y()) + " " + side_word(frame, 'y') +
-                         " face";
+    return along_x
+               ? "the " + signed_axis('x', normal_stone.x()) + " " + side_word(frame, 'x') + " face"
+               : "the " + signed_axis('y', normal_stone.y()) + " " + side_word(frame, 'y') +
+                     " face";
 }
 
 std::string part_of_face(const PlanningFrame& frame, const Eigen::Vector3d& aim_stone,
@@ -64,27 +65,29 @@ std::string hint_text(const NextView& view, const Eigen::Vector3d& aimed_normal_
             const Eigen::Vector3d sensor = frame.to_stone(view.sensor_world_m);
             const Eigen::Vector3d aim = frame.to_stone(view.aim_world_m);
             const Eigen::Vector3d n = frame.R_stone_world * aimed_normal_world;
-            std::string hint = where_to_stand(frame, sensor) +
-                               format(", %.1f m from the aim point, scanner about %.1f m ",
-                                      view.standoff_m, view.height_m) +
-                               (frame.ground_known ? "above the ground"
-                                                   : "above the stone's lowest point") +
-                               "; aim at " + part_of_face(frame, aim, n) + face_name(frame, n) +
-                               format(": +%.1f %% coverage", 100.0 * view.gain_fraction);
+            std::string hint =
+                where_to_stand(frame, sensor) +
+                format(", %.1f m from the aim point, scanner about %.1f m ", view.standoff_m,
+                       view.height_m) +
+                (frame.ground_known ? "above the ground" : "above the stone's lowest point") +
+                "; aim at " + part_of_face(frame, aim, n) + face_name(frame, n) +
+                format(": +%.1f %% coverage", 100.0 * view.gain_fraction);
             if (view.after_turn_area_m2 > 0.0)
                 hint += format(" (%.0f cm² can only be seen after turning the stone over)",
                                view.after_turn_area_m2 * 1e4);
             return hint;
         }
         case NextViewAdvice::kTurnOver:
-            return format("turn the stone over: nothing worth a scan is left on this side; "
-                          "%.0f cm² (the face it rests on and what faces the ground) can only "
-                          "be seen after the turn",
-                          view.after_turn_area_m2 * 1e4);
+            return format(
+                "turn the stone over: nothing worth a scan is left on this side; "
+                "%.0f cm² (the face it rests on and what faces the ground) can only "
+                "be seen after the turn",
+                view.after_turn_area_m2 * 1e4);
         case NextViewAdvice::kDone:
-            return format("nothing left that a scan could add (%.0f cm² unobserved, out of "
-                          "any view's reach)",
-                          (view.visible_now_area_m2 + view.after_turn_area_m2) * 1e4);
+            return format(
+                "nothing left that a scan could add (%.0f cm² unobserved, out of "
+                "any view's reach)",
+                (view.visible_now_area_m2 + view.after_turn_area_m2) * 1e4);
         case NextViewAdvice::kNoCoverage:
             break;
     }

@@ -87,8 +87,8 @@ NextView plan_next_view(const CoverageReport& coverage, const NextViewConfig& co
         aimed_normal = mean_normal(wanted, planning_detail::observed_by(c, wanted, up, config));
     } else {
         const double min_area = config.min_gain_fraction * coverage.surface_area_m2;
-        view.advice = view.after_turn_area_m2 >= min_area ? NextViewAdvice::kTurnOver
-                                                          : NextViewAdvice::kDone;
+        view.advice =
+            view.after_turn_area_m2 >= min_area ? NextViewAdvice::kTurnOver : NextViewAdvice::kDone;
     }
     view.hint = planning_detail::hint_text(view, aimed_normal);
     return view;

@@ -38,9 +38,8 @@ struct Candidate {
 
 /// Sensor poses around the aim points (largest holes, centre of what is unseen) within the
 /// envelope: height range, tent radius, outside the stone by the clearance.
-std::vector<Candidate> candidate_views(const CoverageReport& coverage,
-                                       const WantedSamples& wanted, const PlanningFrame& frame,
-                                       const NextViewConfig& config);
+std::vector<Candidate> candidate_views(const CoverageReport& coverage, const WantedSamples& wanted,
+                                       const PlanningFrame& frame, const NextViewConfig& config);
 
 /// Height of a world point above the frame's ground.
 inline double height_above_ground(const PlanningFrame& frame, const Eigen::Vector3d& world_m) {

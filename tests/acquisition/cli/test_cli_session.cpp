@@ -78,7 +78,8 @@ TEST_F(SessionCli, InfoJsonListsScansPosesAndCoverage) {
 TEST_F(SessionCli, InfoPrintsATableWithUnits) {
     const auto run = run_cli("session info " + quoted());
     ASSERT_EQ(run.exit_code, 0) << run.output;
-    EXPECT_TRUE(contains(run.output, "4 scans (3 registered, 0 flagged, 1 failed, 0 queued, 0 excluded)"))
+    EXPECT_TRUE(
+        contains(run.output, "4 scans (3 registered, 0 flagged, 1 failed, 0 queued, 0 excluded)"))
         << run.output;
     EXPECT_TRUE(contains(run.output, "coverage 62.5 %"));
     EXPECT_TRUE(contains(run.output, "latency s"));
@@ -225,7 +226,7 @@ TEST_F(SessionCli, CoverageNextSaysWhereToScanNext) {
     for (int i = 0; i < 120; ++i)
         for (int j = 0; j < 80; ++j) {
             cloud.positions.emplace_back(-0.3f + 0.005f * i, -0.2f + 0.005f * j, 0.4f);  // Top.
-            cloud.positions.emplace_back(-0.3f + 0.005f * i, -0.2f, 0.005f * j);  // -y side.
+            cloud.positions.emplace_back(-0.3f + 0.005f * i, -0.2f, 0.005f * j);         // -y side.
         }
     const Eigen::Vector3d sensor(0.0, -1.2, 1.0);
     const Pose T_world_scan{Eigen::Translation3d(sensor)};
@@ -315,7 +316,8 @@ TEST_F(SessionCli, InfoReadsAReadOnlyCopyWithAnUnmergedLog) {
         GTEST_SKIP() << "cannot make a read-only mount here: " << probe.output;
     const auto run = testing_util::run_shell(bind);
     EXPECT_TRUE(contains(run.output, "exit=0")) << run.output;
-    EXPECT_TRUE(contains(run.output, "3 scans (0 registered, 0 flagged, 0 failed, 3 queued")) << run.output;
+    EXPECT_TRUE(contains(run.output, "3 scans (0 registered, 0 flagged, 0 failed, 3 queued"))
+        << run.output;
 }
 
 TEST_F(SessionCli, ExportLeavesExcludedScansOutOfTheGroupChoice) {

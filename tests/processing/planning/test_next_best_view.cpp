@@ -16,10 +16,9 @@ const Eigen::Vector3d kSize(1.2, 0.6, 0.5);
 Mesh box_mesh() {
     Mesh mesh;
     for (int i = 0; i < 8; ++i)
-        mesh.vertices.positions.emplace_back(
-            static_cast<float>((i & 1 ? 0.5 : -0.5) * kSize.x()),
-            static_cast<float>((i & 2 ? 0.5 : -0.5) * kSize.y()),
-            static_cast<float>(i & 4 ? kSize.z() : 0.0));
+        mesh.vertices.positions.emplace_back(static_cast<float>((i & 1 ? 0.5 : -0.5) * kSize.x()),
+                                             static_cast<float>((i & 2 ? 0.5 : -0.5) * kSize.y()),
+                                             static_cast<float>(i & 4 ? kSize.z() : 0.0));
     mesh.triangles = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
                       {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
     return mesh;
@@ -27,7 +26,8 @@ Mesh box_mesh() {
 
 void add_face(CoverageReport& r, Face face, bool observed) {
     const double step = 0.02;
-    const int axis = face == kTop || face == kBottom ? 2 : (face == kPlusX || face == kMinusX ? 0 : 1);
+    const int axis =
+        face == kTop || face == kBottom ? 2 : (face == kPlusX || face == kMinusX ? 0 : 1);
     const double sign = face == kPlusX || face == kPlusY || face == kTop ? 1.0 : -1.0;
     const int u = (axis + 1) % 3, v = (axis + 2) % 3;
     for (double a = step / 2; a < kSize[u]; a += step)
@@ -48,7 +48,8 @@ CoverageReport block_coverage(const std::array<bool, kFaces>& observed, bool wit
     r.status = CoverageStatus::kOk;
     r.surface = box_mesh();
     for (int f = 0; f < kFaces; ++f) add_face(r, static_cast<Face>(f), observed[f]);
-    r.surface_area_m2 = 2.0 * (kSize.x() * kSize.y() + kSize.x() * kSize.z() + kSize.y() * kSize.z());
+    r.surface_area_m2 =
+        2.0 * (kSize.x() * kSize.y() + kSize.x() * kSize.z() + kSize.y() * kSize.z());
     std::size_t seen = 0;
     for (SampleState s : r.sample_states) seen += s == SampleState::kObserved ? 1 : 0;
     r.fraction = static_cast<double>(seen) / static_cast<double>(r.sample_states.size());
@@ -57,8 +58,8 @@ CoverageReport block_coverage(const std::array<bool, kFaces>& observed, bool wit
 }
 
 bool outside_box(const Eigen::Vector3d& p, double margin) {
-    return std::abs(p.x()) > 0.5 * kSize.x() + margin || std::abs(p.y()) > 0.5 * kSize.y() + margin ||
-           p.z() > kSize.z() + margin;
+    return std::abs(p.x()) > 0.5 * kSize.x() + margin ||
+           std::abs(p.y()) > 0.5 * kSize.y() + margin || p.z() > kSize.z() + margin;
 }
 
 TEST(NextBestView, AimsAtTheUnseenSideFromWhereAnOperatorCanStand) {
@@ -91,9 +92,11 @@ TEST(NextBestView, WalksOnFromWhereTheModelWasScanned) {
         plan_next_view(block_coverage({true, false, false, false, true, false}), config);
     ASSERT_EQ(view.advice, NextViewAdvice::kScan) << view.hint;
     const Eigen::Vector3d centre(0.0, 0.0, 0.25);
-    const double step = std::acos((view.sensor_world_m - centre).normalized().dot(
-                                      (config.scanner_positions_world[0] - centre).normalized())) *
-                        180.0 / 3.14159265358979;
+    const double step =
+        std::acos((view.sensor_world_m - centre)
+                      .normalized()
+                      .dot((config.scanner_positions_world[0] - centre).normalized())) *
+        180.0 / 3.14159265358979;
     EXPECT_LE(step, 40.0 + 1e-6);
 }
 

@@ -118,7 +118,7 @@ struct FieldViewState {
 enum class BannerKind {
     kCaptureFailed,  ///< The last capture failed: device gone, disk full, ... (red).
     kFailed,         ///< The newest registration outcome is a failure (red).
-    kSplit,  ///< The registered scans sit in more than one group: the model is split (amber).
+    kSplit,     ///< The registered scans sit in more than one group: the model is split (amber).
     kDisagree,  ///< Scans contradicted their group and were taken out of the model (red).
 };
 

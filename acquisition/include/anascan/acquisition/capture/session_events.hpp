@@ -16,10 +16,10 @@ enum class SessionEventKind {
     kRegistrationFailed,  ///< A scan could not be placed (state failed).
     /// A registered scan contradicts its group and was taken out (state flagged).
     kRegistrationFlagged,
-    kPosesRefined,        ///< Background refinement or a group merge moved some poses.
-    kCoverage,            ///< Coverage was recomputed.
-    kDeviceError,         ///< A capture failed (unplugged, timeout, invalid setting).
-    kDeviceBack,          ///< The device could be opened again after an error.
+    kPosesRefined,  ///< Background refinement or a group merge moved some poses.
+    kCoverage,      ///< Coverage was recomputed.
+    kDeviceError,   ///< A capture failed (unplugged, timeout, invalid setting).
+    kDeviceBack,    ///< The device could be opened again after an error.
 };
 
 /// Short name ("saved", "registration-failed", ...), for logs and the events table.

@@ -100,7 +100,7 @@ struct CoverageReport {
     /// ground, world frame, normal up (toward the stone). Absent when no view showed one, and
     /// for compute_coverage_on_surface.
     std::optional<Plane> ground_world;
-    std::string message;                     ///< Why, when not kOk.
+    std::string message;  ///< Why, when not kOk.
 };
 
 /// Estimates the stone's surface from the scans and measures its coverage. Per scan, the

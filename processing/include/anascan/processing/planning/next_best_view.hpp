@@ -51,12 +51,12 @@ struct NextViewConfig {
     /// Planned at a smaller incidence than the criterion's, as a margin for the operator
     /// placing the scanner by eye.
     double planning_incidence_margin_deg = 5.0;
-    int azimuth_steps = 24;       ///< Directions around each aim point.
-    int elevation_steps = 7;      ///< From -15° to 75° above the horizontal.
-    int standoff_steps = 3;       ///< Between min and max standoff.
-    std::size_t max_aim_points = 8;      ///< Largest holes aimed at (plus all unseen's centre).
-    std::size_t max_samples = 6000;      ///< Unobserved samples evaluated (evenly thinned).
-    double min_gain_fraction = 0.003;    ///< Below this, no view on this side is worth it.
+    int azimuth_steps = 24;            ///< Directions around each aim point.
+    int elevation_steps = 7;           ///< From -15° to 75° above the horizontal.
+    int standoff_steps = 3;            ///< Between min and max standoff.
+    std::size_t max_aim_points = 8;    ///< Largest holes aimed at (plus all unseen's centre).
+    std::size_t max_samples = 6000;    ///< Unobserved samples evaluated (evenly thinned).
+    double min_gain_fraction = 0.003;  ///< Below this, no view on this side is worth it.
     /// Of what a planned view observes, at least this much must be observed already, so that
     /// the new scan registers to the model (a view of only the unseen joins nothing).
     double min_overlap_fraction = 0.4;
@@ -86,10 +86,10 @@ struct PlanningFrame {
 };
 
 enum class NextViewAdvice {
-    kScan,          ///< Scan from the proposed view.
-    kTurnOver,      ///< Nothing worth scanning is left on this side: turn the stone over.
-    kDone,          ///< No unobserved area is left that any view could add.
-    kNoCoverage,    ///< The coverage report is not usable (no surface).
+    kScan,        ///< Scan from the proposed view.
+    kTurnOver,    ///< Nothing worth scanning is left on this side: turn the stone over.
+    kDone,        ///< No unobserved area is left that any view could add.
+    kNoCoverage,  ///< The coverage report is not usable (no surface).
 };
 
 struct NextView {
@@ -104,9 +104,9 @@ struct NextView {
     /// from this side can (the face it rests on, what lies under overhangs).
     double visible_now_area_m2 = 0.0;
     double after_turn_area_m2 = 0.0;
-    double standoff_m = 0.0;       ///< Sensor to aim point.
-    double height_m = 0.0;         ///< Sensor above the ground.
-    std::size_t candidates = 0;    ///< Poses evaluated.
+    double standoff_m = 0.0;     ///< Sensor to aim point.
+    double height_m = 0.0;       ///< Sensor above the ground.
+    std::size_t candidates = 0;  ///< Poses evaluated.
     PlanningFrame frame;
     std::string hint;  ///< In the operator's words, with the gain in percent.
 };
