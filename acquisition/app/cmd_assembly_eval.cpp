@@ -39,6 +39,56 @@ std::map<std::string, TrueBlock> true_blocks(const json& truth) {
     return out;
 }
 
+/// The first fixed block of the assembly: the frame both sides are compared in.
+std::string anchor_block(const json& placed) {
+    for (const json& b : placed)
+        if (b.at("fixed").get<bool>()) return b.at("id").get<std::string>();
+    return {};
+}
+
+struct BlockErrors {
+    json per = json::array();
+    double worst_rot_deg = 0.0, worst_trans_m = 0.0;
+};
+
+/// Each block's pose relative to the anchor, against the truth's (translation at its centre).
+BlockErrors block_errors(const json& placed, const std::map<std::string, TrueBlock>& blocks,
+                         const std::string& anchor, const std::string& truth_path) {
+    Pose T_anchor = Pose::Identity();
+    for (const json& b : placed)
+        if (b.at("id") == anchor) T_anchor = pose_from_rows(b.at("T_assembly_model"));
+    BlockErrors out;
+    for (const json& b : placed) {
+        const std::string id = b.at("id").get<std::string>();
+        if (!blocks.contains(id))
+            fail_command({ErrorCode::kFormat, truth_path + ": no block " + id});
+        const Pose truth_rel = blocks.at(anchor).T_truth.inverse() * blocks.at(id).T_truth;
+        const Pose rel = T_anchor.inverse() * pose_from_rows(b.at("T_assembly_model"));
+        const Pose E = truth_rel.inverse() * rel;
+        const Eigen::Vector3d c = blocks.at(id).centre_model;
+        const double rot = rotation_angle_deg(E), trans = (E * c - c).norm();
+        out.worst_rot_deg = std::max(out.worst_rot_deg, rot);
+        out.worst_trans_m = std::max(out.worst_trans_m, trans);
+        out.per.push_back(
+            {{"id", id}, {"rotation_error_deg", rot}, {"translation_error_mm", 1e3 * trans}});
+    }
+    return out;
+}
+
+void print_errors(const json& out) {
+    for (const json& b : out.at("blocks"))
+        std::printf("%-8s rotation %.3f deg, centre %.2f mm\n", b["id"].get<std::string>().c_str(),
+                    b["rotation_error_deg"].get<double>(), b["translation_error_mm"].get<double>());
+    std::printf(
+        "%zu blocks against the truth (relative to %s): worst %.3f deg, %.2f mm; penetration "
+        "max %.3f mm, mean %.3f mm; status %s\n",
+        out.at("blocks").size(), out.at("fixed").get<std::string>().c_str(),
+        out.at("worst_rotation_error_deg").get<double>(),
+        out.at("worst_translation_error_mm").get<double>(),
+        out.at("penetration_max_mm").get<double>(), out.at("penetration_mean_mm").get<double>(),
+        out.at("status").get<std::string>().c_str());
+}
+
 }  // namespace
 
 void run_assembly_eval(const std::string& dir, const std::string& truth_path, bool as_json) {
@@ -49,53 +99,22 @@ void run_assembly_eval(const std::string& dir, const std::string& truth_path, bo
     try {
         const auto blocks = true_blocks(*truth);
         const json& placed = report->at("blocks");
-        std::string anchor;
-        for (const json& b : placed)
-            if (b.at("fixed").get<bool>() && anchor.empty()) anchor = b.at("id").get<std::string>();
+        const std::string anchor = anchor_block(placed);
         if (!blocks.contains(anchor))
             fail_command({ErrorCode::kFormat, truth_path + ": no block " + anchor});
-        Pose T_anchor = Pose::Identity();
-        for (const json& b : placed)
-            if (b.at("id") == anchor) T_anchor = pose_from_rows(b.at("T_assembly_model"));
-        json per = json::array();
-        double worst_rot = 0.0, worst_trans = 0.0;
-        for (const json& b : placed) {
-            const std::string id = b.at("id").get<std::string>();
-            if (!blocks.contains(id))
-                fail_command({ErrorCode::kFormat, truth_path + ": no block " + id});
-            const Pose truth_rel = blocks.at(anchor).T_truth.inverse() * blocks.at(id).T_truth;
-            const Pose rel = T_anchor.inverse() * pose_from_rows(b.at("T_assembly_model"));
-            const Pose E = truth_rel.inverse() * rel;
-            const Eigen::Vector3d c = blocks.at(id).centre_model;
-            const double rot = rotation_angle_deg(E), trans = (E * c - c).norm();
-            worst_rot = std::max(worst_rot, rot), worst_trans = std::max(worst_trans, trans);
-            per.push_back(
-                {{"id", id}, {"rotation_error_deg", rot}, {"translation_error_mm", 1e3 * trans}});
-        }
+        const BlockErrors errors = block_errors(placed, blocks, anchor, truth_path);
         const json& check = report->at("check");
         const json out{{"status", report->at("status")},
                        {"fixed", anchor},
-                       {"blocks", per},
-                       {"worst_rotation_error_deg", worst_rot},
-                       {"worst_translation_error_mm", 1e3 * worst_trans},
+                       {"blocks", errors.per},
+                       {"worst_rotation_error_deg", errors.worst_rot_deg},
+                       {"worst_translation_error_mm", 1e3 * errors.worst_trans_m},
                        {"penetration_max_mm", check.at("penetration_max_mm")},
                        {"penetration_mean_mm", check.at("penetration_mean_mm")}};
-        if (as_json) {
+        if (as_json)
             std::printf("%s\n", out.dump(1).c_str());
-            return;
-        }
-        for (const json& b : per)
-            std::printf("%-8s rotation %.3f deg, centre %.2f mm\n",
-                        b["id"].get<std::string>().c_str(), b["rotation_error_deg"].get<double>(),
-                        b["translation_error_mm"].get<double>());
-        std::printf(
-            "%zu blocks against the truth (relative to %s): worst %.3f deg, %.2f mm; penetration "
-            "max %.3f mm, "
-            "mean %.3f mm; status %s\n",
-            per.size(), anchor.c_str(), worst_rot, 1e3 * worst_trans,
-            check.at("penetration_max_mm").get<double>(),
-            check.at("penetration_mean_mm").get<double>(),
-            report->at("status").get<std::string>().c_str());
+        else
+            print_errors(out);
     } catch (const json::exception& e) {
         fail_command(
             {ErrorCode::kFormat, dir + "/assembly.json / " + truth_path + ": " + e.what()});

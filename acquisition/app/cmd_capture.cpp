@@ -205,6 +205,34 @@ void print_plan_times(const std::vector<double>& times_s) {
     std::printf("guided tour: %zu hints, each planned in at most %.2f s\n", times_s.size(), worst);
 }
 
+/// The views of the session from `already` on, as the fixed tour, the guided operator or a
+/// real scanner's operator takes them; the error that stopped them, if any.
+std::optional<Error> capture_views(CaptureSession& session, const CaptureOptions& o,
+                                   const std::string& uri, int already) {
+    const scanner_sources::SimulatedTour tour = simulated_tour(o);
+    const bool simulated = scanner_sources::is_simulated(uri);
+    const bool guided = simulated && o.tour == "guided";
+    GuidedOperator guide(tour, o.target_coverage_percent / 100.0);
+    std::optional<Error> stopped;
+    for (int i = already; i < o.views && !stopped && !g_interrupted; ++i) {
+        if (!simulated && !operator_ready(i, o.views)) break;
+        std::optional<acquisition::CaptureRequest> request;
+        if (guided) {
+            request = guide.next(session, i);
+            if (!request) break;
+        } else {
+            if (scanner_sources::tour_turns_over_before(tour, i))
+                std::printf("the stone is turned over before view %d\n", i + 1);
+            request = scanner_sources::tour_request(tour, i);
+        }
+        stopped = capture_view(session, *request, o.reconnect_timeout_s);
+        if (simulated && !stopped && i + 1 < o.views && o.operator_pause_s > 0.0)
+            operator_pause(o.operator_pause_s);
+    }
+    if (guided) print_plan_times(guide.plan_times_s());
+    return stopped;
+}
+
 void run_capture(const CaptureOptions& o) {
     const std::string uri = device_uri(o);
     const scanner_sources::ScannerSource source{
@@ -218,7 +246,6 @@ void run_capture(const CaptureOptions& o) {
     const int already = static_cast<int>(existing->size());
     if (already > 0) confirm_same_stone(**store, o, uri);
 
-    const scanner_sources::SimulatedTour tour = simulated_tour(o);
     acquisition::CaptureSessionConfig config{.register_live = !o.no_register,
                                              .coverage_live = !o.no_coverage};
     auto session = CaptureSession::start(std::move(*store), config, printing_sink());
@@ -227,27 +254,8 @@ void run_capture(const CaptureOptions& o) {
     if (already > 0)
         std::printf("session %s has %d scans: resuming at view %d of %d\n", o.session.c_str(),
                     already, std::min(already, o.views) + 1, o.views);
-    std::optional<Error> stopped;
-    const bool simulated = scanner_sources::is_simulated(uri);
-    const bool guided = simulated && o.tour == "guided";
-    GuidedOperator guide(tour, o.target_coverage_percent / 100.0);
-    const InterruptGuard interrupt_guard;
-    for (int i = already; i < o.views && !stopped && !g_interrupted; ++i) {
-        if (!simulated && !operator_ready(i, o.views)) break;
-        std::optional<acquisition::CaptureRequest> request;
-        if (guided) {
-            request = guide.next(**session, i);
-            if (!request) break;
-        } else {
-            if (scanner_sources::tour_turns_over_before(tour, i))
-                std::printf("the stone is turned over before view %d\n", i + 1);
-            request = scanner_sources::tour_request(tour, i);
-        }
-        stopped = capture_view(**session, *request, o.reconnect_timeout_s);
-        if (simulated && !stopped && i + 1 < o.views && o.operator_pause_s > 0.0)
-            operator_pause(o.operator_pause_s);
-    }
-    if (guided) print_plan_times(guide.plan_times_s());
+    const InterruptGuard interrupt_guard;  // Ctrl-C stops after the scan in flight, until the end.
+    const std::optional<Error> stopped = capture_views(**session, o, uri, already);
     spdlog::info("capture done; waiting for registration to catch up");
     (*session)->wait_until_idle();
     if (!o.no_register && !o.no_coverage) store_final_coverage((*session)->store());
@@ -255,6 +263,32 @@ void run_capture(const CaptureOptions& o) {
     if (stopped) throw CommandFailed("capture stopped: " + stopped->message);
     if (g_interrupted) throw_interrupted((*session)->store(), o);
     if (!o.no_register) check_joined((*session)->store());
+}
+
+/// How the simulated operator walks (simulated devices only; a real scanner's operator
+/// places it by hand).
+void add_simulated_operator_options(CLI::App& cmd, CaptureOptions& opts) {
+    cmd.add_option("--flip-after", opts.flip_after,
+                   "Simulated operator turns the stone over after this many views "
+                   "(default: half; 0: never)")
+        ->check(CLI::Range(0, 10000));
+    cmd.add_option("--distance-m", opts.distance_m,
+                   "Simulated structured-light head to the block, m (default 1.1)")
+        ->check(CLI::Range(0.5, 3.0));
+    cmd.add_option("--tour-seed", opts.tour_seed, "Seed of the simulated operator's jitter");
+    cmd.add_option("--tour", opts.tour,
+                   "Simulated operator: 'fixed' walks around the block (--views, "
+                   "--flip-after); 'guided' follows the next-best-view hints after each scan, "
+                   "turns the stone over when they say so, and stops at --target-coverage or "
+                   "after --views")
+        ->check(CLI::IsMember({"fixed", "guided"}));
+    cmd.add_option("--target-coverage", opts.target_coverage_percent,
+                   "Guided tour: stop once the coverage reaches this, percent (default 99)")
+        ->check(CLI::Range(1.0, 100.0));
+    cmd.add_option("--operator-pause-s", opts.operator_pause_s,
+                   "Simulated operator: seconds spent walking to the next view after each "
+                   "scan (default 0: back to back, the registration queue's worst case)")
+        ->check(CLI::Range(0.0, 600.0));
 }
 
 }  // namespace
@@ -271,23 +305,7 @@ void add_capture_command(CLI::App& app) {
                     "Scene of a simulated device (anascan sim list-scenes)");
     cmd->add_option("--views", opts->views, "Views in the whole session (default 24)")
         ->check(CLI::Range(1, 10000));
-    cmd->add_option("--flip-after", opts->flip_after,
-                    "Simulated operator turns the stone over after this many views "
-                    "(default: half; 0: never)")
-        ->check(CLI::Range(0, 10000));
-    cmd->add_option("--distance-m", opts->distance_m,
-                    "Simulated structured-light head to the block, m (default 1.1)")
-        ->check(CLI::Range(0.5, 3.0));
-    cmd->add_option("--tour-seed", opts->tour_seed, "Seed of the simulated operator's jitter");
-    cmd->add_option("--tour", opts->tour,
-                    "Simulated operator: 'fixed' walks around the block (--views, "
-                    "--flip-after); 'guided' follows the next-best-view hints after each scan, "
-                    "turns the stone over when they say so, and stops at --target-coverage or "
-                    "after --views")
-        ->check(CLI::IsMember({"fixed", "guided"}));
-    cmd->add_option("--target-coverage", opts->target_coverage_percent,
-                    "Guided tour: stop once the coverage reaches this, percent (default 99)")
-        ->check(CLI::Range(1.0, 100.0));
+    add_simulated_operator_options(*cmd, *opts);
     cmd->add_option("--exposure-us", opts->settings.exposure_us, "Device exposure, microseconds");
     cmd->add_option("--angular-step-deg", opts->settings.angular_step_deg,
                     "Terrestrial scanner angular step, degrees");
@@ -300,10 +318,6 @@ void add_capture_command(CLI::App& app) {
     cmd->add_option("--reconnect-timeout-s", opts->reconnect_timeout_s,
                     "How long to wait for a device that went away, s (default 10)")
         ->check(CLI::Range(0.0, 3600.0));
-    cmd->add_option("--operator-pause-s", opts->operator_pause_s,
-                    "Simulated operator: seconds spent walking to the next view after each "
-                    "scan (default 0: back to back, the registration queue's worst case)")
-        ->check(CLI::Range(0.0, 600.0));
     cmd->add_option("--sim-unplug-after", opts->sim_unplug_after,
                     "Fault injection: the simulated device is unplugged during the capture "
                     "after this many")

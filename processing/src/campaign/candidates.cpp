@@ -14,38 +14,15 @@
 namespace anascan {
 namespace {
 
-struct Entry {
-    std::uint64_t key = 0;
-    std::uint32_t scan = 0;
-    bool operator<(const Entry& o) const { return key != o.key ? key < o.key : scan < o.scan; }
-};
+using detail::IndexEntry;
 
-std::vector<Entry> index_entries(const std::vector<std::vector<std::uint64_t>>& keys) {
-    std::vector<Entry> entries;
+std::vector<IndexEntry> index_entries(const std::vector<std::vector<std::uint64_t>>& keys) {
+    std::vector<IndexEntry> entries;
     for (std::size_t i = 0; i < keys.size(); ++i) {
         for (std::uint64_t k : keys[i]) entries.push_back({k, static_cast<std::uint32_t>(i)});
     }
     tbb::parallel_sort(entries.begin(), entries.end());
     return entries;
-}
-
-void add_votes(const std::vector<Entry>& entries, std::size_t max_holders,
-               detail::PairVotes& votes) {
-    const double n = static_cast<double>(votes.n);
-    for (std::size_t lo = 0; lo < entries.size();) {
-        std::size_t hi = lo + 1;
-        while (hi < entries.size() && entries[hi].key == entries[lo].key) ++hi;
-        const std::size_t holders = hi - lo;
-        if (holders >= 2 && holders <= max_holders) {
-            const auto weight = static_cast<float>(std::log(n / static_cast<double>(holders)));
-            for (std::size_t a = lo; a < hi; ++a) {
-                for (std::size_t b = a + 1; b < hi; ++b) {
-                    votes.at(entries[a].scan, entries[b].scan) += weight;
-                }
-            }
-        }
-        lo = hi;
-    }
 }
 
 }  // namespace
@@ -61,7 +38,7 @@ std::vector<CandidatePair> propose_candidates(const std::vector<std::vector<std:
     for (std::size_t i = 0; i < n; ++i) {
         votes.key_count[i] = static_cast<std::uint32_t>(keys[i].size());
     }
-    add_votes(index_entries(keys), config.max_scans_per_key, votes);
+    votes.add_shared_keys(index_entries(keys), config.max_scans_per_key);
     std::vector<std::vector<std::size_t>> similar(n);
     tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) {
         if (votes.key_count[i] > 0)

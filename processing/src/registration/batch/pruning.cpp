@@ -101,13 +101,6 @@ std::vector<std::uint64_t> scan_keys(const FeaturePatchResult& patches, double m
 // The inverted index, one bucket of keys at a time: (key, scan) entries partitioned by a
 // hash of the key, in memory (one bucket) or in files in the spill directory (one per 32
 // scans), so that only one bucket's entries are in memory while votes are counted.
-struct IndexEntry {
-    std::uint64_t key = 0;
-    std::uint32_t scan = 0;
-    std::uint32_t unused = 0;  // Written to files: no uninitialised padding.
-    bool operator<(const IndexEntry& o) const { return key != o.key ? key < o.key : scan < o.scan; }
-};
-
 constexpr std::size_t kScansPerBucket = 32;
 
 struct FileCloser {
@@ -212,27 +205,23 @@ void collect_keys(PreparedScans& scans, KeyBuckets& buckets, PairVotes& votes) {
     }
 }
 
-// Adds the idf weight of every key held by 2..kMaxScansPerKey scans to each pair of its
-// holders.
-void count_votes(std::vector<IndexEntry> entries, PairVotes& votes) {
-    const double n = static_cast<double>(votes.n);
-    for (std::size_t lo = 0; lo < entries.size();) {
+}  // namespace
+
+void PairVotes::add_shared_keys(std::span<const IndexEntry> sorted, std::size_t max_holders) {
+    const double scans = static_cast<double>(n);
+    for (std::size_t lo = 0; lo < sorted.size();) {
         std::size_t hi = lo + 1;
-        while (hi < entries.size() && entries[hi].key == entries[lo].key) ++hi;
+        while (hi < sorted.size() && sorted[hi].key == sorted[lo].key) ++hi;
         const std::size_t holders = hi - lo;
-        if (holders >= 2 && holders <= kMaxScansPerKey) {
-            const auto weight = static_cast<float>(std::log(n / static_cast<double>(holders)));
-            for (std::size_t a = lo; a < hi; ++a) {
-                for (std::size_t b = a + 1; b < hi; ++b) {
-                    votes.at(entries[a].scan, entries[b].scan) += weight;
-                }
-            }
+        if (holders >= 2 && holders <= max_holders) {
+            const auto weight = static_cast<float>(std::log(scans / static_cast<double>(holders)));
+            for (std::size_t a = lo; a < hi; ++a)
+                for (std::size_t b = a + 1; b < hi; ++b)
+                    at(sorted[a].scan, sorted[b].scan) += weight;
         }
         lo = hi;
     }
 }
-
-}  // namespace
 
 double PairVotes::similarity(std::size_t i, std::size_t j) const {
     const float v = votes[index(i, j)];
@@ -267,7 +256,8 @@ CandidatePairs candidate_pairs(PreparedScans& scans, const ScanRegistrationConfi
     {
         KeyBuckets buckets(n, scans.spill_directory);
         collect_keys(scans, buckets, votes);
-        for (std::size_t b = 0; b < buckets.count(); ++b) count_votes(buckets.take(b), votes);
+        for (std::size_t b = 0; b < buckets.count(); ++b)
+            votes.add_shared_keys(buckets.take(b), kMaxScansPerKey);
         if (!buckets.error().empty()) {
             if (scans.spill_error.empty()) scans.spill_error = buckets.error();
             return out;  // No candidates: every scan is reported not placed.

@@ -107,6 +107,15 @@ void warn_unconfirmed_scans(ScanRegistrationResult& result);
 void describe_all(PreparedScans& scans, const ScanRegistrationConfig& config,
                   const RegistrationProgress& progress);
 
+/// One key held by one scan, in an inverted index of descriptor keys (sorted by key, then
+/// scan).
+struct IndexEntry {
+    std::uint64_t key = 0;
+    std::uint32_t scan = 0;
+    std::uint32_t unused = 0;  // Written to files: no uninitialised padding.
+    bool operator<(const IndexEntry& o) const { return key != o.key ? key < o.key : scan < o.scan; }
+};
+
 /// Pair pruning's similarity of every two scans: idf-weighted shared feature-triangle
 /// keys (lower triangle, float) and each scan's key count.
 struct PairVotes {
@@ -119,6 +128,9 @@ struct PairVotes {
         return i * (i - 1) / 2 + j;
     }
     float& at(std::size_t i, std::size_t j) { return votes[index(i, j)]; }
+    /// Adds the idf weight log(n / holders) of every key held by 2..max_holders scans to
+    /// each pair of its holders; `sorted` holds every entry of its keys, sorted.
+    void add_shared_keys(std::span<const IndexEntry> sorted, std::size_t max_holders);
     /// votes / sqrt(keys_i keys_j); 0 when they share no informative key.
     double similarity(std::size_t i, std::size_t j) const;
     /// Scan i's `count` most similar scans j (similarity > 0) with `eligible(j)`, best
