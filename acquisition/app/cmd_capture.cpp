@@ -16,8 +16,8 @@
 #include <thread>
 
 #include "anascan/acquisition/capture/capture_session.hpp"
+#include "anascan/acquisition/capture/stone_check.hpp"
 #include "anascan/acquisition/coverage/session_coverage.hpp"
-#include "anascan/acquisition/store/stone_check.hpp"
 #include "anascan/drivers/scanner.hpp"
 #include "anascan/scanner_sources/scanner_source.hpp"
 #include "capture_summary.hpp"
@@ -135,24 +135,50 @@ std::optional<Error> capture_view(CaptureSession& session,
     }
 }
 
-/// Asks before scans of another stone join an existing session: at a terminal the
-/// operator answers; otherwise the capture refuses unless --mix-stones is given.
-void confirm_same_stone(const acquisition::SessionStore& store, const CaptureOptions& o,
-                        const std::string& uri) {
-    auto devices = store.devices();
-    if (!devices) fail_command(devices.error());
-    const auto reason = acquisition::another_stone_reason(*devices, uri);
-    if (!reason || o.mix_stones) return;
-    const std::string what = o.session + ": another stone? " + *reason;
-    if (::isatty(STDIN_FILENO) == 0)
-        throw CommandFailed(what +
-                            ". Use a new --session for a new stone, or --mix-stones to "
-                            "add these scans anyway");
+/// At a terminal the operator answers; without one nobody can, and the answer is no.
+bool operator_accepts_other_stone(const std::string& what) {
+    if (::isatty(STDIN_FILENO) == 0) return false;
     std::printf("%s.\nadd the new scans to this session anyway? [y/N] ", what.c_str());
     std::fflush(stdout);
     std::string answer;
-    if (!std::getline(std::cin, answer) || (answer != "y" && answer != "yes"))
-        throw CommandFailed(o.session + ": nothing added; use a new --session for a new stone");
+    return std::getline(std::cin, answer) && (answer == "y" || answer == "yes");
+}
+
+/// The first scan added to a session with a model, once registered: a scan that joined
+/// no part of the stone and shows another object is asked about (refused without a
+/// terminal, unless --mix-stones); a refused scan is excluded (kept on disk) and the
+/// capture ends. Returns the line for the summary when the scan did not join.
+std::string confirm_same_stone(CaptureSession& session, const CaptureOptions& o,
+                               const std::string& uri) {
+    auto scans = session.store().scans();
+    if (!scans || scans->empty()) return {};
+    const std::int64_t seq = scans->back().seq;
+    auto check = acquisition::check_stone_of_scan(session.store(), seq);
+    if (!check) {
+        spdlog::warn("could not compare scan {} with the stone: {}", seq, check.error().message);
+        return {};
+    }
+    using acquisition::StoneCheckOutcome;
+    if (check->outcome == StoneCheckOutcome::kJoined ||
+        check->outcome == StoneCheckOutcome::kNoModel)
+        return {};
+    (void)session.store().add_event("stone-check", uri,
+                                    std::string(to_string(check->outcome)) + ": " + check->message);
+    if (check->outcome != StoneCheckOutcome::kOtherStone) {
+        std::printf("%s\n", check->message.c_str());
+        return check->message;
+    }
+    const std::string what = o.session + ": another stone? " + check->message;
+    if (o.mix_stones || operator_accepts_other_stone(what)) {
+        std::printf("%s; added anyway%s\n", what.c_str(), o.mix_stones ? " (--mix-stones)" : "");
+        return what;
+    }
+    (void)session.exclude(seq, true);
+    session.wait_until_idle();
+    throw CommandFailed(what + ". Scan " + std::to_string(seq) +
+                        " is kept on disk but excluded, nothing was mixed into the model. "
+                        "Use a new --session for a new stone, or --mix-stones to add these "
+                        "scans anyway");
 }
 
 /// The simulated operator walks on for the pause, unless Ctrl-C comes first.
@@ -205,16 +231,16 @@ void print_plan_times(const std::vector<double>& times_s) {
     std::printf("guided tour: %zu hints, each planned in at most %.2f s\n", times_s.size(), worst);
 }
 
-/// The views of the session from `already` on, as the fixed tour, the guided operator or a
-/// real scanner's operator takes them; the error that stopped them, if any.
+/// Views `from` to `to` (exclusive) of the session, as the fixed tour, the guided operator or
+/// a real scanner's operator takes them; the error that stopped them, if any.
 std::optional<Error> capture_views(CaptureSession& session, const CaptureOptions& o,
-                                   const std::string& uri, int already) {
+                                   const std::string& uri, GuidedOperator& guide, int from,
+                                   int to) {
     const scanner_sources::SimulatedTour tour = simulated_tour(o);
     const bool simulated = scanner_sources::is_simulated(uri);
     const bool guided = simulated && o.tour == "guided";
-    GuidedOperator guide(tour, o.target_coverage_percent / 100.0);
     std::optional<Error> stopped;
-    for (int i = already; i < o.views && !stopped && !g_interrupted; ++i) {
+    for (int i = from; i < to && !stopped && !g_interrupted; ++i) {
         if (!simulated && !operator_ready(i, o.views)) break;
         std::optional<acquisition::CaptureRequest> request;
         if (guided) {
@@ -229,7 +255,26 @@ std::optional<Error> capture_views(CaptureSession& session, const CaptureOptions
         if (simulated && !stopped && i + 1 < o.views && o.operator_pause_s > 0.0)
             operator_pause(o.operator_pause_s);
     }
-    if (guided) print_plan_times(guide.plan_times_s());
+    return stopped;
+}
+
+/// All views from `already` on; the first one added to a session that has scans is
+/// registered and checked against the stone before the others (see confirm_same_stone).
+std::optional<Error> capture_all_views(CaptureSession& session, const CaptureOptions& o,
+                                       const std::string& uri, int already,
+                                       std::string& stone_note) {
+    GuidedOperator guide(simulated_tour(o), o.target_coverage_percent / 100.0);
+    int from = already;
+    if (already > 0 && !o.no_register && already < o.views) {
+        const auto stopped = capture_views(session, o, uri, guide, already, already + 1);
+        if (stopped || g_interrupted) return stopped;
+        session.wait_until_idle();
+        stone_note = confirm_same_stone(session, o, uri);
+        from = already + 1;
+    }
+    const auto stopped = capture_views(session, o, uri, guide, from, o.views);
+    if (scanner_sources::is_simulated(uri) && o.tour == "guided")
+        print_plan_times(guide.plan_times_s());
     return stopped;
 }
 
@@ -244,7 +289,6 @@ void run_capture(const CaptureOptions& o) {
     auto existing = (*store)->scans();
     if (!existing) fail_command(existing.error());
     const int already = static_cast<int>(existing->size());
-    if (already > 0) confirm_same_stone(**store, o, uri);
 
     acquisition::CaptureSessionConfig config{.register_live = !o.no_register,
                                              .coverage_live = !o.no_coverage};
@@ -255,11 +299,13 @@ void run_capture(const CaptureOptions& o) {
         std::printf("session %s has %d scans: resuming at view %d of %d\n", o.session.c_str(),
                     already, std::min(already, o.views) + 1, o.views);
     const InterruptGuard interrupt_guard;  // Ctrl-C stops after the scan in flight, until the end.
-    const std::optional<Error> stopped = capture_views(**session, o, uri, already);
+    std::string stone_note;
+    const std::optional<Error> stopped = capture_all_views(**session, o, uri, already, stone_note);
     spdlog::info("capture done; waiting for registration to catch up");
     (*session)->wait_until_idle();
     if (!o.no_register && !o.no_coverage) store_final_coverage((*session)->store());
     print_capture_summary((*session)->store());
+    if (!stone_note.empty()) std::printf("stone check: %s\n", stone_note.c_str());
     if (stopped) throw CommandFailed("capture stopped: " + stopped->message);
     if (g_interrupted) throw_interrupted((*session)->store(), o);
     if (!o.no_register) check_joined((*session)->store());
@@ -313,8 +359,9 @@ void add_capture_command(CLI::App& app) {
     cmd->add_flag("--no-register", opts->no_register, "Only capture and save (register later)");
     cmd->add_flag("--no-coverage", opts->no_coverage, "No live coverage");
     cmd->add_flag("--mix-stones", opts->mix_stones,
-                  "Add to an existing session even when its scans show another stone "
-                  "(default: ask, or refuse without a terminal)");
+                  "Add to an existing session even when its first new scan joins no part "
+                  "of the stone and its size or surface shows another object (default: "
+                  "ask, or refuse without a terminal)");
     cmd->add_option("--reconnect-timeout-s", opts->reconnect_timeout_s,
                     "How long to wait for a device that went away, s (default 10)")
         ->check(CLI::Range(0.0, 3600.0));

@@ -6,4 +6,5 @@ list(APPEND ANASCAN_ACQUISITION_SOURCES
     src/capture/register.cpp
     src/capture/save.cpp
     src/capture/scanner.cpp
+    src/capture/stone_check.cpp
 )

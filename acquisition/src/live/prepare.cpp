@@ -139,3 +139,13 @@ std::string rejection(const FineRegistrationResult& fine, const LiveRegistration
 }
 
 }  // namespace anascan::acquisition::live
+
+namespace anascan::acquisition {
+
+Expected<PointCloud> reduce_to_stone(LiveScanInput scan, const LiveRegistrationConfig& config) {
+    live::Prepared prepared = live::prepare_scan(std::move(scan), config);
+    if (!prepared.problem.empty()) return fail(ErrorCode::kInvalidArgument, prepared.problem);
+    return std::move(prepared.entry.cloud);
+}
+
+}  // namespace anascan::acquisition

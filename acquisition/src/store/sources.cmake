@@ -10,5 +10,4 @@ list(APPEND ANASCAN_ACQUISITION_SOURCES
     src/store/session_json.cpp
     src/store/session_store.cpp
     src/store/session_truth.cpp
-    src/store/stone_check.cpp
 )

@@ -6,4 +6,5 @@ list(APPEND ANASCAN_PROCESSING_SOURCES
     src/evaluation/pose_evaluation.cpp
     src/evaluation/pose_sampling.cpp
     src/evaluation/scan_agreement.cpp
+    src/evaluation/stone_identity.cpp
 )

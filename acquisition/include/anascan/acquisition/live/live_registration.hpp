@@ -45,6 +45,7 @@
 
 #include "anascan/processing/cleaning/normals.hpp"
 #include "anascan/processing/cleaning/plane_removal.hpp"
+#include "anascan/processing/core/expected.hpp"
 #include "anascan/processing/core/point_cloud.hpp"
 #include "anascan/processing/core/pose.hpp"
 #include "anascan/processing/evaluation/group_consistency.hpp"
@@ -344,6 +345,11 @@ struct LiveModelScan {
     Pose T_group_scan = Pose::Identity();
     Eigen::Vector3d sensor_origin_scan_m = Eigen::Vector3d::Zero();
 };
+
+/// The reduced, stone-only copy `add` keeps of a scan, in the scan's frame (down-sampled,
+/// normals toward the sensor, the ground removed), or why the scan is not usable
+/// (kInvalidArgument). For checks outside the registrar (another stone in view).
+Expected<PointCloud> reduce_to_stone(LiveScanInput scan, const LiveRegistrationConfig& config = {});
 
 /// The registrar: a single-threaded state machine (see the file comment).
 class LiveRegistrar {

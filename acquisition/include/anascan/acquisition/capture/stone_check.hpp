@@ -1,0 +1,52 @@
+#pragma once
+/// \file
+/// Whether a new scan of a session shows the session's stone: a session documents one
+/// stone, and scans of two stones in one session make a model of neither. Decided from the
+/// scans' geometry only (a real scanner names no stone): a scan the live registrar joined
+/// to the model is of the stone; one that joined nothing is compared with the model by
+/// processing's pose-free size and surface signals (`compare_with_stone`). Used by
+/// `anascan capture` on the first scan it adds to a session that has a model; see
+/// docs/stone-check.md.
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include "anascan/acquisition/live/live_registration.hpp"
+#include "anascan/acquisition/store/session_store.hpp"
+#include "anascan/processing/core/expected.hpp"
+#include "anascan/processing/evaluation/stone_identity.hpp"
+
+namespace anascan::acquisition {
+
+enum class StoneCheckOutcome {
+    kNoModel,     ///< No registered scan before this one: nothing to compare with.
+    kJoined,      ///< The registrar joined the scan to earlier scans: the same stone.
+    kLooksSame,   ///< Not joined, but size and surface fit (the other side, usually).
+    kUndecided,   ///< Not joined; the size fits, the surface could not be compared.
+    kOtherStone,  ///< Not joined, and its size or surface says another object.
+};
+
+/// "no-model", "joined", "looks-same", "undecided", "other-stone".
+const char* to_string(StoneCheckOutcome outcome);
+
+struct StoneCheckConfig {
+    std::size_t max_model_scans = 8;  ///< Model scans compared (spread over the capture order).
+    StoneIdentityConfig identity{};
+    LiveRegistrationConfig registration{};  ///< Its `prepare` reduces the scans.
+};
+
+struct StoneCheck {
+    StoneCheckOutcome outcome = StoneCheckOutcome::kNoModel;
+    std::int64_t seq = 0;
+    int model_group = -1;
+    StoneIdentityEvidence evidence;  ///< Filled when the scan was not joined.
+    std::string message;             ///< One line for the operator.
+};
+
+/// Decides for the saved, registered scan `seq` (the registration worker has caught up):
+/// the model is the largest group of the other scans.
+Expected<StoneCheck> check_stone_of_scan(const SessionStore& store, std::int64_t seq,
+                                         const StoneCheckConfig& config = {});
+
+}  // namespace anascan::acquisition

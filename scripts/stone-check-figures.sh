@@ -1,0 +1,68 @@
+#!/usr/bin/env bash
+# The capture's "another stone?" check over the simulated scenes, both simulated devices and
+# several tour seeds (docs/stone-check.md). For each base session (VIEWS views of one stone)
+# one more view is captured into a copy of it, from: every other stone (other-stone trials),
+# the same stone turned over or on its side, the same stone again (after a pause), and the
+# Stanford bunny through the ptx: device (a real scan of another object). Prints one line per
+# trial and the table of outcomes.
+#
+# usage: scripts/stone-check-figures.sh BUILD_DIR [VIEWS] [SEEDS] [DEVICES]
+#   e.g. scripts/stone-check-figures.sh build 4 "1 2" "sim:structured-light sim:tof"
+set -u
+build=${1:?build dir}
+views=${2:-4}
+seeds=${3:-"1 2"}
+devices=${4:-"sim:structured-light sim:tof"}
+cli="$build/acquisition/anascan"
+[ -x "$cli" ] || cli="$build/anascan"
+[ -x "$cli" ] || { echo "no anascan binary under $build" >&2; exit 1; }
+here=$(cd "$(dirname "$0")" && pwd)
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+bunny=/work/shared/data/stanford-bunny-range-scans/data/bun000.ply
+[ -f "${BUNNY:-$bunny}" ] && mkdir -p "$work/bunny" &&
+    /usr/bin/python3 "$here/bunny-to-ptx.py" "${BUNNY:-$bunny}" "$work/bunny/bun000.ptx"
+
+stones="small-block octagon-block large-block"
+turned_of() { case $1 in large-block) echo large-block-on-side ;; *) echo "$1-turned" ;; esac; }
+
+# trial KIND BASE DEVICE SEED -- capture args: prints "KIND outcome"
+trial() {
+    local kind=$1 base=$2; shift 2
+    rm -rf "$work/t"; cp -r "$base" "$work/t"
+    local out
+    out=$("$cli" capture --session "$work/t" --views $((views + 1)) --no-coverage "$@" </dev/null 2>&1)
+    local outcome=joined
+    if grep -q "another stone?" <<<"$out"; then outcome=asked
+    elif grep -q "stone check:.*its size and surface fit" <<<"$out"; then outcome=looks-same
+    elif grep -q "stone check:.*too few model" <<<"$out"; then outcome=undecided
+    elif ! grep -q "registered scan $((views + 1))" <<<"$out"; then outcome=not-registered
+    fi
+    echo "$kind $outcome"
+}
+
+for device in $devices; do
+    for stone in $stones; do
+        for seed in $seeds; do
+            base="$work/base-$seed"; rm -rf "$base"
+            "$cli" capture --device "$device" --scene "$stone" --session "$base" --views "$views" \
+                --flip-after 0 --tour-seed "$seed" --no-coverage </dev/null >/dev/null 2>&1
+            model=$("$cli" session info "$base" --json 2>/dev/null | /usr/bin/python3 -c \
+                'import json,sys; s=json.load(sys.stdin)["scans"]; print(sum(1 for x in s if x.get("state")=="registered"))' 2>/dev/null)
+            tag="$device $stone seed=$seed model=$model"
+            for other in $stones; do
+                [ "$other" = "$stone" ] && continue
+                echo "$tag other:$other $(trial other "$base" --device "$device" --scene "$other" --tour-seed "$seed" --flip-after 0)"
+            done
+            echo "$tag turned:$(turned_of $stone) $(trial same "$base" --device "$device" --scene "$(turned_of $stone)" --tour-seed "$seed" --flip-after 0)"
+            echo "$tag again:$stone $(trial same "$base" --device "$device" --scene "$stone" --tour-seed "$seed" --flip-after 0)"
+            [ -d "$work/bunny" ] &&
+                echo "$tag bunny:ptx $(trial other "$base" --device "ptx:$work/bunny")"
+        done
+    done
+done | tee "$work/lines"
+echo
+echo "device kind trials asked looks-same undecided joined not-registered"
+awk '{kind=$(NF-1); dev=$1; k=dev" "kind; n[k]++; c[k" "$NF]++}
+     END {for (k in n) printf "%s %d %d %d %d %d %d\n", k, n[k], c[k" asked"], c[k" looks-same"],
+          c[k" undecided"], c[k" joined"], c[k" not-registered"]}' "$work/lines" | sort
