@@ -38,6 +38,7 @@ trial() {
     elif grep -q "stone check:.*too few model" <<<"$out"; then outcome=undecided
     elif ! grep -q "registered scan $((views + 1))" <<<"$out"; then outcome=not-registered
     fi
+    grep -o "stone's model.*" <<<"$out" | head -1 | sed 's/^/    # /' >&2
     echo "$kind $outcome"
 }
 

@@ -20,7 +20,7 @@ constexpr double kMedianAbsOfDifference = 0.954;
 constexpr double kHistogramLow = 0.2, kHistogramHigh = 0.8;
 /// A radius takes part in the surface signal when every cloud has this many valid sites.
 constexpr std::size_t kMinValidSites = 50;
-constexpr std::size_t kMaxWidthPoints = 30000;
+constexpr std::size_t kMaxWidthPoints = 20000;  ///< Per cloud, for the widths.
 
 using Histograms = std::array<std::vector<double>, kInvariantRadii>;
 
@@ -93,23 +93,20 @@ std::optional<double> histogram_distance(const Histograms& a, const Histograms& 
     return sum / radii;
 }
 
-/// Mean of the histograms except `skip` (per radius, over those that have it).
-Histograms mean_histograms(const std::vector<Histograms>& all, std::size_t skip) {
-    Histograms mean;
-    for (std::size_t k = 0; k < kInvariantRadii; ++k) {
-        int count = 0;
-        for (std::size_t i = 0; i < all.size(); ++i) {
-            if (i == skip || all[i][k].empty()) continue;
-            if (mean[k].empty()) mean[k].assign(all[i][k].size(), 0.0);
-            for (std::size_t b = 0; b < all[i][k].size(); ++b) mean[k][b] += all[i][k][b];
-            ++count;
-        }
-        for (double& v : mean[k]) v /= count;
+/// The distance from `h` to the nearest of `model` (except `skip`); nullopt when none compares.
+std::optional<double> nearest_distance(const Histograms& h, const std::vector<Histograms>& model,
+                                       std::size_t skip) {
+    std::optional<double> nearest;
+    for (std::size_t i = 0; i < model.size(); ++i) {
+        if (i == skip) continue;
+        const auto d = histogram_distance(h, model[i]);
+        if (d && (!nearest || *d < *nearest)) nearest = d;
     }
-    return mean;
+    return nearest;
 }
 
-/// The surface signal: the scan's distance and the model's own spread (both -1 when the
+/// The surface signal: the scan's distance to its nearest model scan, and the model's own
+/// spread, the largest distance of a model scan to its nearest other (both -1 when the
 /// surface cannot be compared).
 void compare_surfaces(std::span<const PointCloud> model_scans, const PointCloud& scan,
                       const StoneIdentityConfig& config, StoneIdentityEvidence& out) {
@@ -118,13 +115,13 @@ void compare_surfaces(std::span<const PointCloud> model_scans, const PointCloud&
     std::vector<Histograms> model;
     for (const PointCloud& cloud : model_scans)
         model.push_back(descriptor_histograms(cloud, radii, config.histogram_bins));
-    const Histograms mine = descriptor_histograms(scan, radii, config.histogram_bins);
     double spread = 0.0;
     for (std::size_t i = 0; i < model.size(); ++i) {
-        const auto d = histogram_distance(model[i], mean_histograms(model, i));
+        const auto d = nearest_distance(model[i], model, i);
         if (d) spread = std::max(spread, *d);
     }
-    const auto distance = histogram_distance(mine, mean_histograms(model, model.size()));
+    const Histograms mine = descriptor_histograms(scan, radii, config.histogram_bins);
+    const auto distance = nearest_distance(mine, model, model.size());
     if (!distance || !(spread > 0.0)) return;
     out.surface_distance = *distance;
     out.surface_spread = spread;
@@ -148,12 +145,14 @@ double view_excess_m(const std::vector<const PointCloud*>& model,
 }
 
 std::string describe(const StoneIdentityEvidence& e, const StoneIdentityConfig& config) {
-    char text[320];
-    const int n = std::snprintf(text, sizeof(text),
-                                "scan %.3f m across, stone's model %.3f m (+%.1f mm for spacing "
-                                "%.1f mm, noise %.2f mm, one view's excess %.1f mm)",
-                                e.scan_width_m, e.model_width_m, e.width_tolerance_m * 1e3,
-                                e.spacing_m * 1e3, e.noise_m * 1e3, e.view_excess_m * 1e3);
+    char text[512];
+    const int n =
+        std::snprintf(text, sizeof(text),
+                      "scan %.3f m across, stone's model %.3f m (+%.1f mm for spacing "
+                      "%.1f mm, noise %.2f mm, one view's excess %.1f mm; model %.1f mm wider than "
+                      "its widest view)",
+                      e.scan_width_m, e.model_width_m, e.width_tolerance_m * 1e3, e.spacing_m * 1e3,
+                      e.noise_m * 1e3, e.view_excess_m * 1e3, e.model_growth_m * 1e3);
     if (e.surface_distance >= 0.0 && n > 0 && static_cast<std::size_t>(n) < sizeof(text))
         std::snprintf(text + n, sizeof(text) - static_cast<std::size_t>(n),
                       "; surface histogram distance %.3f, the model's own spread %.3f (limit "
@@ -179,26 +178,30 @@ const char* to_string(StoneIdentityVerdict verdict) {
 
 double widest_width_m(std::span<const PointCloud* const> clouds,
                       const StoneIdentityConfig& config) {
-    std::size_t total = 0;
-    for (const PointCloud* c : clouds) total += c->size();
-    if (total == 0) return 0.0;
-    const std::size_t stride = std::max<std::size_t>(1, total / kMaxWidthPoints);
-    std::vector<Eigen::Vector3d> points;
-    std::size_t index = 0;
-    for (const PointCloud* c : clouds)
-        for (std::size_t i = 0; i < c->size(); ++i, ++index)
-            if (index % stride == 0) points.push_back(c->world_position(i));
-    std::vector<double> projections(points.size());
-    const auto low = static_cast<std::ptrdiff_t>(config.width_quantile * points.size());
-    const auto high = static_cast<std::ptrdiff_t>(points.size()) - 1 - low;
-    double widest = 0.0;
-    for (const Eigen::Vector3d& d : half_sphere_directions(config.width_directions)) {
-        for (std::size_t i = 0; i < points.size(); ++i) projections[i] = d.dot(points[i]);
-        std::nth_element(projections.begin(), projections.begin() + low, projections.end());
-        const double lo = projections[static_cast<std::size_t>(low)];
-        std::nth_element(projections.begin(), projections.begin() + high, projections.end());
-        widest = std::max(widest, projections[static_cast<std::size_t>(high)] - lo);
+    const std::vector<Eigen::Vector3d> directions = half_sphere_directions(config.width_directions);
+    std::vector<double> low(directions.size(), INFINITY), high(directions.size(), -INFINITY);
+    for (const PointCloud* cloud : clouds) {
+        if (cloud->empty()) continue;
+        // Each cloud's own quantiles: a corner that one scan alone saw stays in the width.
+        const std::size_t stride = std::max<std::size_t>(1, cloud->size() / kMaxWidthPoints);
+        std::vector<Eigen::Vector3d> points;
+        for (std::size_t i = 0; i < cloud->size(); i += stride)
+            points.push_back(cloud->world_position(i));
+        std::vector<double> projections(points.size());
+        const auto lo = static_cast<std::ptrdiff_t>(config.width_quantile * points.size());
+        const auto hi = static_cast<std::ptrdiff_t>(points.size()) - 1 - lo;
+        for (std::size_t d = 0; d < directions.size(); ++d) {
+            for (std::size_t i = 0; i < points.size(); ++i)
+                projections[i] = directions[d].dot(points[i]);
+            std::nth_element(projections.begin(), projections.begin() + lo, projections.end());
+            low[d] = std::min(low[d], projections[static_cast<std::size_t>(lo)]);
+            std::nth_element(projections.begin(), projections.begin() + hi, projections.end());
+            high[d] = std::max(high[d], projections[static_cast<std::size_t>(hi)]);
+        }
     }
+    double widest = 0.0;
+    for (std::size_t d = 0; d < directions.size(); ++d)
+        if (high[d] > low[d]) widest = std::max(widest, high[d] - low[d]);
     return widest;
 }
 
@@ -224,10 +227,19 @@ StoneIdentityEvidence compare_with_stone(std::span<const PointCloud> model_scans
     const PointCloud* mine[] = {&scan};
     out.scan_width_m = widest_width_m(mine, config);
     out.view_excess_m = view_excess_m(model, config);
-    out.width_tolerance_m = config.width_noise_factor * (out.spacing_m + out.noise_m) +
-                            std::max(0.0, out.view_excess_m);
+    const double noise_tolerance_m = config.width_noise_factor * (out.spacing_m + out.noise_m);
+    out.width_tolerance_m = noise_tolerance_m + std::max(0.0, out.view_excess_m);
     compare_surfaces(model_scans, scan, config, out);
-    const bool width_known = model.size() >= config.min_width_reference_scans;
+    // The size bounds the stone only once the model shows more than one view's worth of it
+    // (near-duplicate views leave the rest of the stone unmeasured).
+    double widest_view_m = 0.0;
+    for (const PointCloud* c : model) {
+        const PointCloud* one[] = {c};
+        widest_view_m = std::max(widest_view_m, widest_width_m(one, config));
+    }
+    out.model_growth_m = out.model_width_m - widest_view_m;
+    const bool width_known =
+        model.size() >= config.min_width_reference_scans && out.model_growth_m > noise_tolerance_m;
     const bool wider = width_known && out.scan_width_m > out.model_width_m + out.width_tolerance_m;
     const bool surface_known = out.surface_distance >= 0.0;
     const bool other_surface =

@@ -1,5 +1,6 @@
 // compare_with_stone on sampled box views, each new scan in a random frame (the check must
-// not depend on the pose): the box's other side fits; a larger box is too wide; a rounded
+// not depend on the pose): the box's other side fits; a larger box is too wide (also with two
+// model scans), but not when the model's views are near duplicates; a rounded
 // object of the box's size has another surface; one model scan gives no reference (how much
 // a view may exceed the model, how much the surface varies), so nothing is decided.
 #include <gtest/gtest.h>
@@ -27,8 +28,11 @@ void add_point(PointCloud& cloud, const Eigen::Vector3d& p, const Eigen::Vector3
 }
 
 /// The faces of an axis-aligned box of `size` (centred at the origin) facing `view`,
-/// sampled on a grid.
-PointCloud box_view(const Eigen::Vector3d& size, const Eigen::Vector3d& view, unsigned seed) {
+/// sampled on a grid; a view sees the part within `reach_m` of where it aims (the box's
+/// surface point along `view`), as a camera's field of view does.
+PointCloud box_view(const Eigen::Vector3d& size, const Eigen::Vector3d& view, unsigned seed,
+                    double reach_m = 1e9) {
+    const Eigen::Vector3d aim = view.normalized().cwiseProduct(size / 2);
     std::mt19937 rng(seed);
     PointCloud cloud;
     for (int axis = 0; axis < 3; ++axis) {
@@ -42,7 +46,7 @@ PointCloud box_view(const Eigen::Vector3d& size, const Eigen::Vector3d& view, un
                     Eigen::Vector3d p = sign * size / 2;
                     p[u] = a;
                     p[v] = b;
-                    add_point(cloud, p, n, rng);
+                    if ((p - aim).norm() <= reach_m) add_point(cloud, p, n, rng);
                 }
             }
         }
@@ -77,20 +81,22 @@ PointCloud moved(const PointCloud& cloud, unsigned seed) {
 
 const Eigen::Vector3d kBox(0.40, 0.30, 0.25);
 
-/// Four views from above and around (the box stands on its -z face: never seen).
+constexpr double kReachM = 0.25;  ///< Each view sees this far around its aim.
+
+/// Views from above and around (the box stands on its -z face: never seen).
 std::vector<PointCloud> model_of_box(std::size_t views) {
     std::vector<PointCloud> model;
     for (std::size_t k = 0; k < views; ++k) {
         const double azimuth = 0.8 + 1.6 * static_cast<double>(k);
-        model.push_back(
-            box_view(kBox, {std::cos(azimuth), std::sin(azimuth), 0.8}, static_cast<unsigned>(k)));
+        model.push_back(box_view(kBox, {std::cos(azimuth), std::sin(azimuth), 0.8},
+                                 static_cast<unsigned>(k), kReachM));
     }
     return model;
 }
 
 TEST(StoneIdentity, TheOtherSideOfTheStoneFits) {
     const std::vector<PointCloud> model = model_of_box(4);
-    const PointCloud bottom = moved(box_view(kBox, {0.5, -0.6, -0.8}, 11), 5);
+    const PointCloud bottom = moved(box_view(kBox, {0.5, -0.6, -0.8}, 11, kReachM), 5);
     const StoneIdentityEvidence e = compare_with_stone(model, bottom);
     EXPECT_EQ(e.verdict, StoneIdentityVerdict::kLooksSame) << e.reason;
     EXPECT_LE(e.scan_width_m, e.model_width_m + e.width_tolerance_m) << e.reason;
@@ -130,6 +136,18 @@ TEST(StoneIdentity, TwoModelScansCompareTheSize) {
     const StoneIdentityEvidence e = compare_with_stone(model, larger);
     EXPECT_EQ(e.verdict, StoneIdentityVerdict::kOtherStone) << e.reason;
     EXPECT_GE(e.view_excess_m, 0.0) << e.reason;
+}
+
+// Two views from one place show no more of the stone than one: a wider view of the same
+// stone is not taken for another stone.
+TEST(StoneIdentity, NearDuplicateViewsDoNotBoundTheSize) {
+    const Eigen::Vector3d view(0.7, 0.3, 0.8);
+    const std::vector<PointCloud> model = {box_view(kBox, view, 1, kReachM),
+                                           box_view(kBox, view, 2, kReachM)};
+    const PointCloud whole = moved(box_view(kBox, {-0.6, 0.5, 0.8}, 3), 8);
+    const StoneIdentityEvidence e = compare_with_stone(model, whole);
+    EXPECT_GT(e.scan_width_m, e.model_width_m + e.width_tolerance_m) << e.reason;
+    EXPECT_EQ(e.verdict, StoneIdentityVerdict::kUndecided) << e.reason;
 }
 
 TEST(StoneIdentity, NothingToCompareIsUndecided) {

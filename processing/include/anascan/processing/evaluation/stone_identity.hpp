@@ -10,14 +10,16 @@
 ///    `width_noise_factor` × (sample spacing + noise) of the two clouds, both measured here,
 ///    plus how much one view of this stone was measured to exceed the rest of the model
 ///    (each model scan's width against the other model scans' together, the largest: a
-///    model of few views misses some of the stone). It needs two model scans. A view of a
+///    model of few views misses some of the stone). It needs two model scans whose union is
+///    wider than the widest of them by more than the noise tolerance (near-duplicate views
+///    leave the rest of the stone unmeasured). A view of a
 ///    larger stone is caught; a view of a smaller one is not (a part of a stone is smaller
 ///    than the stone).
 ///  - **Surface.** The histograms of the integral-invariant volume descriptor (at four radii
-///    from the measured spacing) of each scan: the new scan's distance to the mean of the
-///    model's scans against the model's own spread (each model scan against the mean of the
-///    others, the largest of these). A scan farther than `surface_spread_factor` times that
-///    spread shows another kind of surface; within the spread it looks like the model.
+///    from the measured spacing) of each scan: the new scan's distance to its nearest model
+///    scan against the model's own spread (each model scan's distance to its nearest other
+///    model scan, the largest of these). A scan farther than `surface_spread_factor` times
+///    that spread shows another kind of surface; within it, it looks like the model.
 ///
 /// No I/O, no sessions: the caller hands stone-only clouds (ground removed) with normals.
 
@@ -60,11 +62,12 @@ struct StoneIdentityEvidence {
     double model_width_m = 0.0;  ///< The model's widest width (all model scans together).
     double width_tolerance_m = 0.0;
     double view_excess_m = -1.0;  ///< One view's largest excess over the rest; -1: unknown.
+    double model_growth_m = 0.0;  ///< The model's width minus its widest scan's.
     double spacing_m = 0.0;       ///< Coarser median spacing of the scan and the model's scans.
     double noise_m = 0.0;         ///< Larger point-to-tangent-plane noise of them.
     /// L1 distance of descriptor histograms (0..2, mean over the radii); -1: not computed.
     double surface_distance = -1.0;
-    double surface_spread = -1.0;  ///< Largest leave-one-out distance among model scans.
+    double surface_spread = -1.0;  ///< Largest nearest-other distance among model scans.
     std::string reason;            ///< One line with the figures that decided.
 };
 
