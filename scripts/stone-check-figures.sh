@@ -34,7 +34,7 @@ trial() {
     out=$("$cli" capture --session "$work/t" --views $((views + 1)) --no-coverage "$@" </dev/null 2>&1)
     local outcome=joined
     if grep -q "another stone?" <<<"$out"; then outcome=asked
-    elif grep -q "stone check:.*its size and surface fit" <<<"$out"; then outcome=looks-same
+    elif grep -q "stone check:.*nothing in its size or surface" <<<"$out"; then outcome=looks-same
     elif grep -q "stone check:.*too few model" <<<"$out"; then outcome=undecided
     elif ! grep -q "registered scan $((views + 1))" <<<"$out"; then outcome=not-registered
     fi

@@ -55,8 +55,8 @@ std::string outcome_message(const StoneCheck& check) {
             return scan + " joined the stone's model";
         case StoneCheckOutcome::kLooksSame:
             return scan +
-                   " joined no part of the stone's model yet, but its size and surface "
-                   "fit the stone (its other side?): it stays its own group (" +
+                   " joined no part of the stone's model yet; nothing in its size or surface "
+                   "says another object (the stone's other side?): it stays its own group (" +
                    check.evidence.reason + ")";
         case StoneCheckOutcome::kUndecided:
             return scan +

@@ -144,6 +144,10 @@ double view_excess_m(const std::vector<const PointCloud*>& model,
     return excess;
 }
 
+double surface_limit(const StoneIdentityEvidence& e, const StoneIdentityConfig& config) {
+    return std::max(config.surface_spread_factor * e.surface_spread, config.min_surface_distance);
+}
+
 std::string describe(const StoneIdentityEvidence& e, const StoneIdentityConfig& config) {
     char text[512];
     const int n =
@@ -157,8 +161,7 @@ std::string describe(const StoneIdentityEvidence& e, const StoneIdentityConfig& 
         std::snprintf(text + n, sizeof(text) - static_cast<std::size_t>(n),
                       "; surface histogram distance %.3f, the model's own spread %.3f (limit "
                       "%.3f)",
-                      e.surface_distance, e.surface_spread,
-                      config.surface_spread_factor * e.surface_spread);
+                      e.surface_distance, e.surface_spread, surface_limit(e, config));
     return text;
 }
 
@@ -242,8 +245,7 @@ StoneIdentityEvidence compare_with_stone(std::span<const PointCloud> model_scans
         model.size() >= config.min_width_reference_scans && out.model_growth_m > noise_tolerance_m;
     const bool wider = width_known && out.scan_width_m > out.model_width_m + out.width_tolerance_m;
     const bool surface_known = out.surface_distance >= 0.0;
-    const bool other_surface =
-        surface_known && out.surface_distance > config.surface_spread_factor * out.surface_spread;
+    const bool other_surface = surface_known && out.surface_distance > surface_limit(out, config);
     out.verdict = wider || other_surface         ? StoneIdentityVerdict::kOtherStone
                   : surface_known && width_known ? StoneIdentityVerdict::kLooksSame
                                                  : StoneIdentityVerdict::kUndecided;

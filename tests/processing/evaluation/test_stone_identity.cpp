@@ -119,6 +119,7 @@ TEST(StoneIdentity, ARoundedObjectOfTheSameSizeHasAnotherSurface) {
     EXPECT_LE(e.scan_width_m, e.model_width_m + e.width_tolerance_m) << e.reason;
     EXPECT_EQ(e.verdict, StoneIdentityVerdict::kOtherStone) << e.reason;
     EXPECT_GT(e.surface_distance, 2.0 * e.surface_spread) << e.reason;
+    EXPECT_GT(e.surface_distance, 1.0) << "most of its surface is of another kind: " << e.reason;
 }
 
 TEST(StoneIdentity, OneModelScanDecidesNothing) {

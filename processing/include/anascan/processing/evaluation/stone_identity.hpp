@@ -19,7 +19,11 @@
 ///    from the measured spacing) of each scan: the new scan's distance to its nearest model
 ///    scan against the model's own spread (each model scan's distance to its nearest other
 ///    model scan, the largest of these). A scan farther than `surface_spread_factor` times
-///    that spread shows another kind of surface; within it, it looks like the model.
+///    that spread, and farther than `min_surface_distance`, shows another kind of surface.
+///    The second bound is there because a stone's faces differ (an ornament band on one,
+///    clamp holes on another): a model of some faces does not measure how much the others
+///    differ. An L1 distance of 1 means that the histograms share less than half their
+///    mass: most of the scan's surface is of a kind no model scan shows.
 ///
 /// No I/O, no sessions: the caller hands stone-only clouds (ground removed) with normals.
 
@@ -42,6 +46,8 @@ struct StoneIdentityConfig {
     std::size_t histogram_bins = 24;            ///< Bins of V_r over [0.2, 0.8] per radius.
     /// Another surface when the distance exceeds this multiple of the model's own spread.
     double surface_spread_factor = 2.0;
+    /// ... and at least this L1 distance (of 2: the histograms share less than half).
+    double min_surface_distance = 1.0;
     /// The surface signal needs at least this many model scans (the spread of one is none).
     std::size_t min_surface_reference_scans = 3;
     std::size_t max_samples = 4000;  ///< Points sampled for spacing and noise.
