@@ -60,9 +60,9 @@ std::string outcome_message(const StoneCheck& check) {
                    check.evidence.reason + ")";
         case StoneCheckOutcome::kUndecided:
             return scan +
-                   " joined no part of the stone's model; its size fits, and there are "
-                   "too few model scans to compare its surface: it stays its own group "
-                   "(" +
+                   " joined no part of the stone's model, and the model has too few scans "
+                   "(or near-duplicate views) to tell whether it shows the stone: it stays "
+                   "its own group (" +
                    check.evidence.reason + ")";
         case StoneCheckOutcome::kOtherStone:
             return scan + " joined no part of the stone's model and shows another object: " +

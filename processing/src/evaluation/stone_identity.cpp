@@ -149,20 +149,27 @@ double surface_limit(const StoneIdentityEvidence& e, const StoneIdentityConfig& 
 }
 
 std::string describe(const StoneIdentityEvidence& e, const StoneIdentityConfig& config) {
-    char text[512];
-    const int n =
+    char text[200];
+    std::snprintf(text, sizeof(text),
+                  "scan %.3f m across, stone's model %.3f m (+%.1f mm for spacing %.1f mm, noise "
+                  "%.2f mm",
+                  e.scan_width_m, e.model_width_m, e.width_tolerance_m * 1e3, e.spacing_m * 1e3,
+                  e.noise_m * 1e3);
+    std::string out = text;
+    if (e.view_excess_m >= 0.0) {
         std::snprintf(text, sizeof(text),
-                      "scan %.3f m across, stone's model %.3f m (+%.1f mm for spacing "
-                      "%.1f mm, noise %.2f mm, one view's excess %.1f mm; model %.1f mm wider than "
-                      "its widest view)",
-                      e.scan_width_m, e.model_width_m, e.width_tolerance_m * 1e3, e.spacing_m * 1e3,
-                      e.noise_m * 1e3, e.view_excess_m * 1e3, e.model_growth_m * 1e3);
-    if (e.surface_distance >= 0.0 && n > 0 && static_cast<std::size_t>(n) < sizeof(text))
-        std::snprintf(text + n, sizeof(text) - static_cast<std::size_t>(n),
-                      "; surface histogram distance %.3f, the model's own spread %.3f (limit "
-                      "%.3f)",
+                      ", one view's excess %.1f mm; model %.1f mm wider than its widest view",
+                      e.view_excess_m * 1e3, e.model_growth_m * 1e3);
+        out += text;
+    }
+    out += ")";
+    if (e.surface_distance >= 0.0) {
+        std::snprintf(text, sizeof(text),
+                      "; surface histogram distance %.3f, the model's own spread %.3f (limit %.3f)",
                       e.surface_distance, e.surface_spread, surface_limit(e, config));
-    return text;
+        out += text;
+    }
+    return out;
 }
 
 }  // namespace
