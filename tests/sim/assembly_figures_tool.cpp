@@ -63,7 +63,9 @@ void print(const char* label, const Outcome& o) {
 int fig15(const std::string& section, std::uint64_t seed, double step_m, bool flat) {
     auto m = monument_assembly(section, seed, {"c0b0", "c0b1"}, step_m, flat);
     if (!m) return std::fprintf(stderr, "%s\n", m.error().message.c_str()), 1;
-    const std::vector<Pose> start = ra::initial_placement(m->problem);
+    auto placed = ra::initial_placement(m->problem);
+    if (!placed) return std::fprintf(stderr, "%s\n", placed.error().message.c_str()), 1;
+    const std::vector<Pose>& start = *placed;
     std::printf("%s seed %llu, c0b0 + c0b1, %zu + %zu points, from the Horn placement\n",
                 section.c_str(), (unsigned long long)seed, m->problem.blocks[0].points.size(),
                 m->problem.blocks[1].points.size());

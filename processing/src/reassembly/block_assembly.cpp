@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <set>
 
 #include "anascan/processing/reassembly/assembly_check.hpp"
@@ -159,14 +160,20 @@ double iterate(const AssemblyProblem& p, const Prepared& prep, const AssemblyCon
     Eigen::MatrixXd C(0, H.cols());
     Eigen::VectorXd d(0);
     if (constrained) C = Ar / w_reg, d = rhs_of(rows.contact, 1.0);
-    const QpResult qp = solve_constrained_normal(H, g, C, d);
+    const QpResult qp =
+        solve_constrained_normal(H, g, C, d, QpConfig{.max_iterations = c.qp_max_iterations});
     out.history.push_back({rms(rows.contact), rms(rows.coplanar), rms(rows.colinear),
-                           std::size_t(C.rows()), qp.active.size()});
+                           std::size_t(C.rows()), qp.active.size(), qp.iterations});
     if (qp.status == QpStatus::kInfeasible) {
         out.status = AssemblyStatus::kInfeasible;
         out.offending = offending_contacts(p, rows.contact, qp.active);
         out.message = "the matching faces cannot all be made penetration-free";
         return 0.0;
+    }
+    if (qp.status == QpStatus::kIterationLimit) {
+        out.message = "the QP of iteration " + std::to_string(out.iterations + 1) +
+                      " reached its cap of " + std::to_string(qp.iterations) + " NNLS iterations";
+        return -1.0;
     }
     return apply_step(qp.u, prep, frames, out.T_world_block);
 }
@@ -223,15 +230,22 @@ Expected<AssemblyResult> assemble_blocks(const AssemblyProblem& p, const std::ve
         const bool constrained = c.non_penetration && out.iterations >= c.free_iterations;
         const double step = iterate(p, prep, c, constrained, out);
         if (out.status == AssemblyStatus::kInfeasible) return out;
+        if (step < 0.0) return out;  // The QP's cap: kNotConverged with its message.
+        out.last_step_m = step;
         if (step < c.converged_step_m && (constrained || !c.non_penetration)) {
             out.status = AssemblyStatus::kOk;
             ++out.iterations;
             break;
         }
     }
-    if (c.use_coplanar && c.use_colinear) flag_contradictions(p, c, out);
-    if (out.status == AssemblyStatus::kNotConverged)
-        out.message = "no convergence in " + std::to_string(c.max_iterations) + " iterations";
+    if (out.status == AssemblyStatus::kOk && c.use_coplanar && c.use_colinear)
+        flag_contradictions(p, c, out);
+    if (out.status == AssemblyStatus::kNotConverged) {
+        char step[64];
+        std::snprintf(step, sizeof step, "%.4f", 1e3 * out.last_step_m);
+        out.message = "no convergence in " + std::to_string(c.max_iterations) +
+                      " iterations (last step " + step + " mm)";
+    }
     return out;
 }
 
