@@ -113,13 +113,15 @@ TEST(BlockAssembly, SixPointPlacementLaysTheFaceOntoItsPartner) {
 }
 
 TEST(BlockAssembly, RecoversTheTruthFromAPerturbedStart) {
-    for (unsigned seed : {1u, 2u, 3u}) {
+    for (unsigned seed : {1u, 2u, 3u, 4u}) {
         const Row& r = three_blocks();
         std::mt19937 rng(seed);
         std::vector<Pose> start = r.truth;
         for (std::size_t b = 1; b < start.size(); ++b)
             start[b] = random_pose(rng, 0.05, 0.015) * start[b];
-        auto result = assemble_blocks(r.problem, start, {});
+        // Both contact normals, alternately: the vertex normals and the face planes.
+        const JointNormal normal = seed % 2 ? JointNormal::kVertex : JointNormal::kFacePlane;
+        auto result = assemble_blocks(r.problem, start, {.joint_normal = normal});
         ASSERT_TRUE(result) << result.error().message;
         ASSERT_EQ(result->status, AssemblyStatus::kOk) << result->message;
         for (std::size_t b = 1; b < start.size(); ++b) {

@@ -67,6 +67,12 @@ struct AssemblyProblem {
     std::vector<int> fixed;
 };
 
+/// The normal of a contact row (registration and non-penetration constraint) at the
+/// closest point y of the partner face: y's outward vertex normal (the paper's), or the
+/// partner face's fitted-plane normal (no slide from normals leaning at edges and margins;
+/// see docs/reassembly.md for what each meets).
+enum class JointNormal { kVertex, kFacePlane };
+
 struct AssemblyConfig {
     /// Outer iterations at most; the paper needs 15-20, the tests and figures end in
     /// 5-30. When reached the status is kNotConverged with the last step.
@@ -79,7 +85,8 @@ struct AssemblyConfig {
     int plane_samples_per_side = 5;  ///< Grid on a face's rectangle for co-planarity.
     int line_samples = 5;            ///< Points along a line for co-linearity (>= 2).
     double contact_gate_m = 0.01;    ///< Closest points further along the face are dropped.
-    double min_face_side_m = 0.05;   ///< A face narrower than this is a sliver.
+    JointNormal joint_normal = JointNormal::kVertex;
+    double min_face_side_m = 0.05;  ///< A face narrower than this is a sliver.
     bool non_penetration = true;
     /// Iterations without the non-penetration constraints first (from a start far off,
     /// the soft terms bring the blocks near before the constraints hold them apart).
