@@ -30,6 +30,7 @@ struct AssembleBlocksOptions {
     std::vector<std::string> pairs, coplanar, colinear, fixed;
     bool accepted = false;
     int max_iterations = 60;
+    std::string joint_normal = "vertex";
 };
 
 // DIR's features files, sorted, and the block ids they name.
@@ -215,7 +216,10 @@ void run_assemble_blocks(const AssembleBlocksOptions& o) {
     const FeatureFiles files = feature_files(o.dir);
     ra::AssemblyProblem p = parse_problem(o, files);
     load_blocks(files, p);
-    const ra::AssemblyConfig config{.max_iterations = o.max_iterations};
+    const ra::AssemblyConfig config{.max_iterations = o.max_iterations,
+                                    .joint_normal = o.joint_normal == "plane"
+                                                        ? ra::JointNormal::kFacePlane
+                                                        : ra::JointNormal::kVertex};
     auto start = ra::initial_placement(p, config);
     if (!start) fail_command(start.error());
     const Stopwatch watch;
@@ -252,6 +256,10 @@ void add_blocks_assemble_command(CLI::App& blocks) {
     cmd->add_flag("--accepted", o->accepted, "Assemble the pairs accepted in --proposals");
     cmd->add_option("--max-iterations", o->max_iterations, "Iterations at most")
         ->check(CLI::PositiveNumber);
+    cmd->add_option("--joint-normal", o->joint_normal,
+                    "Contact rows along the partner's vertex normals (vertex, default) or its "
+                    "face plane (plane)")
+        ->check(CLI::IsMember({"vertex", "plane"}));
     cmd->add_option("--out", o->out, "Output folder (assembly.conf, assembly.json, assembly.ply)")
         ->required();
     cmd->callback([o] {
