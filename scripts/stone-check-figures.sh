@@ -23,7 +23,7 @@ bunny=/work/shared/data/stanford-bunny-range-scans/data/bun000.ply
 [ -f "${BUNNY:-$bunny}" ] && mkdir -p "$work/bunny" &&
     /usr/bin/python3 "$here/bunny-to-ptx.py" "${BUNNY:-$bunny}" "$work/bunny/bun000.ptx"
 
-stones="small-block octagon-block large-block"
+stones=${STONES:-"small-block octagon-block large-block"}
 turned_of() { case $1 in large-block) echo large-block-on-side ;; *) echo "$1-turned" ;; esac; }
 
 # trial KIND BASE DEVICE SEED -- capture args: prints "KIND outcome"
@@ -35,7 +35,7 @@ trial() {
     local outcome=joined
     if grep -q "another stone?" <<<"$out"; then outcome=asked
     elif grep -q "stone check:.*nothing in its size or surface" <<<"$out"; then outcome=looks-same
-    elif grep -q "stone check:.*too few model" <<<"$out"; then outcome=undecided
+    elif grep -q "stone check:.*too few scans" <<<"$out"; then outcome=undecided
     elif ! grep -q "registered scan $((views + 1))" <<<"$out"; then outcome=not-registered
     fi
     grep -o "stone's model.*" <<<"$out" | head -1 | sed 's/^/    # /' >&2
