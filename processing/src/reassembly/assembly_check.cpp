@@ -76,7 +76,25 @@ struct Target {
     KdTree tree;
     Box box;
     std::optional<detail::MeshDistance> mesh;
+    double longest_edge_m = 0.0;  ///< The mesh is within this of its nearest vertex.
 };
+
+// Cheap rejection by the nearest vertex: no surface of the block within near_m of x.
+bool far_from(const Target& t, const Eigen::Vector3d& x, const CheckConfig& c) {
+    Neighbor nb;
+    if (!t.tree.nearest(x.cast<float>(), nb)) return true;
+    return std::sqrt(double(nb.distance_sq_m2)) > c.near_m + t.longest_edge_m;
+}
+
+double longest_edge(const AssemblyBlock& b) {
+    double out = 0.0;
+    for (const Eigen::Vector3i& f : b.triangles)
+        for (int k = 0; k < 3; ++k)
+            out = std::max(out, double((b.points.positions[std::size_t(f[k])] -
+                                        b.points.positions[std::size_t(f[(k + 1) % 3])])
+                                           .norm()));
+    return out;
+}
 
 // Penetration of block a's points into block b (signed distance below -tolerance).
 void penetration(const AssemblyProblem& p, int a, int b, const Target& target,
@@ -88,7 +106,8 @@ void penetration(const AssemblyProblem& p, int a, int b, const Target& target,
     for (std::size_t i = 0; i < pa.positions.size(); ++i) {
         const Eigen::Vector3d x = T_b_a * pa.positions[i].cast<double>();
         if ((x.array() < target.box.lo.array() - c.near_m).any() ||
-            (x.array() > target.box.hi.array() + c.near_m).any())
+            (x.array() > target.box.hi.array() + c.near_m).any() ||
+            (target.mesh && far_from(target, x, c)))
             continue;
         const std::optional<double> sd =
             target.mesh
@@ -147,6 +166,7 @@ AssemblyCheck check_assembly(const AssemblyProblem& p, const std::vector<Pose>& 
             t.box.lo = t.box.lo.cwiseMin(x.cast<double>()),
             t.box.hi = t.box.hi.cwiseMax(x.cast<double>());
         if (!block.triangles.empty()) t.mesh.emplace(block.points.positions, block.triangles);
+        t.longest_edge_m = longest_edge(block);
     }
     double depth_sum = 0.0;
     for (const AssemblyBlock& b : p.blocks) out.depth_m.emplace_back(b.points.size(), 0.0f);

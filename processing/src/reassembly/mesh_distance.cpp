@@ -41,26 +41,34 @@ MeshDistance::MeshDistance(std::span<const Eigen::Vector3f> vertices,
       face_normal_(triangles.size(), Eigen::Vector3d::Zero()),
       vertex_normal_(vertices.size(), Eigen::Vector3d::Zero()),
       vertex_boundary_(vertices.size(), 0),
+      edge_normal_(3 * triangles.size(), Eigen::Vector3d::Zero()),
+      edge_boundary_(3 * triangles.size(), 0),
       tree_(vertices, triangles) {
+    std::vector<std::pair<std::uint64_t, std::size_t>> edges;  // (key, 3 t + k)
+    edges.reserve(3 * triangles.size());
     for (std::size_t t = 0; t < triangles.size(); ++t) {
         const Eigen::Vector3i& f = triangles[t];
         const Eigen::Vector3d n = (at(vertices, f[1]) - at(vertices, f[0]))
                                       .cross(at(vertices, f[2]) - at(vertices, f[0]));
-        if (n.norm() <= 0.0) continue;
-        face_normal_[t] = n.normalized();
+        if (n.norm() > 0.0) face_normal_[t] = n.normalized();
         for (int k = 0; k < 3; ++k) {
             const int p = f[k], a = f[(k + 1) % 3], b = f[(k + 2) % 3];
             vertex_normal_[std::size_t(p)] +=
                 corner_angle(at(vertices, p), at(vertices, a), at(vertices, b)) * face_normal_[t];
-            Edge& e = edges_[edge_key(p, a)];
-            e.normal_sum += face_normal_[t];
-            ++e.triangles;
+            edges.emplace_back(edge_key(p, a), 3 * t + std::size_t(k));
         }
     }
-    for (const auto& [key, e] : edges_) {
-        if (e.triangles == 2) continue;  // One triangle: a hole's rim; three: non-manifold.
-        vertex_boundary_[std::size_t(key >> 32)] = 1;
-        vertex_boundary_[std::size_t(key & 0xffffffffu)] = 1;
+    std::ranges::sort(edges);
+    for (std::size_t i = 0, j = 0; i < edges.size(); i = j) {
+        Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+        for (j = i; j < edges.size() && edges[j].first == edges[i].first; ++j)
+            sum += face_normal_[edges[j].second / 3];
+        const bool boundary = j - i != 2;  // One triangle: a hole's rim; three: non-manifold.
+        for (std::size_t e = i; e < j; ++e)
+            edge_normal_[edges[e].second] = sum, edge_boundary_[edges[e].second] = boundary;
+        if (!boundary) continue;
+        vertex_boundary_[std::size_t(edges[i].first >> 32)] = 1;
+        vertex_boundary_[std::size_t(edges[i].first & 0xffffffffu)] = 1;
     }
 }
 
@@ -83,9 +91,9 @@ bool MeshDistance::signed_distance(const Eigen::Vector3d& x, SignedDistance& out
     } else if (zeros == 1) {  // On the edge opposite the zero weight.
         int k = 0;
         w.minCoeff(&k);
-        const Edge& e = edges_.at(edge_key(f[(k + 1) % 3], f[(k + 2) % 3]));
-        n = e.normal_sum;
-        out.boundary = e.triangles != 2;
+        const std::size_t e = 3 * t + std::size_t((k + 1) % 3);  // Corner k+1 to k+2.
+        n = edge_normal_[e];
+        out.boundary = edge_boundary_[e] != 0;
     }
     const double d = (x - q).norm();
     out.distance_m = (x - q).dot(n) < 0.0 ? -d : d;

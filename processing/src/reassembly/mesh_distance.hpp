@@ -12,7 +12,6 @@
 #include <cstdint>
 #include <memory>
 #include <span>
-#include <unordered_map>
 #include <vector>
 
 namespace anascan::reassembly::detail {
@@ -47,15 +46,14 @@ public:
     bool signed_distance(const Eigen::Vector3d& x, SignedDistance& out) const;
 
 private:
-    struct Edge {
-        Eigen::Vector3d normal_sum = Eigen::Vector3d::Zero();
-        int triangles = 0;
-    };
     std::span<const Eigen::Vector3f> vertices_;
     std::span<const Eigen::Vector3i> triangles_;
     std::vector<Eigen::Vector3d> face_normal_, vertex_normal_;
     std::vector<char> vertex_boundary_;
-    std::unordered_map<std::uint64_t, Edge> edges_;
+    /// Per triangle t and corner k: the pseudo-normal of the edge from corner k to k + 1,
+    /// and whether that edge is on the boundary (one triangle) or non-manifold (three).
+    std::vector<Eigen::Vector3d> edge_normal_;
+    std::vector<char> edge_boundary_;
     ClosestTriangle tree_;
 };
 
