@@ -76,7 +76,7 @@ for ((i = 0; i < stones; i++)); do
     : >"$samples"
     start=$SECONDS
     # Each line stamped with the time it arrived (registration times per scan).
-    "$cli" --accept-poor capture --device sim:structured-light --scene "$scene" \
+    "$cli" ${FIELD_DAY_VERBOSE:+-v} --accept-poor capture --device sim:structured-light --scene "$scene" \
         --session "$session" --views "$per_stone" --flip-after $((per_stone / 2)) \
         --tour-seed $((i + 1)) --no-coverage > >(tee "$log" |
         while IFS= read -r line; do echo "$(date +%s.%N) $line"; done >"$log.timed") 2>&1 &
