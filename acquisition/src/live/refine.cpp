@@ -1,5 +1,5 @@
-// LiveRegistrar::refine: features ahead of need, group merges by global registration of
-// stone-only scans, multi-view links (links.cpp), multi-view refinement.
+// LiveRegistrar::refine: group merges by global registration of stone-only scans,
+// multi-view links (links.cpp), features ahead of need, multi-view refinement.
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -162,6 +162,9 @@ std::vector<PoseUpdate> LiveRegistrar::refine(const std::function<bool()>& inter
         for (const PoseUpdate& u : s.merge_whole_groups()) changed[u.seq] = u;
     if (s.report.merges == 0 && !s.interrupted())
         for (const PoseUpdate& u : s.merge_groups()) changed[u.seq] = u;
+    // Links before features: links are every scan's share of the final solve (left
+    // undone, they pile up for the end of the capture), features are computed on demand.
+    if (!s.interrupted()) s.report.new_links = s.make_links();
     std::size_t described = 0;
     for (std::size_t i = 0;
          i < s.scans.size() && described < s.config.max_features_per_refine && !s.interrupted();
@@ -170,7 +173,6 @@ std::vector<PoseUpdate> LiveRegistrar::refine(const std::function<bool()>& inter
         s.features(i);
         ++described;
     }
-    if (!s.interrupted()) s.report.new_links = s.make_links();
     // An interrupted round leaves the solve to the next call: the new scan comes first.
     if (!s.interrupted())
         for (const PoseUpdate& u : s.refine_groups()) changed[u.seq] = u;
