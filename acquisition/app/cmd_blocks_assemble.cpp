@@ -30,46 +30,73 @@ struct AssembleBlocksOptions {
     std::vector<std::string> pairs, coplanar, colinear, fixed;
     bool accepted = false;
     int max_iterations = 60;
+    std::string joint_normal = "vertex";
 };
 
-// The models of DIR's features files, their features found again (deterministic).
-ra::AssemblyProblem load_blocks(const std::string& dir) {
+// DIR's features files, sorted, and the block ids they name.
+struct FeatureFiles {
+    std::vector<fs::path> files;
+    std::vector<std::string> ids;
+    std::vector<std::size_t> face_counts;
+};
+
+FeatureFiles feature_files(const std::string& dir) {
     std::error_code ec;
     if (!fs::is_directory(dir, ec))
         fail_command({ErrorCode::kIo, dir + ": not a folder of block features"});
-    std::vector<fs::path> files;
+    FeatureFiles out;
     for (const auto& e : fs::directory_iterator(dir, ec))
-        if (e.path().string().ends_with(".features.json")) files.push_back(e.path());
-    std::sort(files.begin(), files.end());
-    if (files.empty())
+        if (e.path().string().ends_with(".features.json")) out.files.push_back(e.path());
+    std::sort(out.files.begin(), out.files.end());
+    if (out.files.empty())
         fail_command({ErrorCode::kIo, dir + ": no ID.features.json (run blocks features)"});
-    ra::AssemblyProblem p;
-    for (const fs::path& f : files) {
+    for (const fs::path& f : out.files) {
         auto j = read_json_file(f);
         if (!j) fail_command(j.error());
-        const std::string source = j->value("source", std::string());
-        auto ply = io::read_ply(source);
+        out.ids.push_back(j->value("id", f.stem().stem().string()));
+        out.face_counts.push_back(j->value("faces", json::array()).size());
+    }
+    return out;
+}
+
+// The models of the features files (all read before any feature is found, so that a
+// missing one fails at once), their features found again (deterministic).
+void load_blocks(const FeatureFiles& in, ra::AssemblyProblem& p) {
+    std::vector<Mesh> meshes;
+    std::vector<std::string> sources;
+    for (const fs::path& f : in.files) {
+        auto j = read_json_file(f);
+        if (!j) fail_command(j.error());
+        sources.push_back(j->value("source", std::string()));
+        auto ply = io::read_ply(sources.back());
         if (!ply)
             fail_command({ply.error().code, f.string() + ": its model " + ply.error().message});
-        const Mesh mesh{.vertices = std::move(ply->cloud), .triangles = std::move(ply->triangles)};
-        if (mesh.triangles.empty())
-            fail_command({ErrorCode::kFormat, source + ": a mesh is needed"});
-        p.blocks.push_back(ra::assembly_block(j->value("id", f.stem().stem().string()), mesh));
+        meshes.push_back(
+            {.vertices = std::move(ply->cloud), .triangles = std::move(ply->triangles)});
+        if (meshes.back().triangles.empty())
+            fail_command({ErrorCode::kFormat, sources.back() + ": a mesh is needed"});
+    }
+    for (std::size_t i = 0; i < meshes.size(); ++i) {
+        const std::string& source = sources[i];
+        p.blocks.push_back(ra::assembly_block(in.ids[i], meshes[i]));
         if (!p.blocks.back().features.matchable())
             fail_command({ErrorCode::kInvalidArgument,
                           source + ": " + ra::to_string(p.blocks.back().features.status) + ": " +
                               p.blocks.back().features.message});
     }
-    return p;
 }
 
-std::vector<std::string> ids_of(const ra::AssemblyProblem& p) {
-    std::vector<std::string> ids;
-    for (const auto& b : p.blocks) ids.push_back(b.id);
-    return ids;
+// A face named by the user must be one of the features file's faces.
+void check_face_listed(const FeatureFiles& in, const ra::FaceRef& r) {
+    if (r.face >= 0 && std::size_t(r.face) < in.face_counts[std::size_t(r.block)]) return;
+    fail_command({ErrorCode::kInvalidArgument,
+                  in.ids[std::size_t(r.block)] + ":" + std::to_string(r.face) +
+                      ": no such face (the block has " +
+                      std::to_string(in.face_counts[std::size_t(r.block)]) + ")"});
 }
 
-ra::FaceLink parse_link(const std::vector<std::string>& ids, const std::string& text) {
+ra::FaceLink parse_link(const FeatureFiles& in, const std::string& text) {
+    const std::vector<std::string>& ids = in.ids;
     const auto eq = text.find('=');
     if (eq == std::string::npos)
         fail_command({ErrorCode::kInvalidArgument, "'" + text + "': expected A:F=B:G"});
@@ -77,10 +104,15 @@ ra::FaceLink parse_link(const std::vector<std::string>& ids, const std::string& 
     auto b = parse_face_ref(ids, text.substr(eq + 1));
     if (!a) fail_command(a.error());
     if (!b) fail_command(b.error());
+    if (a->block == b->block)
+        fail_command({ErrorCode::kInvalidArgument, "'" + text + "': both faces on one block"});
+    check_face_listed(in, *a);
+    check_face_listed(in, *b);
     return {*a, *b};
 }
 
-ra::LineLink parse_line_link(const std::vector<std::string>& ids, const std::string& text) {
+ra::LineLink parse_line_link(const FeatureFiles& in, const std::string& text) {
+    const std::vector<std::string>& ids = in.ids;
     auto one = [&](std::string s) {
         const auto slash = s.rfind('/');
         if (slash == std::string::npos)
@@ -157,17 +189,19 @@ void write_outputs(const AssembleBlocksOptions& o, const ra::AssemblyProblem& p,
         fail_command(ok.error());
 }
 
-void run_assemble_blocks(const AssembleBlocksOptions& o) {
-    ra::AssemblyProblem p = load_blocks(o.dir);
-    const std::vector<std::string> ids = ids_of(p);
+// The expert's links and fixed blocks, parsed against the block ids (before any model is
+// read: a typo fails at once).
+ra::AssemblyProblem parse_problem(const AssembleBlocksOptions& o, const FeatureFiles& in) {
+    const std::vector<std::string>& ids = in.ids;
     if (!o.proposals.empty() && !o.accepted)
         fail_command({ErrorCode::kInvalidArgument,
                       "--proposals needs --accepted (only accepted pairs are assembled)"});
+    ra::AssemblyProblem p;
     const std::vector<std::string> pairs =
         o.proposals.empty() ? o.pairs : accepted_pairs(o.proposals);
-    for (const std::string& t : pairs) p.contacts.push_back(parse_link(ids, t));
-    for (const std::string& t : o.coplanar) p.coplanar.push_back(parse_link(ids, t));
-    for (const std::string& t : o.colinear) p.colinear.push_back(parse_line_link(ids, t));
+    for (const std::string& t : pairs) p.contacts.push_back(parse_link(in, t));
+    for (const std::string& t : o.coplanar) p.coplanar.push_back(parse_link(in, t));
+    for (const std::string& t : o.colinear) p.colinear.push_back(parse_line_link(in, t));
     for (const std::string& f : o.fixed) {
         const auto it = std::find(ids.begin(), ids.end(), f);
         if (it == ids.end())
@@ -175,8 +209,21 @@ void run_assemble_blocks(const AssembleBlocksOptions& o) {
                 {ErrorCode::kInvalidArgument, "--fixed " + f + ": no such block in " + o.dir});
         p.fixed.push_back(int(it - ids.begin()));
     }
+    return p;
+}
+
+void run_assemble_blocks(const AssembleBlocksOptions& o) {
+    const FeatureFiles files = feature_files(o.dir);
+    ra::AssemblyProblem p = parse_problem(o, files);
+    load_blocks(files, p);
+    const ra::AssemblyConfig config{.max_iterations = o.max_iterations,
+                                    .joint_normal = o.joint_normal == "plane"
+                                                        ? ra::JointNormal::kFacePlane
+                                                        : ra::JointNormal::kVertex};
+    auto start = ra::initial_placement(p, config);
+    if (!start) fail_command(start.error());
     const Stopwatch watch;
-    auto r = ra::assemble_blocks(p, ra::initial_placement(p), {.max_iterations = o.max_iterations});
+    auto r = ra::assemble_blocks(p, *start, config);
     if (!r) fail_command(r.error());
     const ra::AssemblyCheck check = ra::check_assembly(p, r->T_world_block);
     write_outputs(o, p, *r, check, watch.seconds());
@@ -209,6 +256,10 @@ void add_blocks_assemble_command(CLI::App& blocks) {
     cmd->add_flag("--accepted", o->accepted, "Assemble the pairs accepted in --proposals");
     cmd->add_option("--max-iterations", o->max_iterations, "Iterations at most")
         ->check(CLI::PositiveNumber);
+    cmd->add_option("--joint-normal", o->joint_normal,
+                    "Contact rows along the partner's vertex normals (vertex, default) or its "
+                    "face plane (plane)")
+        ->check(CLI::IsMember({"vertex", "plane"}));
     cmd->add_option("--out", o->out, "Output folder (assembly.conf, assembly.json, assembly.ply)")
         ->required();
     cmd->callback([o] {

@@ -1,9 +1,10 @@
-// anascan sim list-monuments | export-monument NAME [--seed S] --out DIR: the simulated
-// monument (sim/monument.hpp) as a user would have it after scanning (each block's mesh in
-// its fallen pose, DIR/blocks/), the built-pose meshes (DIR/built/) and the truth
+// anascan sim list-monuments | export-monument NAME [--seed S] [--blocks A,B] --out DIR: the
+// simulated monument (sim/monument.hpp) as a user would have it after scanning (each block's mesh
+// in its fallen pose, DIR/blocks/), the built-pose meshes (DIR/built/) and the truth
 // (DIR/truth.json: poses and true adjacent face pairs).
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -21,6 +22,7 @@ struct ExportMonumentOptions {
     std::string out;
     long long seed = 0;
     double step_mm = 0.0;
+    std::vector<std::string> blocks;  ///< Only these blocks' meshes (all when empty).
 };
 
 nlohmann::json pose_json(const Pose& T) {
@@ -64,8 +66,13 @@ void run_export_monument(const ExportMonumentOptions& o) {
     std::filesystem::create_directories(dir / "blocks", ec);
     std::filesystem::create_directories(dir / "built", ec);
     if (ec) fail_command({ErrorCode::kIo, dir.string() + ": cannot create: " + ec.message()});
+    for (const std::string& id : o.blocks)
+        if (std::ranges::none_of(monument->blocks, [&](const auto& b) { return b.id == id; }))
+            fail_command(
+                {ErrorCode::kInvalidArgument, "--blocks " + id + ": no such block in " + o.name});
     std::size_t vertices = 0;
     for (const sim::MonumentBlock& b : monument->blocks) {
+        if (!o.blocks.empty() && std::ranges::count(o.blocks, b.id) == 0) continue;
         const Mesh mesh = sim::block_mesh(b);
         vertices += mesh.vertices.size();
         const io::PlyWriteOptions options{
@@ -106,6 +113,9 @@ void add_sim_monument_commands(CLI::App& sim) {
         ->check(CLI::NonNegativeNumber);
     cmd->add_option("--step-mm", opts->step_mm, "Mesh vertex spacing, mm (default 5)")
         ->check(CLI::PositiveNumber);
+    cmd->add_option("--blocks", opts->blocks,
+                    "Write only these blocks' meshes (the truth lists all)")
+        ->delimiter(',');
     cmd->callback([opts] { run_export_monument(*opts); });
 }
 

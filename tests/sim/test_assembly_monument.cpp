@@ -18,7 +18,9 @@ TEST(MonumentAssembly, NeighboursFromTheHornPlacement) {
         ASSERT_GE(l.a.face, 0);
         ASSERT_GE(l.b.face, 0);
     }
-    const std::vector<Pose> start = ra::initial_placement(m->problem);
+    auto placed = ra::initial_placement(m->problem);
+    ASSERT_TRUE(placed) << placed.error().message;
+    const std::vector<Pose>& start = *placed;
     auto penetration_only =
         ra::assemble_blocks(m->problem, start, {.use_coplanar = false, .use_colinear = false});
     ASSERT_TRUE(penetration_only) << penetration_only.error().message;

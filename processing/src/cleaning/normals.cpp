@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -32,9 +33,13 @@ struct LocalFit {  // One point's result.
 };
 
 #if defined(__SSE2__)
-// (x, y, z, 0), reading only the point's three floats.
+// (x, y, z, 0), reading only the point's three floats. The first two are copied as one
+// 8-byte value: a point is only 4-byte aligned, and dereferencing it as a double (what
+// _mm_load_sd does) is undefined behaviour; memcpy compiles to the same single load.
 inline __m128 load_xyz(const Eigen::Vector3f& p) {
-    const __m128 xy = _mm_castpd_ps(_mm_load_sd(reinterpret_cast<const double*>(p.data())));
+    double x_and_y = 0.0;
+    std::memcpy(&x_and_y, p.data(), sizeof x_and_y);
+    const __m128 xy = _mm_castpd_ps(_mm_set_sd(x_and_y));
     return _mm_movelh_ps(xy, _mm_load_ss(p.data() + 2));
 }
 #endif

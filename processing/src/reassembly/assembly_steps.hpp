@@ -53,6 +53,25 @@ Rows build_rows(const AssemblyProblem& problem, const Prepared& prepared,
 Eigen::MatrixXd row_matrix(const std::vector<Row>& rows, const Prepared& prepared,
                            const Frames& frames, double weight);
 
+/// The motion frames at poses T: per block its centroid and RMS radius.
+Frames frames_of(const AssemblyProblem& problem, const std::vector<Pose>& T);
+
+/// The right-hand sides of rows, times `weight`.
+Eigen::VectorXd rhs_of(const std::vector<Row>& rows, double weight);
+
+/// One iteration's quadratic program, min ½ uᵀH u - gᵀu subject to C u >= d, with the
+/// normal equations kept per term (for the figures tool's diagnosis of each term's pull).
+struct IterationQp {
+    Eigen::MatrixXd H_reg, H_cp, H_cl;
+    Eigen::VectorXd g_reg, g_cp, g_cl;
+    Eigen::MatrixXd C;  ///< The contact rows (empty unless constrained).
+    Eigen::VectorXd d;
+    Eigen::MatrixXd H() const;
+    Eigen::VectorXd g() const;
+};
+IterationQp iteration_qp(const Rows& rows, const Prepared& prepared, const Frames& frames,
+                         bool constrained);
+
 /// The world-frame edge line of a LineRef: point and unit direction; false when absent.
 bool edge_line(const AssemblyProblem& problem, const LineRef& ref, const Pose& T,
                Eigen::Vector3d& point_m, Eigen::Vector3d& direction, double& length_m);

@@ -39,10 +39,17 @@ FacePoints face_points(const AssemblyBlock& block, int face, int max_samples) {
     return out;
 }
 
-// Rows of the samples of face `from` against the closest points of face `to`.
-void contact_rows(const Prepared& p, const FaceRef& from, const FaceRef& to,
-                  const std::vector<Pose>& T, const AssemblyConfig& config, int link,
-                  std::vector<Row>& out) {
+// Rows of the samples of face `from` against the closest points y of face `to`, along the
+// outward vertex normal at y (JointNormal::kVertex) or the normal of `to`'s fitted plane
+// (kFacePlane). Vertex normals carry the joint's own geometry (drafted margins, tool
+// marks), and lean at edges: on the simulated wall their rows pull a block 1 mm off the
+// truth and lock starts 5 degrees off in contradictory poses; plane normals do neither but
+// know nothing of the margins (docs/reassembly.md, the figures of both).
+void contact_rows(const AssemblyProblem& pr, const Prepared& p, const FaceRef& from,
+                  const FaceRef& to, const std::vector<Pose>& T, const AssemblyConfig& config,
+                  int link, std::vector<Row>& out) {
+    const Eigen::Vector3d plane_normal =
+        pr.blocks[std::size_t(to.block)].features.faces[std::size_t(to.face)].normal;
     const FacePoints& src = p.faces[std::size_t(from.block)][std::size_t(from.face)];
     const FacePoints& dst = p.faces[std::size_t(to.block)][std::size_t(to.face)];
     const Pose& Tj = T[std::size_t(from.block)];
@@ -53,7 +60,9 @@ void contact_rows(const Prepared& p, const FaceRef& from, const FaceRef& to,
         Neighbor nb;
         if (!dst.tree->nearest(q, nb)) continue;
         const Eigen::Vector3d y = dst.points[nb.index].cast<double>();
-        const Eigen::Vector3d n = dst.normals[nb.index].cast<double>().normalized();
+        const Eigen::Vector3d n = config.joint_normal == JointNormal::kFacePlane
+                                      ? plane_normal
+                                      : dst.normals[nb.index].cast<double>().normalized();
         const Eigen::Vector3d d = q.cast<double>() - y;
         if ((d - d.dot(n) * n).norm() > config.contact_gate_m) continue;  // Beyond the face.
         out.push_back({.j = from.block,
@@ -147,8 +156,8 @@ Rows build_rows(const AssemblyProblem& pr, const Prepared& p, const std::vector<
                 const AssemblyConfig& config) {
     Rows rows;
     for (std::size_t l = 0; l < pr.contacts.size(); ++l) {
-        contact_rows(p, pr.contacts[l].a, pr.contacts[l].b, T, config, int(l), rows.contact);
-        contact_rows(p, pr.contacts[l].b, pr.contacts[l].a, T, config, int(l), rows.contact);
+        contact_rows(pr, p, pr.contacts[l].a, pr.contacts[l].b, T, config, int(l), rows.contact);
+        contact_rows(pr, p, pr.contacts[l].b, pr.contacts[l].a, T, config, int(l), rows.contact);
     }
     for (std::size_t l = 0; config.use_coplanar && l < pr.coplanar.size(); ++l) {
         plane_rows(pr, pr.coplanar[l].a, pr.coplanar[l].b, T, config, int(l), rows.coplanar);

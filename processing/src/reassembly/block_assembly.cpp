@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <set>
 
 #include "anascan/processing/reassembly/assembly_check.hpp"
@@ -66,32 +67,10 @@ Expected<void> check_connected(const AssemblyProblem& p) {
     return {};
 }
 
-Frames frames_of(const AssemblyProblem& p, const std::vector<Pose>& T) {
-    Frames f;
-    for (std::size_t b = 0; b < p.blocks.size(); ++b) {
-        Eigen::Vector3d c = Eigen::Vector3d::Zero();
-        const auto& pts = p.blocks[b].points.positions;
-        for (const auto& x : pts) c += x.cast<double>();
-        c /= std::max<double>(1.0, double(pts.size()));
-        double r2 = 0.0;
-        for (const auto& x : pts) r2 += (x.cast<double>() - c).squaredNorm();
-        f.reference_m.push_back(T[b] * c);
-        f.length_m.push_back(
-            std::max(1e-3, std::sqrt(r2 / std::max<double>(1.0, double(pts.size())))));
-    }
-    return f;
-}
-
 double rms(const std::vector<Row>& rows) {
     double s = 0.0;
     for (const Row& r : rows) s += r.rhs * r.rhs;
     return rows.empty() ? 0.0 : std::sqrt(s / double(rows.size()));
-}
-
-Eigen::VectorXd rhs_of(const std::vector<Row>& rows, double weight) {
-    Eigen::VectorXd b(Eigen::Index(rows.size()));
-    for (std::size_t i = 0; i < rows.size(); ++i) b[Eigen::Index(i)] = weight * rows[i].rhs;
-    return b;
 }
 
 // Moves every free block by the helical motion of its step; returns the largest motion of
@@ -144,29 +123,22 @@ double iterate(const AssemblyProblem& p, const Prepared& prep, const AssemblyCon
                bool constrained, AssemblyResult& out) {
     const Rows rows = build_rows(p, prep, out.T_world_block, c);
     const Frames frames = frames_of(p, out.T_world_block);
-    auto weight = [](const std::vector<Row>& r) {  // Each term a mean: they enter equally.
-        return 1.0 / std::sqrt(std::max<double>(1.0, double(r.size())));
-    };
-    const double w_reg = weight(rows.contact), w_cp = weight(rows.coplanar),
-                 w_cl = weight(rows.colinear);
-    const Eigen::MatrixXd Ar = row_matrix(rows.contact, prep, frames, w_reg);
-    const Eigen::MatrixXd Ap = row_matrix(rows.coplanar, prep, frames, w_cp);
-    const Eigen::MatrixXd Al = row_matrix(rows.colinear, prep, frames, w_cl);
-    const Eigen::MatrixXd H = Ar.transpose() * Ar + Ap.transpose() * Ap + Al.transpose() * Al;
-    const Eigen::VectorXd g = Ar.transpose() * rhs_of(rows.contact, w_reg) +
-                              Ap.transpose() * rhs_of(rows.coplanar, w_cp) +
-                              Al.transpose() * rhs_of(rows.colinear, w_cl);
-    Eigen::MatrixXd C(0, H.cols());
-    Eigen::VectorXd d(0);
-    if (constrained) C = Ar / w_reg, d = rhs_of(rows.contact, 1.0);
-    const QpResult qp = solve_constrained_normal(H, g, C, d);
+    const IterationQp q = iteration_qp(rows, prep, frames, constrained);
+    const Eigen::MatrixXd& C = q.C;
+    const QpResult qp = solve_constrained_normal(q.H(), q.g(), q.C, q.d,
+                                                 QpConfig{.max_iterations = c.qp_max_iterations});
     out.history.push_back({rms(rows.contact), rms(rows.coplanar), rms(rows.colinear),
-                           std::size_t(C.rows()), qp.active.size()});
+                           std::size_t(C.rows()), qp.active.size(), qp.iterations});
     if (qp.status == QpStatus::kInfeasible) {
         out.status = AssemblyStatus::kInfeasible;
         out.offending = offending_contacts(p, rows.contact, qp.active);
         out.message = "the matching faces cannot all be made penetration-free";
         return 0.0;
+    }
+    if (qp.status == QpStatus::kIterationLimit) {
+        out.message = "the QP of iteration " + std::to_string(out.iterations + 1) +
+                      " reached its cap of " + std::to_string(qp.iterations) + " NNLS iterations";
+        return -1.0;
     }
     return apply_step(qp.u, prep, frames, out.T_world_block);
 }
@@ -223,15 +195,22 @@ Expected<AssemblyResult> assemble_blocks(const AssemblyProblem& p, const std::ve
         const bool constrained = c.non_penetration && out.iterations >= c.free_iterations;
         const double step = iterate(p, prep, c, constrained, out);
         if (out.status == AssemblyStatus::kInfeasible) return out;
+        if (step < 0.0) return out;  // The QP's cap: kNotConverged with its message.
+        out.last_step_m = step;
         if (step < c.converged_step_m && (constrained || !c.non_penetration)) {
             out.status = AssemblyStatus::kOk;
             ++out.iterations;
             break;
         }
     }
-    if (c.use_coplanar && c.use_colinear) flag_contradictions(p, c, out);
-    if (out.status == AssemblyStatus::kNotConverged)
-        out.message = "no convergence in " + std::to_string(c.max_iterations) + " iterations";
+    if (out.status == AssemblyStatus::kOk && c.use_coplanar && c.use_colinear)
+        flag_contradictions(p, c, out);
+    if (out.status == AssemblyStatus::kNotConverged) {
+        char step[64];
+        std::snprintf(step, sizeof step, "%.4f", 1e3 * out.last_step_m);
+        out.message = "no convergence in " + std::to_string(c.max_iterations) +
+                      " iterations (last step " + step + " mm)";
+    }
     return out;
 }
 

@@ -21,19 +21,27 @@ Eigen::VectorXd passive_solution(const Eigen::MatrixXd& E, const Eigen::VectorXd
     return s;
 }
 
-// The inner loop: step toward the passive solution until it is positive.
+// The inner loop: step toward the passive solution until it is positive. Every pass that
+// does not end the loop takes the blocking index out of the passive set, exactly (the
+// degenerate-step guard: a zero step, or rounding that leaves it at 1e-17, still removes
+// it), so the loop ends after at most |passive| passes.
 void inner_loop(const Eigen::MatrixXd& E, const Eigen::VectorXd& f, std::vector<int>& passive,
                 Eigen::VectorXd& x) {
-    for (int guard = 0; guard < int(E.rows()) * 4 + 8 && !passive.empty(); ++guard) {
+    while (!passive.empty()) {
         const Eigen::VectorXd s = passive_solution(E, f, passive);
         double alpha = 1.0;
-        for (int i : passive)
-            if (s[i] <= 0.0) alpha = std::min(alpha, x[i] / (x[i] - s[i]));
-        if (alpha >= 1.0) {
+        int blocking = -1;
+        for (int i : passive) {
+            if (s[i] > 0.0) continue;
+            const double a = x[i] - s[i] > 0.0 ? x[i] / (x[i] - s[i]) : 0.0;
+            if (blocking < 0 || a < alpha) alpha = a, blocking = i;
+        }
+        if (blocking < 0) {
             x = s;
             return;
         }
-        x += alpha * (s - x);
+        x += std::max(0.0, alpha) * (s - x);
+        x[blocking] = 0.0;
         std::erase_if(passive, [&](int i) {
             if (x[i] > 1e-15) return false;
             x[i] = 0.0;
@@ -44,11 +52,13 @@ void inner_loop(const Eigen::MatrixXd& E, const Eigen::VectorXd& f, std::vector<
 
 }  // namespace
 
+int nnls_iteration_cap(int columns) { return 3 * (columns + 1); }
+
 int nnls(const Eigen::MatrixXd& E, const Eigen::VectorXd& f, Eigen::VectorXd& x,
          int max_iterations) {
     const Eigen::Index m = E.cols();
     x = Eigen::VectorXd::Zero(m);
-    if (max_iterations <= 0) max_iterations = 3 * int(m + 1);
+    if (max_iterations <= 0) max_iterations = nnls_iteration_cap(int(m));
     const double tol = 1e-12 * std::max(1.0, E.cwiseAbs().maxCoeff()) * std::max(1.0, f.norm());
     std::vector<int> passive;
     std::vector<char> in_passive(std::size_t(m), 0), refused(std::size_t(m), 0);
@@ -94,7 +104,9 @@ QpResult solve_constrained_normal(const Eigen::MatrixXd& H, const Eigen::VectorX
     Eigen::VectorXd f = Eigen::VectorXd::Zero(n + 1);
     f[n] = 1.0;
     Eigen::VectorXd lambda;
-    out.iterations = nnls(E, f, lambda, config.max_iterations);
+    const int cap =
+        config.max_iterations > 0 ? config.max_iterations : nnls_iteration_cap(int(C.rows()));
+    out.iterations = nnls(E, f, lambda, cap);
     for (Eigen::Index i = 0; i < lambda.size(); ++i)
         if (lambda[i] > 0.0) out.active.push_back(int(i));
     const Eigen::VectorXd r = E * lambda - f;
@@ -102,8 +114,7 @@ QpResult solve_constrained_normal(const Eigen::MatrixXd& H, const Eigen::VectorX
         out.status = QpStatus::kInfeasible;
         return out;
     }
-    if (config.max_iterations > 0 && out.iterations >= config.max_iterations)
-        out.status = QpStatus::kIterationLimit;
+    if (out.iterations >= cap) out.status = QpStatus::kIterationLimit;
     const Eigen::VectorXd z = -r.head(n) / r[n];
     out.u += Lt.triangularView<Eigen::Upper>().solve(z);
     return out;

@@ -82,7 +82,9 @@ Pose place_on_face(const AssemblyProblem& p, const FaceLink& link, const Pose& T
                                 six_points(T_world_b * b.centre_m, -nb, mb));
 }
 
-std::vector<Pose> initial_placement(const AssemblyProblem& p) {
+Expected<std::vector<Pose>> initial_placement(const AssemblyProblem& p,
+                                              const AssemblyConfig& config) {
+    if (auto ok = validate_problem(p, config); !ok) return Unexpected(ok.error());
     std::vector<Pose> T(p.blocks.size(), Pose::Identity());
     std::vector<char> placed(p.blocks.size(), 0);
     std::deque<int> queue;

@@ -171,6 +171,13 @@ bool huge_count_is_refused(bool binary) {
 }
 
 TEST(PlyErrors, CountFarLargerThanTheFileFailsWithoutAllocating) {
+#if defined(__SANITIZE_ADDRESS__)
+    // AddressSanitizer reserves terabytes of shadow address space: no child can run under a
+    // 1 GiB RLIMIT_AS. The refusal itself is still tested, without the limit, below.
+    EXPECT_TRUE(huge_count_is_refused(true));
+    EXPECT_TRUE(huge_count_is_refused(false));
+    GTEST_SKIP() << "RLIMIT_AS cannot be set under AddressSanitizer";
+#endif
     EXPECT_EXIT(check_huge_count_with_little_memory(true), ::testing::ExitedWithCode(0), "");
     EXPECT_EXIT(check_huge_count_with_little_memory(false), ::testing::ExitedWithCode(0), "");
 }

@@ -103,7 +103,9 @@ TEST(BlockAssembly, SixPointPlacementLaysTheFaceOntoItsPartner) {
     const Row r = two_blocks();
     ASSERT_TRUE(r.problem.blocks[0].features.matchable());
     ASSERT_TRUE(r.problem.blocks[1].features.matchable());
-    const std::vector<Pose> T = initial_placement(r.problem);
+    auto placed = initial_placement(r.problem);
+    ASSERT_TRUE(placed) << placed.error().message;
+    const std::vector<Pose>& T = *placed;
     // The fixed block stays at the identity: compare with the truth relative to it.
     const Pose E = (r.truth[0].inverse() * r.truth[1]).inverse() * T[1];
     EXPECT_LT(rotation_angle_deg(E), 0.3);
@@ -111,13 +113,15 @@ TEST(BlockAssembly, SixPointPlacementLaysTheFaceOntoItsPartner) {
 }
 
 TEST(BlockAssembly, RecoversTheTruthFromAPerturbedStart) {
-    for (unsigned seed : {1u, 2u, 3u}) {
+    for (unsigned seed : {1u, 2u, 3u, 4u}) {
         const Row& r = three_blocks();
         std::mt19937 rng(seed);
         std::vector<Pose> start = r.truth;
         for (std::size_t b = 1; b < start.size(); ++b)
             start[b] = random_pose(rng, 0.05, 0.015) * start[b];
-        auto result = assemble_blocks(r.problem, start, {});
+        // Both contact normals, alternately: the vertex normals and the face planes.
+        const JointNormal normal = seed % 2 ? JointNormal::kVertex : JointNormal::kFacePlane;
+        auto result = assemble_blocks(r.problem, start, {.joint_normal = normal});
         ASSERT_TRUE(result) << result.error().message;
         ASSERT_EQ(result->status, AssemblyStatus::kOk) << result->message;
         for (std::size_t b = 1; b < start.size(); ++b) {
@@ -179,6 +183,42 @@ TEST(BlockAssembly, BadProblemsNameThePairOrBlock) {
     AssemblyProblem line = good.problem;
     line.colinear.push_back({{0, 0, 0}, {1, 0, 1}});
     EXPECT_NE(error_of(line).find("no edge"), std::string::npos);
+}
+
+// The command line once placed the blocks before checking the problem: an unknown face
+// index (c0b1:77) was read out of bounds and the placement ran on garbage for minutes.
+// The placement now checks first and names the face.
+TEST(BlockAssembly, PlacementOfAnUnknownFaceIsAnErrorNotAnEndlessRun) {
+    AssemblyProblem p = two_blocks().problem;
+    p.contacts[0].b.face = 77;
+    auto placed = initial_placement(p);
+    ASSERT_FALSE(placed);
+    EXPECT_NE(placed.error().message.find("b1:77: no such face"), std::string::npos)
+        << placed.error().message;
+    p = two_blocks().problem;
+    p.fixed = {5};
+    EXPECT_FALSE(initial_placement(p));
+}
+
+// Every loop ends with a status: the outer iteration at its cap reports the iterations
+// and the last step, the QP at its NNLS cap names the iteration.
+TEST(BlockAssembly, CapsEndTheIterationWithAClearStatus) {
+    const Row r = two_blocks();
+    std::mt19937 rng(4);
+    std::vector<Pose> start = r.truth;
+    start[1] = random_pose(rng, 0.05, 0.015) * start[1];
+    auto outer = assemble_blocks(r.problem, start, {.max_iterations = 2});
+    ASSERT_TRUE(outer) << outer.error().message;
+    EXPECT_EQ(outer->status, AssemblyStatus::kNotConverged);
+    EXPECT_EQ(outer->iterations, 2);
+    EXPECT_GT(outer->last_step_m, 2e-6);
+    EXPECT_NE(outer->message.find("no convergence in 2 iterations (last step"), std::string::npos)
+        << outer->message;
+    auto qp = assemble_blocks(r.problem, start, {.qp_max_iterations = 1});
+    ASSERT_TRUE(qp) << qp.error().message;
+    EXPECT_EQ(qp->status, AssemblyStatus::kNotConverged);
+    EXPECT_NE(qp->message.find("reached its cap of 1 NNLS iterations"), std::string::npos)
+        << qp->message;
 }
 
 }  // namespace

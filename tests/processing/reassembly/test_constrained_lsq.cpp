@@ -81,5 +81,38 @@ TEST(ConstrainedLsq, RankDeficientObjectiveIsRegularised) {
     EXPECT_NEAR(r.u[1], 0.5, 1e-6);
 }
 
+// A degenerate vertex: the same constraint many times over and near copies of it (ties in
+// the step length, zero steps). The solver ends, feasible and optimal, well within its cap.
+TEST(ConstrainedLsq, DegenerateRepeatedConstraintsEnd) {
+    const Eigen::MatrixXd A = Eigen::MatrixXd::Identity(3, 3);
+    const Eigen::Vector3d b(2, 2, 2);
+    Eigen::MatrixXd C(300, 3);
+    Eigen::VectorXd d(300);
+    std::mt19937 rng(3);
+    std::normal_distribution<double> N(0.0, 1e-13);
+    for (int i = 0; i < 300; ++i) {
+        C.row(i) = Eigen::RowVector3d(-1.0 + N(rng), -1.0, i % 3 == 0 ? 0.0 : -1.0);
+        d[i] = -1.0 + (i % 2 == 0 ? 0.0 : N(rng));
+    }
+    const QpResult r = solve_constrained_lsq(A, b, C, d);
+    ASSERT_EQ(r.status, QpStatus::kOptimal);
+    EXPECT_LT(r.iterations, nnls_iteration_cap(300));
+    EXPECT_GT((C * r.u - d).minCoeff(), -1e-8);
+    // The projection of (2, 2, 2) onto x + y <= 1, x + y + z <= 1: onto the second plane,
+    // (1/3, 1/3, 1/3), where the first holds (x + y = 2/3).
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(r.u[k], 1.0 / 3.0, 1e-6) << k;
+}
+
+// At its cap the solver says so (and the assembly turns that into "not converged").
+TEST(ConstrainedLsq, TheIterationCapIsReported) {
+    const Problem p = random_problem(12, 60, 300, 5);
+    const QpResult full = solve_constrained_lsq(p.A, p.b, p.C, p.d);
+    ASSERT_EQ(full.status, QpStatus::kOptimal);
+    ASSERT_GT(full.iterations, 1);
+    const QpResult capped = solve_constrained_lsq(p.A, p.b, p.C, p.d, {.max_iterations = 1});
+    EXPECT_EQ(capped.status, QpStatus::kIterationLimit);
+    EXPECT_EQ(capped.iterations, 1);
+}
+
 }  // namespace
 }  // namespace anascan::reassembly

@@ -67,14 +67,26 @@ struct AssemblyProblem {
     std::vector<int> fixed;
 };
 
+/// The normal of a contact row (registration and non-penetration constraint) at the
+/// closest point y of the partner face: y's outward vertex normal (the paper's), or the
+/// partner face's fitted-plane normal (no slide from normals leaning at edges and margins;
+/// see docs/reassembly.md for what each meets).
+enum class JointNormal { kVertex, kFacePlane };
+
 struct AssemblyConfig {
+    /// Outer iterations at most; the paper needs 15-20, the tests and figures end in
+    /// 5-30. When reached the status is kNotConverged with the last step.
     int max_iterations = 60;
     double converged_step_m = 2e-6;  ///< Stop when no sample point moves further.
+    /// NNLS iterations per QP at most; 0: nnls_iteration_cap (3 × (constraints + 1)).
+    /// A QP that reaches it ends the assembly as kNotConverged, naming the iteration.
+    int qp_max_iterations = 0;
     int contact_samples_per_face = 400;
     int plane_samples_per_side = 5;  ///< Grid on a face's rectangle for co-planarity.
     int line_samples = 5;            ///< Points along a line for co-linearity (>= 2).
     double contact_gate_m = 0.01;    ///< Closest points further along the face are dropped.
-    double min_face_side_m = 0.05;   ///< A face narrower than this is a sliver.
+    JointNormal joint_normal = JointNormal::kVertex;
+    double min_face_side_m = 0.05;  ///< A face narrower than this is a sliver.
     bool non_penetration = true;
     /// Iterations without the non-penetration constraints first (from a start far off,
     /// the soft terms bring the blocks near before the constraints hold them apart).
@@ -100,6 +112,7 @@ struct TermResiduals {
     double colinear_rms_m = 0.0;
     std::size_t constraint_samples = 0;
     std::size_t active_constraints = 0;
+    int qp_iterations = 0;  ///< NNLS iterations of the step's QP.
 };
 
 struct AssemblyResult {
@@ -108,6 +121,7 @@ struct AssemblyResult {
     std::vector<Pose> T_world_block;     ///< Final poses (model frame to assembly frame).
     std::vector<TermResiduals> history;  ///< Per iteration, before its step.
     int iterations = 0;
+    double last_step_m = 0.0;            ///< Largest motion of the last step (RMS radius).
     std::vector<std::string> offending;  ///< Pairs named "A:2=B:5" when not kOk.
 };
 
@@ -125,9 +139,11 @@ Pose place_on_face(const AssemblyProblem& problem, const FaceLink& link, const P
 /// on one block, a sliver face, a block not linked to a fixed block, a line that is no edge).
 Expected<void> validate_problem(const AssemblyProblem& problem, const AssemblyConfig& config);
 
-/// Initial poses: fixed blocks at the identity (or `given`), the others by place_on_face
-/// in breadth-first order from the fixed blocks.
-std::vector<Pose> initial_placement(const AssemblyProblem& problem);
+/// Initial poses: fixed blocks at the identity, the others by place_on_face in
+/// breadth-first order from the fixed blocks. The problem is validated first
+/// (validate_problem's errors): faces are indices, and an unchecked one is out of bounds.
+Expected<std::vector<Pose>> initial_placement(const AssemblyProblem& problem,
+                                              const AssemblyConfig& config = {});
 
 /// The constrained simultaneous registration from `initial` poses.
 Expected<AssemblyResult> assemble_blocks(const AssemblyProblem& problem,
