@@ -3,8 +3,9 @@
 # scenes below in turn), each captured in one `anascan capture` run of SCANS/STONES views and
 # turned over half way, then re-registered in part (`session register --scan`), one scan
 # excluded, and checked. While each capture runs, its resident memory (VmRSS), open file
-# descriptors and threads are sampled every second. Prints, per stone: RSS and descriptors
-# after warm-up (the first 10 % of the scans) against the end, and the time per scan (saved
+# descriptors and threads are sampled every second. Prints, per stone: RSS (its peak over the
+# scans right after warm-up, the first 10 % of the scans, against its peak over the last ones;
+# the end) and descriptors, and the time per scan (saved
 # to registered, and between two registrations) over the first 10 scans against the last 10;
 # the database size. Usage: scripts/field-day-soak.sh [SCANS] [STONES] [BUILD_DIR] [OUT_DIR]
 # (defaults 300, 3, build, a new temporary folder). Kept there: capture logs and samples.
@@ -18,6 +19,7 @@ cli="$PWD/$build/acquisition/anascan"
 scenes=(small-block octagon-block large-block)
 per_stone=$((scans / stones))
 mkdir -p "$out"
+: >"$out/peaks"
 echo "field day: $stones stones x $per_stone scans in $out"
 
 # Samples PID every second into FILE: seconds since start, scans saved so far, RSS kB, fds,
@@ -41,17 +43,27 @@ report() {
     awk -v n="$n" '
         { t[NR] = $1; s[NR] = $2; rss[NR] = $3; fd[NR] = $4; th[NR] = $5 }
         END {
+            # Warm-up: the first 10 % of the scans. Each figure is the peak over a window of
+            # as many scans (the working set of a scan, its transients included), right
+            # after warm-up and at the last scans.
             warm = int(n / 10); if (warm < 1) warm = 1
-            for (i = 1; i <= NR; i++) if (s[i] >= warm) { w = i; break }
-            for (i = w; i <= NR; i++) {
-                if (rss[i] > maxrss) maxrss = rss[i]
-                if (fd[i] > maxfd) maxfd = fd[i]
-                if (th[i] > maxth) maxth = th[i]
+            for (i = 1; i <= NR; i++) {
+                if (s[i] > warm && s[i] <= 2 * warm && rss[i] > first) first = rss[i]
+                if (s[i] > n - warm && s[i] < n && rss[i] > last) last = rss[i]
+                if (s[i] > warm) {
+                    if (!w) w = i
+                    if (rss[i] > maxrss) maxrss = rss[i]
+                    if (fd[i] > maxfd) maxfd = fd[i]
+                    if (th[i] > maxth) maxth = th[i]
+                }
             }
-            printf "  RSS after warm-up (scan %d) %d kB, peak after it %d kB (%+.1f %%), at the end %d kB\n",
-                warm, rss[w], maxrss, 100 * (maxrss - rss[w]) / rss[w], rss[NR]
+            if (!first) first = rss[w]
+            printf "  RSS peak over scans %d-%d (after warm-up) %d kB, over scans %d-%d %d kB (%+.1f %%, %.2f MB per scan); peak after warm-up %d kB (%+.1f %%), at the end %d kB\n",
+                warm + 1, 2 * warm, first, n - warm + 1, n - 1, last, 100 * (last - first) / first,
+                (last - first) / 1000 / (n - 2 * warm), maxrss, 100 * (maxrss - first) / first, rss[NR]
             printf "  descriptors after warm-up %d, peak after it %d, at the end %d; threads %d, peak %d\n",
                 fd[w], maxfd, fd[NR], th[w], maxth
+            printf "%d\n", maxrss > "/dev/stderr"
         }' "$samples"
     grep -o 'registered scan [0-9]*: .*, [0-9.]* s after saving' "$log" |
         awk -v n="$n" '{ lat[NR] = $(NF - 3) }
@@ -76,7 +88,7 @@ for ((i = 0; i < stones; i++)); do
     : >"$samples"
     start=$SECONDS
     # Each line stamped with the time it arrived (registration times per scan).
-    "$cli" --accept-poor capture --device sim:structured-light --scene "$scene" \
+    "$cli" ${FIELD_DAY_VERBOSE:+-v} --accept-poor capture --device sim:structured-light --scene "$scene" \
         --session "$session" --views "$per_stone" --flip-after $((per_stone / 2)) \
         --tour-seed $((i + 1)) --no-coverage > >(tee "$log" |
         while IFS= read -r line; do echo "$(date +%s.%N) $line"; done >"$log.timed") 2>&1 &
@@ -85,7 +97,7 @@ for ((i = 0; i < stones; i++)); do
     wait "$pid" || { echo "stone $((i + 1)): capture failed (exit $?), see $log" >&2; exit 1; }
     sleep 1
     echo "stone $((i + 1)) ($scene): $per_stone scans in $((SECONDS - start)) s"
-    report "$samples" "$log" "$per_stone"
+    report "$samples" "$log" "$per_stone" 2>>"$out/peaks"
     "$cli" --accept-poor session register "$session" --scan 2 --scan $((per_stone / 2 + 1)) \
         >"$out/stone-$((i + 1)).register.log" 2>&1
     "$cli" session exclude "$session" 3 >/dev/null
@@ -93,3 +105,5 @@ for ((i = 0; i < stones; i++)); do
     echo "  database $(du -k "$session/session.sqlite" | cut -f1) kB," \
         "scans folder $(du -sk "$session/scans" | cut -f1) kB"
 done
+# Across the day (each stone its own process): every stone's peak against the first's.
+awk 'NR == 1 { first = $1 } { printf "stone %d: peak RSS %d kB (%+.1f %% of stone 1)\n", NR, $1, 100 * ($1 - first) / first }' "$out/peaks"

@@ -1,5 +1,8 @@
 // The registration worker of a capture session: places each saved scan live, then, when
 // it has caught up, refines the poses in the background and recomputes the coverage.
+#include <malloc.h>
+#include <spdlog/spdlog.h>
+
 #include <cstdio>
 
 #include "anascan/acquisition/coverage/session_coverage.hpp"
@@ -42,6 +45,22 @@ std::string decision_message(const LiveDecision& decision, std::optional<double>
     return text;
 }
 
+/// The registrar's memory by part and the C heap's (glibc: in use, and held from the system),
+/// on the debug log: where a session's memory goes per scan.
+void log_memory(const LiveRegistrar& registrar, const std::string& when) {
+    if (!spdlog::should_log(spdlog::level::debug)) return;
+    const LiveMemoryReport m = registrar.memory();
+    const struct mallinfo2 heap = mallinfo2();
+    constexpr double kMb = 1e-6;
+    spdlog::debug(
+        "memory {}: registrar {:.1f} MB for {} scans (clouds {:.1f}, trees {:.1f}, features "
+        "{:.1f} of {}, {} links {:.1f}, model {:.1f}); heap in use {:.1f} MB, held {:.1f} MB",
+        when, m.total_bytes() * kMb, m.scans, m.cloud_bytes * kMb, m.tree_bytes * kMb,
+        m.feature_bytes * kMb, m.features_kept, m.links, m.link_bytes * kMb,
+        m.model_cache_bytes * kMb, (heap.uordblks + heap.hblkhd) * kMb,
+        (heap.arena + heap.hblkhd) * kMb);
+}
+
 }  // namespace
 
 void CaptureSession::Impl::requeue_session_scans() {
@@ -75,6 +94,10 @@ void CaptureSession::Impl::registration_loop() {
                 register_one(*item);
                 if (item->scan) --registration_items_with_points;
                 if (item->resumed && !item->reregister) settle_after_replayed_scan();
+                const std::int64_t seq = item->seq;
+                item.reset();    // The full scan, unless the store still holds it.
+                malloc_trim(0);  // It and the preparation's temporaries go back to the system.
+                log_memory(registrar, "after scan " + std::to_string(seq));
             }
             refine_due = coverage_due = true;
             if (!background) begin_work();
@@ -87,6 +110,12 @@ void CaptureSession::Impl::registration_loop() {
         const bool more =
             ++background_steps < config.max_background_steps && refine_in_background();
         if (!more) {
+            // The round's temporaries (merged models, correspondences) are freed: give the
+            // free pages back, so the process keeps what the scans keep (glibc keeps freed
+            // memory in its per-thread arenas otherwise: 140 MB held over 250 MB in use
+            // after 20 scans).
+            malloc_trim(0);
+            log_memory(registrar, "after refining");
             update_coverage();
             background = false;
             end_work();

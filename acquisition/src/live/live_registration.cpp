@@ -95,9 +95,11 @@ LiveDecision LiveRegistrar::reregister(LiveScanInput scan) {
         s.scans[old] = {.seq = scan.seq, .excluded = true};
         std::erase_if(s.links,
                       [&](const live::Link& l) { return l.target == old || l.source == old; });
-        std::erase_if(s.link_tried, [&](const auto& kv) {
+        const auto involves_old = [&](const auto& kv) {
             return kv.first.first == old || kv.first.second == old;
-        });
+        };
+        std::erase_if(s.link_tried, involves_old);
+        std::erase_if(s.link_forecasts, involves_old);
         s.index_of_seq.erase(it);
     }
     scan.turned_over_before = false;

@@ -97,7 +97,12 @@ Prepared prepare_scan(LiveScanInput input, const LiveRegistrationConfig& config)
                                   : "all " + std::to_string(loaded) + " points are non-finite";
         return out;
     }
+    // The copy is kept for the whole capture: positions and normals only (registration
+    // reads nothing else), with no spare capacity.
     input.cloud.normals.clear();
+    input.cloud.colors.clear();
+    input.cloud.intensity.clear();
+    input.cloud.confidence.clear();
     entry.cloud = voxel_downsample(input.cloud, {.voxel_size_m = config.prepare.voxel_size_m});
     // Normals on the reduced cloud (batch registration's preparation, without its
     // down-sampling).
@@ -114,6 +119,8 @@ Prepared prepare_scan(LiveScanInput input, const LiveRegistrationConfig& config)
         return out;
     }
     bounding_sphere(entry);
+    entry.cloud.positions.shrink_to_fit();
+    entry.cloud.normals.shrink_to_fit();
     return out;
 }
 

@@ -1,10 +1,9 @@
-// LiveRegistrar::refine: features ahead of need, group merges by global registration of
-// stone-only scans, multi-view links between overlapping scans, multi-view refinement.
+// LiveRegistrar::refine: group merges by global registration of stone-only scans,
+// multi-view links (links.cpp), features ahead of need, multi-view refinement.
 #include <algorithm>
 #include <cmath>
 #include <map>
 
-#include "anascan/processing/registration/multiview/link_compression.hpp"
 #include "anascan/processing/spatial/kdtree.hpp"
 #include "anascan/processing/spatial/voxel_grid.hpp"
 #include "live/state.hpp"
@@ -16,91 +15,12 @@ namespace {
 using live::ScanEntry;
 using Clock = std::chrono::steady_clock;
 
-/// Fraction of (about `samples`) source points that land within `distance_m` of the target
-/// under `T_target_source`: a cheap forecast of a pair's overlap.
-double forecast_overlap(const ScanEntry& source, const ScanEntry& target, const KdTree& tree,
-                        const Pose& T_target_source, double distance_m) {
-    const std::size_t step = std::max<std::size_t>(1, source.cloud.size() / 200);
-    const Eigen::Isometry3f T_local =
-        (Eigen::Translation3d(-target.cloud.origin_m) * T_target_source *
-         Eigen::Translation3d(source.cloud.origin_m))
-            .cast<float>();
-    std::size_t near = 0, tried = 0;
-    Neighbor nearest;
-    for (std::size_t i = 0; i < source.cloud.size(); i += step, ++tried) {
-        near += tree.nearest_within(T_local * source.cloud.positions[i],
-                                    static_cast<float>(distance_m), nearest);
-    }
-    return tried == 0 ? 0.0 : static_cast<double>(near) / static_cast<double>(tried);
-}
-
-bool usable_link(const FineRegistrationResult& fine, const LiveRegistrationConfig& config) {
-    // A degenerate link moved only along the directions its overlap fixes; fewer
-    // iterations than the limit means it settled along those.
-    const bool settled_on_what_it_fixes = config.links.degenerate &&
-                                          fine.status == FineRegistrationStatus::kDegenerate &&
-                                          fine.iterations < config.links.fine.max_iterations;
-    return (fine.status == FineRegistrationStatus::kConverged ||
-            fine.status == FineRegistrationStatus::kMaxIterations || settled_on_what_it_fixes) &&
-           fine.overlap_fraction >= config.links.min_overlap_fraction &&
-           fine.normal_deviation_deg.value_or(0.0) <= config.verify.max_normal_deviation_deg &&
-           fine.rms_m <= config.links.max_rms_voxel_factor * config.prepare.voxel_size_m;
-}
-
 }  // namespace
 
 Eigen::Vector3d live::cloud_centroid(const PointCloud& cloud) {
     Eigen::Vector3d sum = Eigen::Vector3d::Zero();
     for (std::size_t i = 0; i < cloud.size(); ++i) sum += cloud.world_position(i);
     return cloud.empty() ? sum : Eigen::Vector3d(sum / static_cast<double>(cloud.size()));
-}
-
-const KdTree& LiveRegistrar::State::tree_of(std::size_t i) {
-    std::shared_ptr<const KdTree>& tree = scans[i].tree;  // Kept: the cloud never changes.
-    if (!tree) tree = std::make_shared<const KdTree>(scans[i].cloud.positions);
-    return *tree;
-}
-
-bool LiveRegistrar::State::try_link(std::size_t t, std::size_t s, const Pose& initial) {
-    link_tried[{t, s}] = initial;
-    // A link computed from other poses is replaced by the new attempt (or dropped).
-    std::erase_if(links, [&](const live::Link& l) { return l.target == t && l.source == s; });
-    if (forecast_overlap(scans[s], scans[t], tree_of(t), initial,
-                         config.links.fine.overlap_distance_m) <
-        config.links.min_overlap_fraction) {
-        return false;
-    }
-    FineRegistrationResult fine =
-        register_fine(scans[s].cloud, scans[t].cloud, tree_of(t), initial, config.links.fine);
-    if (!usable_link(fine, config)) return false;
-    link_rms_m.push_back(fine.rms_m);
-    links.push_back(
-        {.target = t,
-         .source = s,
-         .correspondences = compress_link(std::move(fine.correspondences), fine.T_target_source,
-                                          config.links.max_correspondences)});
-    return true;
-}
-
-std::size_t LiveRegistrar::State::make_links() {
-    std::size_t added = 0;
-    for (std::size_t s = 0; s < scans.size(); ++s) {
-        for (std::size_t t = 0; t < s; ++t) {
-            if (!live::active(scans[s]) || !live::active(scans[t]) ||
-                scans[s].group != scans[t].group)
-                continue;
-            const Pose initial = scans[t].T_group_scan.inverse() * scans[s].T_group_scan;
-            const auto tried = link_tried.find({t, s});
-            if (tried != link_tried.end() &&
-                live::poses_agree(tried->second, initial, scans[s].centroid_m,
-                                  config.links.retry_deg, config.links.retry_m)) {
-                continue;
-            }
-            if (interrupted()) return added;  // Not marked tried: the next call does it.
-            added += try_link(t, s, initial);
-        }
-    }
-    return added;
 }
 
 std::vector<PoseUpdate> LiveRegistrar::State::refine_groups() {
@@ -242,6 +162,9 @@ std::vector<PoseUpdate> LiveRegistrar::refine(const std::function<bool()>& inter
         for (const PoseUpdate& u : s.merge_whole_groups()) changed[u.seq] = u;
     if (s.report.merges == 0 && !s.interrupted())
         for (const PoseUpdate& u : s.merge_groups()) changed[u.seq] = u;
+    // Links before features: links are every scan's share of the final solve (left
+    // undone, they pile up for the end of the capture), features are computed on demand.
+    if (!s.interrupted()) s.report.new_links = s.make_links();
     std::size_t described = 0;
     for (std::size_t i = 0;
          i < s.scans.size() && described < s.config.max_features_per_refine && !s.interrupted();
@@ -250,7 +173,6 @@ std::vector<PoseUpdate> LiveRegistrar::refine(const std::function<bool()>& inter
         s.features(i);
         ++described;
     }
-    if (!s.interrupted()) s.report.new_links = s.make_links();
     // An interrupted round leaves the solve to the next call: the new scan comes first.
     if (!s.interrupted())
         for (const PoseUpdate& u : s.refine_groups()) changed[u.seq] = u;

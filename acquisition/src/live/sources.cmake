@@ -3,7 +3,9 @@ list(APPEND ANASCAN_ACQUISITION_SOURCES
     src/live/consistency.cpp
     src/live/hypotheses.cpp
     src/live/json.cpp
+    src/live/links.cpp
     src/live/live_registration.cpp
+    src/live/memory.cpp
     src/live/merge.cpp
     src/live/prepare.cpp
     src/live/refine.cpp

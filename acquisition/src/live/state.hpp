@@ -214,8 +214,19 @@ struct LiveRegistrar::State {
     std::size_t make_links();
     /// The k-d tree over entry i's cloud (built on first use, kept).
     const KdTree& tree_of(std::size_t i);
-    /// Tries the link t <- s from the relative pose `initial`; true when it was added.
+    /// Fine registers the link t <- s from the relative pose `initial`; true when it was added.
     bool try_link(std::size_t t, std::size_t s, const Pose& initial);
+    /// Forecast overlap of the pair (t, s) at `initial`, kept until their poses move.
+    double forecast(std::size_t t, std::size_t s, const Pose& initial);
+    /// The earlier scans of entry s's group it is predicted to overlap most (at most
+    /// LiveLinkConfig::max_per_scan, best first); drops s's links to the others.
+    std::vector<std::size_t> link_partners(std::size_t s);
+    /// Forecasts by pair (t, s) and the relative pose each was computed at (-1: none yet).
+    struct LinkForecast {
+        Pose at = Pose::Identity();
+        double fraction = -1.0;
+    };
+    std::map<std::pair<std::size_t, std::size_t>, LinkForecast> link_forecasts;
     std::vector<PoseUpdate> refine_groups();
     /// Multi-view refinement of group g's poses; appends the changed ones.
     void refine_group(int g, std::vector<PoseUpdate>& updates);

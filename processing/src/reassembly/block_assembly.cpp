@@ -149,6 +149,7 @@ AssemblyBlock assembly_block(std::string id, const Mesh& mesh, const BlockFeatur
     AssemblyBlock out{.id = std::move(id)};
     out.points.positions = mesh.vertices.positions;
     mesh_vertex_normals(mesh, out.points.normals);
+    out.triangles = mesh.triangles;
     out.features = extract_block_features(mesh, config);
     return out;
 }

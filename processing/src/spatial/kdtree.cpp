@@ -88,6 +88,10 @@ KdTree& KdTree::operator=(KdTree&&) noexcept = default;
 
 std::size_t KdTree::size() const { return impl_ ? impl_->adaptor.points.size() : 0; }
 
+std::size_t KdTree::memory_bytes() const {
+    return impl_ ? impl_->tree.usedMemory(impl_->tree) + sizeof(Impl) : 0;
+}
+
 bool KdTree::nearest(const Eigen::Vector3f& query, Neighbor& out) const {
     if (size() == 0) return false;
     std::uint32_t index = 0;

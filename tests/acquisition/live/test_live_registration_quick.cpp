@@ -193,6 +193,49 @@ TEST_F(LiveRegistrationWalk, ScansAfterAGapPlaceTheScanBeforeItByTheCaptureOrder
     }
 }
 
+TEST_F(LiveRegistrationWalk, EachScanLinksToItsBestEarlierPartnersOnly) {
+    // Every pair of the walk overlaps (10 pairs); with two links per scan to earlier scans
+    // the scans keep 1 + 2 + 2 + 2 links, and the refined poses stay as close to the truth.
+    LiveRegistrationConfig config = quick_config();
+    config.links.max_per_scan = 2;
+    LiveRegistrar r(config);
+    for (std::size_t i = 0; i < scans_->size(); ++i) {
+        ASSERT_TRUE(r.add({.seq = static_cast<std::int64_t>(i + 1), .cloud = (*scans_)[i].cloud})
+                        .registered);
+        r.refine();
+    }
+    for (int round = 0; round < 3; ++round) r.refine();
+    const LiveMemoryReport kept = r.memory();
+    EXPECT_EQ(kept.links, 7u);
+    EXPECT_EQ(registrar_->memory().links, 10u);  // Uncapped (the suite's registrar).
+    for (std::size_t k = 0; k < scans_->size(); ++k) {
+        const std::optional<PoseUpdate> pose = r.pose(static_cast<std::int64_t>(k + 1));
+        ASSERT_TRUE(pose.has_value());
+        const anascan::testing::PoseError e = anascan::testing::pose_error(
+            pose->T_group_scan, scans_->front().T_true, (*scans_)[k].T_true,
+            anascan::testing::centroid_of((*scans_)[k].cloud));
+        EXPECT_LT(e.rotation_deg, 0.05) << "scan " << k + 1;
+        EXPECT_LT(e.translation_m, 0.0002) << "scan " << k + 1;
+    }
+}
+
+TEST_F(LiveRegistrationWalk, MemoryReportCountsTheReducedCopiesAndLinks) {
+    const LiveMemoryReport m = registrar_->memory();
+    EXPECT_EQ(m.scans, scans_->size());
+    std::size_t points = 0;
+    for (const LiveModelScan& s : registrar_->model()) points += s.cloud->size();
+    // Positions and normals, 12 bytes each per point, at least.
+    EXPECT_GE(m.cloud_bytes, points * 24);
+    EXPECT_LT(m.cloud_bytes, points * 24 * 2);
+    EXPECT_GT(m.tree_bytes, 0u);
+    EXPECT_EQ(m.features_kept, 0u);  // The quick config computes none.
+    EXPECT_GT(m.link_bytes, 0u);
+    EXPECT_LE(m.link_bytes,
+              m.links * quick_config().links.max_correspondences * sizeof(FineCorrespondence) * 2);
+    EXPECT_EQ(m.total_bytes(),
+              m.cloud_bytes + m.tree_bytes + m.feature_bytes + m.link_bytes + m.model_cache_bytes);
+}
+
 TEST_F(LiveRegistrationWalk, ARefineRoundStopsForANewScanAndGoesOnAfterIt) {
     const auto three_scans = [&] {
         auto r = std::make_unique<LiveRegistrar>(quick_config());

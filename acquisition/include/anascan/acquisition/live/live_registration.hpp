@@ -182,6 +182,11 @@ struct LiveLinkConfig {
     /// Correspondences a link keeps for the multi-view solve (`compress_link`: same optimum
     /// and stiffness as all of them, a tenth of the memory). 0 = all.
     std::size_t max_correspondences = 2000;
+    /// Each scan is linked to at most this many earlier scans of its group, those of largest
+    /// forecast overlap: a round's fine registrations grow with the scans, not with their
+    /// pairs (a scan overlaps its neighbours only; all pairs of the 50 scans of a stone took
+    /// 18 minutes at the end of a capture on a loaded machine). 0 = every overlapping pair.
+    std::size_t max_per_scan = 6;
     /// A tried pair is tried again when its scans' relative pose moved by more than these
     /// since (degrees, metres at the source's centroid): a scan corrected by the refinement
     /// gets links to its true neighbours, and links computed from a wrong pose are redone.
@@ -351,6 +356,22 @@ struct LiveModelScan {
 /// (kInvalidArgument). For checks outside the registrar (another stone in view).
 Expected<PointCloud> reduce_to_stone(LiveScanInput scan, const LiveRegistrationConfig& config = {});
 
+/// The memory the registrar keeps, by part (bytes of the containers' capacities): what a
+/// session grows by per scan.
+struct LiveMemoryReport {
+    std::size_t scans = 0;              ///< Entries kept (retired ones included).
+    std::size_t cloud_bytes = 0;        ///< Reduced copies (positions, normals).
+    std::size_t tree_bytes = 0;         ///< Their k-d trees.
+    std::size_t feature_bytes = 0;      ///< Descriptors and patches kept for global registration.
+    std::size_t features_kept = 0;      ///< Entries holding features.
+    std::size_t links = 0;              ///< Multi-view links.
+    std::size_t link_bytes = 0;         ///< Their correspondences.
+    std::size_t model_cache_bytes = 0;  ///< The merged model of the last hypothesis, its tree.
+    std::size_t total_bytes() const {
+        return cloud_bytes + tree_bytes + feature_bytes + link_bytes + model_cache_bytes;
+    }
+};
+
 /// The registrar: a single-threaded state machine (see the file comment).
 class LiveRegistrar {
 public:
@@ -382,6 +403,7 @@ public:
     std::optional<PoseUpdate> pose(std::int64_t seq) const;
     std::size_t group_count() const;  ///< Groups with at least one scan.
     const LiveRefineReport& last_refine_report() const;
+    LiveMemoryReport memory() const;
 
 private:
     struct State;

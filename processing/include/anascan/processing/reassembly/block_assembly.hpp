@@ -37,10 +37,14 @@ namespace anascan::reassembly {
 struct AssemblyBlock {
     std::string id;
     PointCloud points;
+    /// The mesh's triangles on `points` (the dense check's signed distance; empty: the
+    /// check signs by the vertex normals).
+    std::vector<Eigen::Vector3i> triangles;
     BlockFeatures features;
 };
 
-/// A block from its mesh: the vertices with area-weighted normals and their features.
+/// A block from its mesh: the vertices with area-weighted normals, the triangles and the
+/// features.
 AssemblyBlock assembly_block(std::string id, const Mesh& mesh,
                              const BlockFeatureConfig& config = {});
 

@@ -37,6 +37,8 @@ public:
     KdTree& operator=(const KdTree&) = delete;
 
     std::size_t size() const;
+    /// Bytes of the index (nodes and the permutation; the points belong to the caller).
+    std::size_t memory_bytes() const;
 
     /// The nearest point; `false` when the tree is empty.
     bool nearest(const Eigen::Vector3f& query, Neighbor& out) const;
