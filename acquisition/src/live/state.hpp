@@ -219,7 +219,7 @@ struct LiveRegistrar::State {
     /// Forecast overlap of the pair (t, s) at `initial`, kept until their poses move.
     double forecast(std::size_t t, std::size_t s, const Pose& initial);
     /// The earlier scans of entry s's group it is predicted to overlap most (at most
-    /// LiveLinkConfig::max_per_scan, best first); drops s's links to the others.
+    /// LiveLinkConfig::max_per_scan per side, best first); drops s's links to the others.
     std::vector<std::size_t> link_partners(std::size_t s);
     /// Forecasts by pair (t, s) and the relative pose each was computed at (-1: none yet).
     struct LinkForecast {

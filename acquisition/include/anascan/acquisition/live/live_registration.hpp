@@ -182,10 +182,11 @@ struct LiveLinkConfig {
     /// Correspondences a link keeps for the multi-view solve (`compress_link`: same optimum
     /// and stiffness as all of them, a tenth of the memory). 0 = all.
     std::size_t max_correspondences = 2000;
-    /// Each scan is linked to at most this many earlier scans of its group, those of largest
-    /// forecast overlap: a round's fine registrations grow with the scans, not with their
-    /// pairs (a scan overlaps its neighbours only; all pairs of the 50 scans of a stone took
-    /// 18 minutes at the end of a capture on a loaded machine). 0 = every overlapping pair.
+    /// Each scan is linked to at most this many earlier scans of its group per side (as the
+    /// operator's turn-overs number them), those of largest forecast overlap: a round's fine
+    /// registrations grow with the scans, not with their pairs (a scan overlaps its
+    /// neighbours only; all pairs of the 50 scans of a stone took 18 minutes at the end of a
+    /// capture on a loaded machine). 0 = every overlapping pair.
     std::size_t max_per_scan = 6;
     /// A tried pair is tried again when its scans' relative pose moved by more than these
     /// since (degrees, metres at the source's centroid): a scan corrected by the refinement
