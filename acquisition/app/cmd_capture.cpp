@@ -259,13 +259,14 @@ std::optional<Error> capture_views(CaptureSession& session, const CaptureOptions
 }
 
 /// All views from `already` on; the first one added to a session that has scans is
-/// registered and checked against the stone before the others (see confirm_same_stone).
+/// registered and checked against the stone before the others (see confirm_same_stone),
+/// unless --mix-stones says the answer beforehand (then nothing waits for the check).
 std::optional<Error> capture_all_views(CaptureSession& session, const CaptureOptions& o,
                                        const std::string& uri, int already,
                                        std::string& stone_note) {
     GuidedOperator guide(simulated_tour(o), o.target_coverage_percent / 100.0);
     int from = already;
-    if (already > 0 && !o.no_register && already < o.views) {
+    if (already > 0 && !o.no_register && !o.mix_stones && already < o.views) {
         const auto stopped = capture_views(session, o, uri, guide, already, already + 1);
         if (stopped || g_interrupted) return stopped;
         session.wait_until_idle();
@@ -359,9 +360,10 @@ void add_capture_command(CLI::App& app) {
     cmd->add_flag("--no-register", opts->no_register, "Only capture and save (register later)");
     cmd->add_flag("--no-coverage", opts->no_coverage, "No live coverage");
     cmd->add_flag("--mix-stones", opts->mix_stones,
-                  "Add to an existing session even when its first new scan joins no part "
-                  "of the stone and its size or surface shows another object (default: "
-                  "ask, or refuse without a terminal)");
+                  "Add to an existing session without checking that its first new scan "
+                  "shows the same stone (default: register it first and, when it joins no "
+                  "part of the stone and its size or surface shows another object, ask, "
+                  "or refuse without a terminal)");
     cmd->add_option("--reconnect-timeout-s", opts->reconnect_timeout_s,
                     "How long to wait for a device that went away, s (default 10)")
         ->check(CLI::Range(0.0, 3600.0));
