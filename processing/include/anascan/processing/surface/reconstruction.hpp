@@ -68,8 +68,8 @@ enum class SurfaceStatus {
 
 /// What the reconstruction did, with figures for the report.
 struct SurfaceDiagnostics {
-    std::size_t input_points = 0;   ///< Finite points over all scans.
-    std::size_t merged_points = 0;  ///< After merging on the grid.
+    std::size_t input_points = 0;     ///< Finite points over all scans.
+    std::size_t merged_points = 0;    ///< After merging on the grid.
     std::size_t poisson_samples = 0;  ///< Merged points Poisson was given.
     std::size_t scans_with_sensor = 0;
     std::vector<std::size_t> isolated_scans;  ///< Indices of scans sharing no cell with others.
