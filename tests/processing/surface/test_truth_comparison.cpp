@@ -13,6 +13,9 @@ namespace {
 
 using test::grid_box;
 
+// Coarse samples: the figures here do not need the default 0.2 / 0.5 mm ones.
+const TruthComparisonConfig kCoarse{.model_spacing_m = 2e-3, .truth_spacing_m = 3e-3};
+
 Mesh moved(Mesh m, const Pose& T) {
     m.vertices = transformed(m.vertices, T);
     return m;
@@ -48,13 +51,14 @@ TEST(OrientedBox, ARotatedBoxGivesItsEdgesWhateverItsPose) {
 TEST(TruthComparison, AnOffsetSurfaceIsMeasuredAtItsOffset) {
     const Mesh truth = grid_box({0.4, 0.3, 0.2}, 8);
     const Mesh model = grid_box({0.402, 0.302, 0.202}, 5);  // 1 mm outside every face
-    const TruthComparison c = compare_with_truth(model, {}, truth);
-    EXPECT_GT(c.measured_samples, 1000u);
+    const TruthComparison c = compare_with_truth(model, {}, truth, kCoarse);
+    EXPECT_GT(c.measured_samples, 50000u);
     EXPECT_EQ(c.interpolated_samples, 0u);
     EXPECT_NEAR(c.measured_median_m, 1e-3, 1e-5);
-    EXPECT_NEAR(c.measured_max_m, std::sqrt(3.0) * 1e-3, 1e-4);  // at the corners
+    EXPECT_GT(c.measured_max_m, 1.2e-3);  // near the corners: up to sqrt(3) mm
+    EXPECT_LT(c.measured_max_m, std::sqrt(3.0) * 1e-3 + 1e-6);
     EXPECT_LT(c.completeness, 0.01);  // 1 mm away everywhere: nothing within 0.5 mm
-    const TruthComparison self = compare_with_truth(truth, {}, truth);
+    const TruthComparison self = compare_with_truth(truth, {}, truth, kCoarse);
     EXPECT_LT(self.measured_p95_m, 1e-6);
     EXPECT_DOUBLE_EQ(self.completeness, 1.0);
     EXPECT_NEAR(self.truth_box_m.x(), 0.4, 1e-6);
@@ -72,7 +76,7 @@ TEST(TruthComparison, InterpolatedTrianglesAreLeftOutOfTheMeasuredAccuracy) {
             for (int k = 0; k < 3; ++k) model.vertices.positions[f[k]].z() = 0.105f;
         }
     }
-    const TruthComparison c = compare_with_truth(model, classes, truth);
+    const TruthComparison c = compare_with_truth(model, classes, truth, kCoarse);
     EXPECT_LT(c.measured_p95_m, 1e-6);
     EXPECT_NEAR(c.interpolated_median_m, 5e-3, 1e-4);
 }
