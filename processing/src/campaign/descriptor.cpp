@@ -7,6 +7,7 @@
 // holds per side a log-scale length bin and the kind (absolute radius level, side) of the opposite
 // corner, in sorted order. Two overlapping scans share the triangles of their common part;
 // unrelated scans share only what chance gives.
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -123,11 +124,39 @@ double rotation_free_size_m(const PointCloud& cloud) {
     return 2.5 * std::sqrt(sum_sq / static_cast<double>(cloud.size()));
 }
 
+/// RMS distance of the points from their best-fit plane (the smallest principal axis).
+double plane_rms_m(const PointCloud& cloud) {
+    if (cloud.size() < 3) return 0.0;
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (const Eigen::Vector3f& p : cloud.positions) mean += p.cast<double>();
+    mean /= static_cast<double>(cloud.size());
+    Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+    for (const Eigen::Vector3f& p : cloud.positions) {
+        const Eigen::Vector3d d = p.cast<double>() - mean;
+        covariance += d * d.transpose();
+    }
+    covariance /= static_cast<double>(cloud.size());
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance);
+    return std::sqrt(std::max(0.0, solver.eigenvalues()[0]));
+}
+
 }  // namespace
 
 ScanDescriptor describe_campaign_scan(const PointCloud& prepared, double spacing_m,
                                       const CampaignConfig& config) {
     ScanDescriptor out;
+    // Relief below half a sample spacing is a plane at the scale the scan was sampled: no key
+    // can tell one part of it from another (the ground, a wall, a sawn face seen alone); the
+    // keypoints such relief gives are noise.
+    if (const double rms_m = plane_rms_m(prepared);
+        prepared.size() >= 3 && rms_m < 0.5 * spacing_m) {
+        out.problem = "within " + std::to_string(rms_m * 1e3).substr(0, 4) +
+                      " mm (RMS) of one plane, less than half its " +
+                      std::to_string(spacing_m * 1e3).substr(0, 4) +
+                      " mm sample spacing: a featureless surface (a plane, the ground or "
+                      "background only?)";
+        return out;
+    }
     const double diagonal_m = rotation_free_size_m(prepared);
     const Ladder ladder = ladder_for(diagonal_m);
     IntegralInvariantConfig invariant_config = config.registration.global.invariants;
