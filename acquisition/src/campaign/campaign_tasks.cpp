@@ -36,7 +36,7 @@ json describe(const json& in, const CampaignConfig& config, std::vector<unsigned
         describe_campaign_scan(*cloud, in.at("spacing_m").get<double>(), config);
     blob.resize(d.keys.size() * sizeof(std::uint64_t));
     if (!blob.empty()) std::memcpy(blob.data(), d.keys.data(), blob.size());
-    return {{"patches", d.patches}, {"keys", d.keys.size()}, {"problem", d.problem}};
+    return {{"keypoints", d.keypoints}, {"keys", d.keys.size()}, {"problem", d.problem}};
 }
 
 json pair(const json& in, const CampaignConfig& config) {
@@ -47,12 +47,20 @@ json pair(const json& in, const CampaignConfig& config) {
     return campaign_json::pair(register_campaign_pair(*source, *target, config));
 }
 
+/// The match graph's doubt and the multi-view stage's warning, either or both.
+std::string join_warnings(const std::string& graph, const std::string& multiview) {
+    if (graph.empty() || multiview.empty()) return graph + multiview;
+    return "match graph: " + graph + "; " + multiview;
+}
+
 json stone(const json& in, const CampaignConfig& config) {
     std::vector<ScanInput> inputs;
     std::vector<std::int64_t> ids;
+    std::vector<std::string> graph_warnings;
     for (const json& scan : in.at("scans")) {
         const std::string path = scan.at("prepared").get<std::string>();
         ids.push_back(scan.at("id").get<std::int64_t>());
+        graph_warnings.push_back(scan.value("graph_warning", std::string()));
         inputs.push_back({.name = path, .load = [path] { return read_cloud(path); }});
     }
     const ScanRegistrationResult r = register_scans(inputs, config.registration, {});
@@ -63,7 +71,7 @@ json stone(const json& in, const CampaignConfig& config) {
                          {"placed", s.placed},
                          {"pose", campaign_json::pose(s.T_world_scan)},
                          {"reason", s.reason},
-                         {"warning", s.warning}});
+                         {"warning", join_warnings(graph_warnings[i], s.warning)}});
     }
     return {{"scans", scans},
             {"placed", r.placed_count},

@@ -21,6 +21,23 @@ Expected<std::vector<RegisteredPair>> registered_pairs(const CampaignStore& stor
     return out;
 }
 
+/// The graph's warnings by scan id (only scans that carry one).
+json warnings_json(const StoneGraph& graph) {
+    json out = json::object();
+    for (std::size_t i = 0; i < graph.warning_of_scan.size(); ++i) {
+        if (!graph.warning_of_scan[i].empty()) out[std::to_string(i)] = graph.warning_of_scan[i];
+    }
+    return out;
+}
+
+/// The stored graph warnings (empty before the graph stage).
+Expected<json> stored_warnings(const CampaignStore& store) {
+    auto graph = store.value("graph");
+    if (!graph) return fail(graph.error());
+    if (!*graph) return json::object();
+    return json::parse(**graph).value("warnings", json::object());
+}
+
 Expected<void> graph_stage(StageRun& run, CampaignStore& store,
                            const std::vector<CampaignScanRow>& scans,
                            const CampaignConfig& config) {
@@ -30,7 +47,9 @@ Expected<void> graph_stage(StageRun& run, CampaignStore& store,
     if (*done) return {};
     auto pairs = registered_pairs(store);
     if (!pairs) return fail(pairs.error());
-    const StoneGraph graph = find_stones(scans.size(), *pairs, config);
+    std::vector<PreparedSummary> summaries;
+    for (const CampaignScanRow& scan : scans) summaries.push_back(summary_of(scan));
+    const StoneGraph graph = find_stones(summaries, *pairs, config);
     std::vector<CampaignStoneRow> rows;
     for (std::size_t s = 0; s < graph.stones.size(); ++s) {
         CampaignStoneRow row{.id = static_cast<std::int64_t>(s)};
@@ -39,12 +58,13 @@ Expected<void> graph_stage(StageRun& run, CampaignStore& store,
     }
     std::size_t verified = 0;
     for (const RegisteredPair& p : *pairs) verified += p.result.verified;
-    const json figures = {
-        {"stones", rows.size()},
-        {"registered_pairs", pairs->size()},
-        {"verified_pairs", verified},
-        {"rms_gate_m", std::isfinite(graph.rms_gate_m) ? json(graph.rms_gate_m) : json(nullptr)},
-        {"gated_pairs", graph.gated_pairs}};
+    const json figures = {{"stones", rows.size()},
+                          {"registered_pairs", pairs->size()},
+                          {"verified_pairs", verified},
+                          {"relative_gated_pairs", graph.relative_gated_pairs},
+                          {"triangle_cut_pairs", graph.triangle_cut_pairs},
+                          {"cycle_cut_pairs", graph.cycle_cut_pairs},
+                          {"warnings", warnings_json(graph)}};
     if (run.progress) run.progress({.stage = "stones", .done = 1, .total = 1});
     return store.set_stones(rows, figures.dump());
 }
@@ -53,13 +73,17 @@ Expected<void> multiview_stage(StageRun& run, CampaignStore& store,
                                const std::vector<CampaignScanRow>& scans) {
     auto stones = store.stones();
     if (!stones) return fail(stones.error());
+    auto warnings = stored_warnings(store);
+    if (!warnings) return fail(warnings.error());
     std::vector<CampaignTask> tasks;
     for (const CampaignStoneRow& stone : *stones) {
         if (!stone.result_json.empty()) continue;
         json list = json::array();
         double points = 0.0;
         for (std::int64_t id : stone.scans) {
-            list.push_back({{"id", id}, {"prepared", store.prepared_file(id).string()}});
+            list.push_back({{"id", id},
+                            {"prepared", store.prepared_file(id).string()},
+                            {"graph_warning", warnings->value(std::to_string(id), std::string())}});
             points += static_cast<double>(summary_of(scans[static_cast<std::size_t>(id)]).points);
         }
         tasks.push_back({CampaignTaskKind::kStone, stone.id, json{{"scans", list}}.dump(),

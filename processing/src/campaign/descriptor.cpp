@@ -1,10 +1,13 @@
-// The campaign's global descriptor of a scan: hashed feature triangles of its
-// integral-invariant patches, free of pose and of the scan's size.
+// The campaign's global descriptor of a scan: hashed triangles of its integral-invariant
+// keypoints, free of pose and of the scan's size.
 //
-// A triangle joins a patch and two of its nearest patches of the same radius; its key holds
-// per side a log-scale length bin and the kind (absolute radius level, side) of the
-// opposite corner, in sorted order. Two overlapping scans share the triangles of their
-// common part; unrelated scans share only what chance gives.
+// Sites are placed densely (about one per sample spacing) and the keypoints are the extrema
+// of V_r (`invariant_keypoints`), so that they follow the surface, not a grid of the scan's
+// frame. A triangle joins a keypoint and two of its nearest keypoints of the same radius; its key
+// holds per side a log-scale length bin and the kind (absolute radius level, side) of the opposite
+// corner, in sorted order. Two overlapping scans share the triangles of their common part;
+// unrelated scans share only what chance gives.
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -13,6 +16,7 @@
 
 #include "anascan/processing/campaign/campaign_stages.hpp"
 #include "anascan/processing/features/integral_invariants.hpp"
+#include "anascan/processing/features/invariant_keypoints.hpp"
 
 namespace anascan {
 namespace {
@@ -33,26 +37,28 @@ Ladder ladder_for(double diagonal_m) {
             .first_level = level};
 }
 
-std::uint64_t corner_kind(const FeaturePatch& p, int first_level) {
+std::uint64_t corner_kind(const InvariantKeypoint& p, int first_level) {
     const auto level =
         static_cast<std::uint64_t>(first_level + 64 + static_cast<int>(p.radius_index));
     return (level << 1) | static_cast<std::uint64_t>(p.side);
 }
 
 struct KeyContext {
-    const std::vector<FeaturePatch>& patches;
+    const std::vector<InvariantKeypoint>& corners;
     int first_level = 0;
     double log_ratio = 0.0;
 };
+
+double distance_m(const KeyContext& c, std::size_t a, std::size_t b) {
+    return (c.corners[a].position_m - c.corners[b].position_m).norm();
+}
 
 // Keys of triangle (a, b, c): per side its bin and the nearer neighbouring bin (2^3 keys).
 void triangle_keys(const KeyContext& c, const std::array<std::size_t, 3>& corner,
                    std::vector<std::uint64_t>& keys) {
     std::array<std::array<std::uint64_t, 2>, 3> bins{};
     for (std::size_t k = 0; k < 3; ++k) {
-        const double length_m = (c.patches[corner[(k + 1) % 3]].barycentre_m -
-                                 c.patches[corner[(k + 2) % 3]].barycentre_m)
-                                    .norm();
+        const double length_m = distance_m(c, corner[(k + 1) % 3], corner[(k + 2) % 3]);
         const double x = std::log(length_m / kLadderUnit_m) / c.log_ratio + 64.0;
         const auto bin = static_cast<std::uint64_t>(std::max(x, 1.0));
         const bool upper = x - static_cast<double>(bin) >= 0.5;
@@ -62,20 +68,20 @@ void triangle_keys(const KeyContext& c, const std::array<std::size_t, 3>& corner
         std::array<std::uint64_t, 3> t{};
         for (std::size_t k = 0; k < 3; ++k) {
             t[k] = (bins[k][(combo >> k) & 1u] & 0x7ff) << 10 |
-                   corner_kind(c.patches[corner[k]], c.first_level);
+                   corner_kind(c.corners[corner[k]], c.first_level);
         }
         std::sort(t.begin(), t.end());
         keys.push_back(t[0] << 42 | t[1] << 21 | t[2]);
     }
 }
 
-// Patch a's nearest patches of its radius within [min_side_m, max_side_m].
-std::vector<std::size_t> partners(const std::vector<FeaturePatch>& p, std::size_t a,
-                                  double min_side_m, double max_side_m, std::size_t count) {
+// Keypoint a's nearest keypoints of its radius within [min_side_m, max_side_m].
+std::vector<std::size_t> partners(const KeyContext& c, std::size_t a, double min_side_m,
+                                  double max_side_m, std::size_t count) {
     std::vector<std::pair<double, std::size_t>> near;
-    for (std::size_t b = 0; b < p.size(); ++b) {
-        const double d = (p[a].barycentre_m - p[b].barycentre_m).norm();
-        if (b != a && p[b].radius_index == p[a].radius_index && d <= max_side_m &&
+    for (std::size_t b = 0; b < c.corners.size(); ++b) {
+        const double d = distance_m(c, a, b);
+        if (b != a && c.corners[b].radius_index == c.corners[a].radius_index && d <= max_side_m &&
             d >= min_side_m) {
             near.emplace_back(d, b);
         }
@@ -90,13 +96,11 @@ std::vector<std::size_t> partners(const std::vector<FeaturePatch>& p, std::size_
 std::vector<std::uint64_t> feature_keys(const KeyContext& c, double min_side_m, double max_side_m,
                                         std::size_t nearest) {
     std::vector<std::uint64_t> keys;
-    for (std::size_t a = 0; a < c.patches.size(); ++a) {
-        const std::vector<std::size_t> near =
-            partners(c.patches, a, min_side_m, max_side_m, nearest);
+    for (std::size_t a = 0; a < c.corners.size(); ++a) {
+        const std::vector<std::size_t> near = partners(c, a, min_side_m, max_side_m, nearest);
         for (std::size_t i = 0; i < near.size(); ++i) {
             for (std::size_t j = i + 1; j < near.size(); ++j) {
-                const double bc =
-                    (c.patches[near[i]].barycentre_m - c.patches[near[j]].barycentre_m).norm();
+                const double bc = distance_m(c, near[i], near[j]);
                 if (bc > max_side_m || bc < min_side_m) continue;
                 triangle_keys(c, {a, near[i], near[j]}, keys);
             }
@@ -120,36 +124,64 @@ double rotation_free_size_m(const PointCloud& cloud) {
     return 2.5 * std::sqrt(sum_sq / static_cast<double>(cloud.size()));
 }
 
+/// RMS distance of the points from their best-fit plane (the smallest principal axis).
+double plane_rms_m(const PointCloud& cloud) {
+    if (cloud.size() < 3) return 0.0;
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (const Eigen::Vector3f& p : cloud.positions) mean += p.cast<double>();
+    mean /= static_cast<double>(cloud.size());
+    Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+    for (const Eigen::Vector3f& p : cloud.positions) {
+        const Eigen::Vector3d d = p.cast<double>() - mean;
+        covariance += d * d.transpose();
+    }
+    covariance /= static_cast<double>(cloud.size());
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance);
+    return std::sqrt(std::max(0.0, solver.eigenvalues()[0]));
+}
+
 }  // namespace
 
 ScanDescriptor describe_campaign_scan(const PointCloud& prepared, double spacing_m,
                                       const CampaignConfig& config) {
     ScanDescriptor out;
+    // Relief below half a sample spacing is a plane at the scale the scan was sampled: no key
+    // can tell one part of it from another (the ground, a wall, a sawn face seen alone); the
+    // keypoints such relief gives are noise.
+    if (const double rms_m = plane_rms_m(prepared);
+        prepared.size() >= 3 && rms_m < 0.5 * spacing_m) {
+        out.problem = "within " + std::to_string(rms_m * 1e3).substr(0, 4) +
+                      " mm (RMS) of one plane, less than half its " +
+                      std::to_string(spacing_m * 1e3).substr(0, 4) +
+                      " mm sample spacing: a featureless surface (a plane, the ground or "
+                      "background only?)";
+        return out;
+    }
     const double diagonal_m = rotation_free_size_m(prepared);
     const Ladder ladder = ladder_for(diagonal_m);
-    const GlobalRegistrationConfig& global = config.registration.global;
-    std::vector<IntegralInvariantResult> invariants;
-    invariants.push_back(describe_scan(prepared, ladder.radii_m, global));
-    if (invariants.front().status != IntegralInvariantStatus::kOk) {
+    IntegralInvariantConfig invariant_config = config.registration.global.invariants;
+    invariant_config.radii_m = ladder.radii_m;
+    invariant_config.site_spacing_m =
+        std::max(config.key_site_spacing_factor * spacing_m,
+                 config.key_site_spacing_radius_fraction * ladder.radii_m[0]);
+    invariant_config.frame_free_sampling = true;
+    const IntegralInvariantResult invariants =
+        compute_integral_invariants(prepared, invariant_config);
+    if (invariants.status != IntegralInvariantStatus::kOk) {
         out.problem = "no valid integral-invariant descriptor (too few points or no interior)";
         return out;
     }
-    const std::vector<double> spacings{spacing_m};
-    const std::vector<ScanFeatures> features =
-        scan_features(std::move(invariants), spacings, global);
-    std::vector<FeaturePatch> middle;
-    for (const FeaturePatch& patch : features.front().patches.patches) {
-        if (patch.level == kSaliencyLevels / 2) middle.push_back(patch);
-    }
-    out.patches = middle.size();
-    const KeyContext context{.patches = middle,
+    const std::vector<InvariantKeypoint> keypoints =
+        invariant_keypoints(invariants, config.keypoints);
+    out.keypoints = keypoints.size();
+    const KeyContext context{.corners = keypoints,
                              .first_level = ladder.first_level,
                              .log_ratio = std::log(config.key_length_ratio)};
     out.keys = feature_keys(context, 2.0 * ladder.radii_m[0], 0.25 * diagonal_m,
-                            config.key_nearest_patches);
+                            config.key_nearest_keypoints);
     if (out.keys.empty()) {
-        out.problem = std::to_string(middle.size()) +
-                      " feature patches and no feature triangle: a featureless surface (a plane, "
+        out.problem = std::to_string(keypoints.size()) +
+                      " keypoints and no keypoint triangle: a featureless surface (a plane, "
                       "the ground or background only?)";
     }
     return out;

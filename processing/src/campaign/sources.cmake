@@ -4,4 +4,5 @@ list(APPEND ANASCAN_PROCESSING_SOURCES
     src/campaign/descriptor.cpp
     src/campaign/pairs.cpp
     src/campaign/prepare.cpp
+    src/campaign/stone_graph.cpp
 )

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "anascan/processing/spatial/kdtree.hpp"
+#include "anascan/processing/spatial/min_distance_sampling.hpp"
 #include "anascan/processing/spatial/voxel_grid.hpp"
 
 namespace anascan {
@@ -29,12 +30,20 @@ bool input_valid(const PointCloud& cloud) {
 
 /// Sites: the point nearest each voxel mean (a true surface sample: a voxel mean lies
 /// inside a convex surface, which would bias h̄), with its normal.
-void place_sites(const PointCloud& cloud, double spacing_m, IntegralInvariantResult& result) {
+void place_sites(const PointCloud& cloud, double spacing_m, bool frame_free,
+                 IntegralInvariantResult& result) {
     PointCloud oriented;
     for (std::size_t i = 0; i < cloud.size(); ++i) {
         if (!usable_normal(cloud.normals[i]) || !cloud.positions[i].allFinite()) continue;
         oriented.positions.push_back(cloud.positions[i]);
         oriented.normals.push_back(cloud.normals[i]);
+    }
+    if (frame_free) {
+        for (std::uint32_t i : min_distance_sample(oriented, spacing_m)) {
+            result.site_positions.push_back(oriented.positions[i]);
+            result.site_normals.push_back(oriented.normals[i].normalized());
+        }
+        return;
     }
     const PointCloud means = voxel_downsample(oriented, {.voxel_size_m = spacing_m});
     const KdTree tree(oriented.positions);
@@ -50,6 +59,16 @@ void place_sites(const PointCloud& cloud, double spacing_m, IntegralInvariantRes
         result.site_positions.push_back(oriented.positions[i]);
         result.site_normals.push_back(oriented.normals[i].normalized());
     }
+}
+
+PointCloud downsample(const PointCloud& cloud, double spacing_m, bool frame_free) {
+    if (!frame_free) return voxel_downsample(cloud, {.voxel_size_m = spacing_m});
+    PointCloud out;
+    for (std::uint32_t i : min_distance_sample(cloud, spacing_m)) {
+        out.positions.push_back(cloud.positions[i]);
+        out.normals.push_back(cloud.normals[i]);
+    }
+    return out;
 }
 
 enum class SiteOutcome : std::uint8_t { kValid, kBoundary, kSparse };
@@ -87,7 +106,7 @@ void compute_radius(const PointCloud& cloud, std::size_t k, const IntegralInvari
                     IntegralInvariantResult& result) {
     const double radius_m = config.radii_m[k];
     const PointCloud samples =
-        voxel_downsample(cloud, {.voxel_size_m = radius_m * config.sample_spacing_fraction});
+        downsample(cloud, radius_m * config.sample_spacing_fraction, config.frame_free_sampling);
     const KdTree tree(samples.positions);
     const std::size_t n = result.site_positions.size();
     std::vector<SiteOutcome> outcome(n, SiteOutcome::kSparse);
@@ -151,7 +170,7 @@ IntegralInvariantResult compute_integral_invariants(const PointCloud& cloud,
     if (!config_valid(config) || !input_valid(cloud)) return result;
     result.site_spacing_m =
         config.site_spacing_m > 0.0 ? config.site_spacing_m : 0.25 * config.radii_m[0];
-    place_sites(cloud, result.site_spacing_m, result);
+    place_sites(cloud, result.site_spacing_m, config.frame_free_sampling, result);
     result.volume.assign(result.site_positions.size(), {});
     result.valid_bits.assign(result.site_positions.size(), 0);
     for (std::size_t k = 0; k < kInvariantRadii; ++k) compute_radius(cloud, k, config, result);

@@ -2,4 +2,5 @@
 list(APPEND ANASCAN_PROCESSING_SOURCES
     src/features/feature_patches.cpp
     src/features/integral_invariants.cpp
+    src/features/invariant_keypoints.cpp
 )

@@ -5,6 +5,7 @@ list(APPEND ANASCAN_PROCESSING_SOURCES
     src/spatial/kdtree.cpp
     src/spatial/knn_cells.cpp
     src/spatial/knn_select.cpp
+    src/spatial/min_distance_sampling.cpp
     src/spatial/neighbor_graph.cpp
     src/spatial/triangle_tree.cpp
     src/spatial/voxel_grid.cpp

@@ -7,13 +7,14 @@
 ///  1. prepare (per scan): `prepare_campaign_scan` — cleaning and normals as `register`
 ///     does them, and the figures the later stages need without loading the scan;
 ///  2. describe (per scan): `describe_campaign_scan` — the scan's global descriptor, a set
-///     of hashed, pose- and scale-free feature-triangle keys of its integral-invariant patches;
+///     of hashed, pose- and scale-free triangle keys of its integral-invariant keypoints;
 ///  3. candidates (once): `propose_candidates` — an inverted index over the keys proposing,
 ///     for each scan, the few scans sharing the most keys (never all pairs);
 ///  4. pairwise (per candidate pair): `register_campaign_pair` — global and fine
 ///     registration with verification (`register_global`: look-alike and slide guards);
-///  5. match graph (once): `find_stones` — the campaign RMS gate, then connected
-///     components of the verified pairs: the stones;
+///  5. match graph (once): `find_stones` — the per-scan RMS gate, the loop checks over triangles
+///  and cycles of verified pairs, then the components: the
+///     stones;
 ///  6. multi-view (per stone): `register_scans` on the stone's prepared scans.
 /// Thread safety: every function is reentrant. Results do not depend on thread count.
 #include <Eigen/Core>
@@ -25,9 +26,29 @@
 
 #include "anascan/processing/core/point_cloud.hpp"
 #include "anascan/processing/core/pose.hpp"
+#include "anascan/processing/features/invariant_keypoints.hpp"
 #include "anascan/processing/registration/batch/scan_registration.hpp"
 
 namespace anascan {
+
+/// The match graph's guard against look-alikes: pairs that pass pairwise verification
+/// between two stones, or at a wrong pose of one stone (a near-symmetric block turned by
+/// 90° or 180°), judged by evidence beyond the single pair.
+struct StoneGraphConfig {
+    /// Per-scan gate: a pair is cut when its RMS over its target spacing exceeds this
+    /// multiple of the least such ratio among the pairs of either of its scans, worst first,
+    /// judging the rest again after each cut (each scan's
+    /// best pair is measured with its own scanner and resolution; a campaign median mixes
+    /// them). True pairs of one scan vary by about 2 (overlap, incidence): measured 1.9 on
+    /// the simulated blocks and 2.0 on the bunny's scans; look-alikes fit 2.2 to 8 times worse.
+    double relative_rms_gate_factor = 2.5;
+    /// A loop of pairs (a triangle, or a pair against the poses its stone's better pairs
+    /// give) closes when it leaves at most this rotation ...
+    double max_loop_rotation_deg = 2.0;
+    /// ... and this many of its scans' coarser sample spacing at the scan's centre (true
+    /// loops: within a spacing; a look-alike or a turned fit: tens of degrees and mm).
+    double max_loop_spacing_factor = 4.0;
+};
 
 /// Settings of the campaign stages. Callers use designated initialisers.
 struct CampaignConfig {
@@ -39,13 +60,23 @@ struct CampaignConfig {
     /// Descriptor: triangle sides are quantised on a log scale with this ratio between
     /// neighbouring bins (scale-free, so scans of stones of any size share one index).
     double key_length_ratio = 1.1;
-    /// Triangle partners of each patch (nearest patches of the same radius).
-    std::size_t key_nearest_patches = 8;
+    /// Triangle partners of each keypoint (nearest keypoints of the same radius).
+    std::size_t key_nearest_keypoints = 8;
+    /// Descriptor sites and samples are taken by a minimum distance, not on a grid of the
+    /// scan's frame (IntegralInvariantConfig::frame_free_sampling); sites this many sample
+    /// spacings apart, or this fraction of the smallest radius when that is coarser (bounds
+    /// the cost).
+    double key_site_spacing_factor = 0.75;
+    double key_site_spacing_radius_fraction = 1.0 / 32.0;
+    /// The keypoints (extrema of V_r) that the triangles join.
+    InvariantKeypointConfig keypoints{};
     /// Candidates: each scan proposes its this many most similar scans; a pair is a
     /// candidate when either scan proposes the other.
     std::size_t candidates_per_scan = 8;
     /// Keys held by more than this many scans tell scans apart too little and get no vote.
     std::size_t max_scans_per_key = 64;
+    /// The match graph's look-alike guard.
+    StoneGraphConfig graph{};
 };
 
 /// What the later stages need of a prepared scan, without loading it.
@@ -68,18 +99,18 @@ PreparedSummary prepare_campaign_scan(PointCloud& cloud, const CampaignConfig& c
 /// A scan's global descriptor: sorted distinct 64-bit keys.
 struct ScanDescriptor {
     std::vector<std::uint64_t> keys;
-    std::size_t patches = 0;  ///< Feature patches of the middle saliency level.
-    /// Why it has no keys (empty when it has): descriptors invalid, no feature patches (a
+    std::size_t keypoints = 0;  ///< All radii and sides.
+    /// Why it has no keys (empty when it has): descriptors invalid, no keypoint triangles (a
     /// plane, the ground or background only).
     std::string problem;
 };
 
 /// Integral-invariant descriptors of the prepared scan at radii from its own size (rounded
 /// to a ladder of ratio 1.5 shared by the campaign, so scans of one stone mostly share
-/// them), patches at the scan's own saliency levels, and a key per feature triangle (a
-/// patch and two of its nearest): the three side lengths on a log scale, each with its
-/// nearer neighbouring bin, and the absolute radius and side of the opposite corners, in a
-/// canonical order. Keys do not depend on pose or on the scan's size.
+/// them) at dense sites, their extrema as keypoints (`invariant_keypoints`), and a key per
+/// keypoint triangle (a keypoint and two of its nearest): the three side lengths on a log scale,
+/// each with its nearer neighbouring bin, and the absolute radius and side of the opposite corners,
+/// in a canonical order. Keys do not depend on pose or on the scan's size.
 ScanDescriptor describe_campaign_scan(const PointCloud& prepared, double spacing_m,
                                       const CampaignConfig& config);
 
@@ -117,17 +148,27 @@ struct RegisteredPair {
     CampaignPairResult result;
 };
 
-/// The stones: connected components (of two or more scans) of the verified pairs within
-/// the campaign RMS gate (ScanRegistrationConfig::session_rms_gate_factor over the whole
-/// campaign).
+/// The stones. Verified pairs pass, in turn: the per-scan gate (not a campaign-wide gate
+/// such as `register`'s session gate, a median that mixes scanners); the triangle check (every
+/// triangle of pairs must close: in a triangle that does not, the pair of worst RMS ratio among
+/// those that close no triangle is cut, until all close); and the cycle check (pairs joined best
+/// first, spanning tree style; a pair between two scans already in one stone must agree with the
+/// poses the better pairs gave, else it is cut). The stones are the connected components (of two or
+/// more scans) of the rest. A scan whose placement rests on a loop that did not close carries a
+/// warning.
 struct StoneGraph {
     std::vector<std::vector<std::size_t>> stones;  ///< Scan indices, ascending; largest first.
     std::vector<int> stone_of_scan;                ///< -1: in no stone.
-    double rms_gate_m = 0.0;                       ///< Infinity when off.
-    std::size_t gated_pairs = 0;                   ///< Verified pairs above the gate.
+    /// Per scan: why its placement is in doubt (empty: no doubt).
+    std::vector<std::string> warning_of_scan;
+    std::size_t relative_gated_pairs = 0;  ///< Cut by the per-scan gate.
+    std::size_t triangle_cut_pairs = 0;    ///< Cut by the triangle check.
+    std::size_t cycle_cut_pairs = 0;       ///< Cut by the cycle check.
 };
 
-StoneGraph find_stones(std::size_t scan_count, const std::vector<RegisteredPair>& pairs,
-                       const CampaignConfig& config);
+/// `scans` holds each scan's summary (centre and spacing, for the loop tolerances); pair
+/// indices refer to it.
+StoneGraph find_stones(const std::vector<PreparedSummary>& scans,
+                       const std::vector<RegisteredPair>& pairs, const CampaignConfig& config);
 
 }  // namespace anascan

@@ -48,6 +48,10 @@ struct IntegralInvariantConfig {
     /// fraction of r: the ball crosses the scan boundary, the site is invalid there.
     double max_centroid_offset_fraction = 0.3;
     std::size_t chunk_size = 256;  ///< Sites per TBB work unit.
+    /// Sites and samples by a minimum distance in point order (`min_distance_sample`)
+    /// instead of voxel grids aligned with the frame: a rigidly moved copy of a cloud then
+    /// gives the same sites and descriptors. Sites are then the points themselves.
+    bool frame_free_sampling = false;
 };
 
 enum class IntegralInvariantStatus {
