@@ -1,8 +1,11 @@
 // LiveRegistrar: the group consistency check after each refinement. A scan placed by links
 // that each fit can still contradict the other scans of its group it now overlaps (a plane
-// fits a plane anywhere); the scans whose removal restores agreement are taken out of the
-// model and flagged with their worst disagreement.
+// fits a plane anywhere). A check that fails after a merge is evidence against the merge: the
+// group merged in leaves whole (with the merges made onto it), then the scans whose removal
+// restores agreement leave one at a time, each flagged with its worst disagreement. What
+// stays is split where nothing ties it together any more (consistency_split.cpp).
 #include <algorithm>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -32,17 +35,68 @@ live::CheckedGroup snapshot(const std::vector<std::size_t>& ids,
     return c;
 }
 
-}  // namespace
-
-void LiveRegistrar::State::check_groups() {
-    if (!config.consistency.enabled) return;
-    for (const int g : groups()) {
-        if (interrupted()) return;
-        check_group(g);
+/// The scans still kept (empty reason) that disagree, taken out one at a time until the rest
+/// agree (`choose_take_out` on the pairs between kept scans).
+void take_out_one_by_one(const GroupConsistency& result, const std::vector<std::string>& names,
+                         std::vector<std::string>& reasons) {
+    GroupConsistency kept = result;
+    std::erase_if(kept.pairs, [&](const PairConsistency& p) {
+        return !reasons[p.a].empty() || !reasons[p.b].empty();
+    });
+    choose_take_out(kept);
+    for (const std::size_t k : kept.take_out) {
+        const std::optional<std::size_t> worst = kept.scans[k].worst_pair;
+        reasons[k] = "contradicts its group (disagrees with " +
+                     std::to_string(kept.scans[k].disagreeing) + " of " +
+                     std::to_string(kept.scans[k].overlapping) + " overlapping scans): " +
+                     (worst ? describe(kept.pairs[*worst], names) : std::string("?"));
     }
 }
 
-void LiveRegistrar::State::check_group(int g) {
+}  // namespace
+
+std::vector<PoseUpdate> LiveRegistrar::State::check_groups() {
+    std::vector<PoseUpdate> regrouped;
+    if (!config.consistency.enabled) return regrouped;
+    for (const int g : groups()) {
+        if (interrupted()) break;
+        check_group(g, regrouped);
+    }
+    return regrouped;
+}
+
+void LiveRegistrar::State::take_out_merged_parts(int g, const std::vector<std::size_t>& ids,
+                                                 const GroupConsistency& result,
+                                                 const std::vector<std::string>& names,
+                                                 std::vector<std::string>& reasons) {
+    std::vector<live::MergedPart>& parts = unchecked_merges[g];
+    std::string after;  // Set once a part is out: the later parts were merged onto it.
+    std::size_t first_out = parts.size();
+    for (std::size_t m = 0; m < parts.size(); ++m) {
+        const std::set<std::size_t> in(parts[m].scans.begin(), parts[m].scans.end());
+        const auto touches = [&](const PairConsistency& p) {
+            return !p.agrees && reasons[p.a].empty() && reasons[p.b].empty() &&
+                   (in.contains(ids[p.a]) || in.contains(ids[p.b]));
+        };
+        const auto pair = std::find_if(result.pairs.begin(), result.pairs.end(), touches);
+        if (pair == result.pairs.end() && after.empty()) continue;
+        const std::string part = "came in with group " + std::to_string(parts[m].from) + " (" +
+                                 std::to_string(in.size()) + " scans) merged into group " +
+                                 std::to_string(g);
+        const std::string reason =
+            pair != result.pairs.end()
+                ? part + ", and that merge contradicts the group: " + describe(*pair, names)
+                : part + " onto a model that held " + after;
+        for (std::size_t k = 0; k < ids.size(); ++k)
+            if (in.contains(ids[k]) && reasons[k].empty()) reasons[k] = reason;
+        if (after.empty())
+            after = "the scans of group " + std::to_string(parts[m].from) + ", taken out";
+        first_out = std::min(first_out, m);
+    }
+    parts.resize(first_out);
+}
+
+void LiveRegistrar::State::check_group(int g, std::vector<PoseUpdate>& regrouped) {
     std::vector<std::size_t> ids = members(g);
     std::reverse(ids.begin(), ids.end());  // Capture order: ties take out the later scan.
     if (ids.size() < 2) return;
@@ -59,23 +113,30 @@ void LiveRegistrar::State::check_group(int g) {
     }
     const GroupConsistency result = check_group_consistency(group, config.consistency.check);
     ++report.groups_checked;
-    for (std::size_t k : result.take_out) {
+    if (result.consistent) {
+        unchecked_merges.erase(g);
+        checked_groups[g] = snapshot(ids, scans);
+        return;
+    }
+    // The evidence is against the newest decisions first: a merge that a disagreement touches
+    // leaves whole; what still disagrees then leaves one scan at a time.
+    std::vector<std::string> reasons(ids.size());
+    take_out_merged_parts(g, ids, result, names, reasons);
+    take_out_one_by_one(result, names, reasons);
+    for (std::size_t k = 0; k < ids.size(); ++k) {
+        if (reasons[k].empty()) continue;
         live::ScanEntry& e = scans[ids[k]];
-        const std::optional<std::size_t> worst = result.scans[k].worst_pair;
-        e.flagged = "contradicts its group (disagrees with " +
-                    std::to_string(result.scans[k].disagreeing) + " of " +
-                    std::to_string(result.scans[k].overlapping) + " overlapping scans): " +
-                    (worst ? describe(result.pairs[*worst], names) : std::string("?"));
+        e.flagged = reasons[k];
         report.taken_out.push_back({.seq = e.seq, .group = g, .reason = e.flagged});
         e.group = -1;
     }
-    if (!result.take_out.empty()) {
-        std::erase_if(links, [&](const live::Link& l) {
-            return !live::active(scans[l.target]) || !live::active(scans[l.source]);
-        });
-        ids = members(g);
-        std::reverse(ids.begin(), ids.end());
-    }
+    split_unsupported(g, ids, result, reasons, regrouped);
+    std::erase_if(links, [&](const live::Link& l) {
+        const live::ScanEntry &t = scans[l.target], &s = scans[l.source];
+        return !live::active(t) || !live::active(s) || t.group != s.group;
+    });
+    ids = members(g);
+    std::reverse(ids.begin(), ids.end());
     checked_groups[g] = snapshot(ids, scans);
 }
 

@@ -47,6 +47,14 @@ struct CheckedGroup {
     std::vector<Pose> poses;
 };
 
+/// The entries a merge moved into a group (the group merged in, whole), kept until the group
+/// next passes its consistency check: a check that fails after a merge is evidence against
+/// the merge, so the part leaves whole (see consistency.cpp).
+struct MergedPart {
+    int from = -1;                   ///< The group merged in.
+    std::vector<std::size_t> scans;  ///< Its entries (indices into State::scans).
+};
+
 /// A multi-view link between two entries (indices into State::scans).
 struct Link {
     std::size_t target = 0, source = 0;
@@ -205,10 +213,27 @@ struct LiveRegistrar::State {
                                              LiveDecision& decision);
 
     /// Group consistency (consistency.cpp): each group whose scans or poses changed since its
-    /// last check is checked; the scans to take out are flagged and leave the group.
-    void check_groups();
-    void check_group(int group);
+    /// last check is checked; the scans to take out are flagged and leave the group, and what
+    /// stays is split into the parts that overlapping, agreeing pairs hold together (new
+    /// groups: their updates are returned).
+    std::vector<PoseUpdate> check_groups();
+    void check_group(int group, std::vector<PoseUpdate>& regrouped);
+    /// Reasons (by position in `ids`, empty: kept) for the merged parts of `group` that a
+    /// disagreeing pair of `result` touches, each taken out whole with every part merged after
+    /// it (those were merged onto a model that held it).
+    void take_out_merged_parts(int group, const std::vector<std::size_t>& ids,
+                               const GroupConsistency& result,
+                               const std::vector<std::string>& names,
+                               std::vector<std::string>& reasons);
+    /// The kept scans of `group` (positions in `ids` whose reason is empty) by components of
+    /// agreeing pairs of `result`: the component of the earliest stays, each other one becomes
+    /// a group of its own, in the frame of its first scan (consistency_split.cpp).
+    void split_unsupported(int group, const std::vector<std::size_t>& ids,
+                           const GroupConsistency& result, const std::vector<std::string>& reasons,
+                           std::vector<PoseUpdate>& regrouped);
     std::map<int, live::CheckedGroup> checked_groups;
+    /// Merges into each group since it last passed its check, oldest first.
+    std::map<int, std::vector<live::MergedPart>> unchecked_merges;
 
     /// Multi-view refinement machinery (live_registration_refine.cpp).
     std::size_t make_links();
