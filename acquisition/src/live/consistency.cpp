@@ -35,13 +35,15 @@ live::CheckedGroup snapshot(const std::vector<std::size_t>& ids,
     return c;
 }
 
-/// The scans still kept (empty reason) that disagree, taken out one at a time until the rest
-/// agree (`choose_take_out` on the pairs between kept scans).
+/// The scans still in the group (no reason, not moved) that disagree, taken out one at a time
+/// until the rest agree (`choose_take_out` on the pairs between them).
 void take_out_one_by_one(const GroupConsistency& result, const std::vector<std::string>& names,
-                         std::vector<std::string>& reasons) {
+                         live::Verdicts& v) {
+    std::vector<std::string>& reasons = v.reasons;
     GroupConsistency kept = result;
     std::erase_if(kept.pairs, [&](const PairConsistency& p) {
-        return !reasons[p.a].empty() || !reasons[p.b].empty();
+        return !reasons[p.a].empty() || !reasons[p.b].empty() || v.unit[p.a] != 0 ||
+               v.unit[p.b] != 0;
     });
     choose_take_out(kept);
     for (const std::size_t k : kept.take_out) {
@@ -68,29 +70,44 @@ std::vector<PoseUpdate> LiveRegistrar::State::check_groups() {
 void LiveRegistrar::State::take_out_merged_parts(int g, const std::vector<std::size_t>& ids,
                                                  const GroupConsistency& result,
                                                  const std::vector<std::string>& names,
-                                                 std::vector<std::string>& reasons) {
+                                                 live::Verdicts& v) {
     std::vector<live::MergedPart>& parts = unchecked_merges[g];
     std::string after;  // Set once a part is out: the later parts were merged onto it.
     std::size_t first_out = parts.size();
     for (std::size_t m = 0; m < parts.size(); ++m) {
         const std::set<std::size_t> in(parts[m].scans.begin(), parts[m].scans.end());
-        const auto touches = [&](const PairConsistency& p) {
-            return !p.agrees && reasons[p.a].empty() && reasons[p.b].empty() &&
-                   (in.contains(ids[p.a]) || in.contains(ids[p.b]));
+        const auto here = [&](std::size_t k) {  // Still in the group, or in this part.
+            return v.reasons[k].empty() && v.unit[k] == 0;
         };
-        const auto pair = std::find_if(result.pairs.begin(), result.pairs.end(), touches);
-        if (pair == result.pairs.end() && after.empty()) continue;
+        const PairConsistency *inside = nullptr, *across = nullptr;
+        for (const PairConsistency& p : result.pairs) {
+            if (p.agrees || !here(p.a) || !here(p.b)) continue;
+            const bool a_in = in.contains(ids[p.a]), b_in = in.contains(ids[p.b]);
+            if (a_in && b_in && !inside) inside = &p;
+            if (a_in != b_in && !across) across = &p;
+        }
+        if (!inside && !across && after.empty()) continue;
         const std::string part = "came in with group " + std::to_string(parts[m].from) + " (" +
                                  std::to_string(in.size()) + " scans) merged into group " +
                                  std::to_string(g);
-        const std::string reason =
-            pair != result.pairs.end()
-                ? part + ", and that merge contradicts the group: " + describe(*pair, names)
-                : part + " onto a model that held " + after;
-        for (std::size_t k = 0; k < ids.size(); ++k)
-            if (in.contains(ids[k]) && reasons[k].empty()) reasons[k] = reason;
-        if (after.empty())
-            after = "the scans of group " + std::to_string(parts[m].from) + ", taken out";
+        // Scans of the part that contradict each other: it leaves whole, flagged. A part
+        // that only contradicts the rest (or was merged onto a part now out) leaves as a
+        // group of its own: the merge was wrong, not its scans.
+        std::string reason;
+        if (inside)
+            reason = part + ", and that group contradicts itself: " + describe(*inside, names);
+        else if (across)
+            reason = part + ", and the merge contradicts the group: " + describe(*across, names);
+        else
+            reason = part + " onto a model that held " + after;
+        for (std::size_t k = 0; k < ids.size(); ++k) {
+            if (!in.contains(ids[k]) || !here(k)) continue;
+            if (inside)
+                v.reasons[k] = reason;
+            else
+                v.unit[k] = static_cast<int>(m) + 1, v.moved[k] = reason;
+        }
+        if (after.empty()) after = "group " + std::to_string(parts[m].from) + " (out again)";
         first_out = std::min(first_out, m);
     }
     parts.resize(first_out);
@@ -120,17 +137,19 @@ void LiveRegistrar::State::check_group(int g, std::vector<PoseUpdate>& regrouped
     }
     // The evidence is against the newest decisions first: a merge that a disagreement touches
     // leaves whole; what still disagrees then leaves one scan at a time.
-    std::vector<std::string> reasons(ids.size());
-    take_out_merged_parts(g, ids, result, names, reasons);
-    take_out_one_by_one(result, names, reasons);
+    live::Verdicts verdicts{.reasons = std::vector<std::string>(ids.size()),
+                            .unit = std::vector<int>(ids.size(), 0),
+                            .moved = std::vector<std::string>(ids.size())};
+    take_out_merged_parts(g, ids, result, names, verdicts);
+    take_out_one_by_one(result, names, verdicts);
     for (std::size_t k = 0; k < ids.size(); ++k) {
-        if (reasons[k].empty()) continue;
+        if (verdicts.reasons[k].empty()) continue;
         live::ScanEntry& e = scans[ids[k]];
-        e.flagged = reasons[k];
+        e.flagged = verdicts.reasons[k];
         report.taken_out.push_back({.seq = e.seq, .group = g, .reason = e.flagged});
         e.group = -1;
     }
-    split_unsupported(g, ids, result, reasons, regrouped);
+    split_unsupported(g, ids, result, verdicts, regrouped);
     std::erase_if(links, [&](const live::Link& l) {
         const live::ScanEntry &t = scans[l.target], &s = scans[l.source];
         return !live::active(t) || !live::active(s) || t.group != s.group;

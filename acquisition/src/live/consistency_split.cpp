@@ -17,13 +17,15 @@ std::size_t root(std::vector<std::size_t>& parent, std::size_t i) {
     return i;
 }
 
-/// Component id (a root position) of every kept position; kept positions only are joined.
-std::vector<std::size_t> components(const GroupConsistency& result,
-                                    const std::vector<std::string>& reasons) {
-    std::vector<std::size_t> parent(reasons.size());
+/// Component id (a root position) of every kept position; kept positions of one unit only
+/// are joined.
+std::vector<std::size_t> components(const GroupConsistency& result, const live::Verdicts& v) {
+    std::vector<std::size_t> parent(v.reasons.size());
     std::iota(parent.begin(), parent.end(), std::size_t{0});
     for (const PairConsistency& p : result.pairs) {
-        if (!p.agrees || !reasons[p.a].empty() || !reasons[p.b].empty()) continue;
+        if (!p.agrees || !v.reasons[p.a].empty() || !v.reasons[p.b].empty() ||
+            v.unit[p.a] != v.unit[p.b])
+            continue;
         const std::size_t a = root(parent, p.a), b = root(parent, p.b);
         parent[std::max(a, b)] = std::min(a, b);  // The earliest position is the root.
     }
@@ -35,12 +37,13 @@ std::vector<std::size_t> components(const GroupConsistency& result,
 
 void LiveRegistrar::State::split_unsupported(int g, const std::vector<std::size_t>& ids,
                                              const GroupConsistency& result,
-                                             const std::vector<std::string>& reasons,
+                                             const live::Verdicts& v,
                                              std::vector<PoseUpdate>& regrouped) {
-    const std::vector<std::size_t> component = components(result, reasons);
-    std::size_t first_kept = ids.size();
+    const std::vector<std::string>& reasons = v.reasons;
+    const std::vector<std::size_t> component = components(result, v);
+    std::size_t first_kept = ids.size();  // The earliest of the group's own scans kept.
     for (std::size_t k = 0; k < ids.size() && first_kept == ids.size(); ++k)
-        if (reasons[k].empty()) first_kept = k;
+        if (reasons[k].empty() && v.unit[k] == 0) first_kept = k;
     if (first_kept == ids.size()) return;
     std::map<std::size_t, int> new_group;  // By component root (its earliest position).
     std::map<std::size_t, Pose> T_first;   // The root's pose: the new group's frame.
@@ -54,13 +57,14 @@ void LiveRegistrar::State::split_unsupported(int g, const std::vector<std::size_
         e.group = it->second;
         e.T_group_scan = orthonormalized(T_first.at(component[k]).inverse() * e.T_group_scan);
         regrouped.push_back({.seq = e.seq, .group = e.group, .T_group_scan = e.T_group_scan});
-        report.split_off.push_back(
-            {.seq = e.seq,
-             .group = g,
-             .reason = "nothing ties it to scan " + std::to_string(scans[ids[first_kept]].seq) +
-                       " of group " + std::to_string(g) +
-                       " once the contradicting scans were taken out; now in group " +
-                       std::to_string(e.group)});
+        const std::string why = v.unit[k] != 0 ? v.moved[k]
+                                               : "nothing ties it to scan " +
+                                                     std::to_string(scans[ids[first_kept]].seq) +
+                                                     " of group " + std::to_string(g) +
+                                                     " once the contradicting scans were taken out";
+        report.split_off.push_back({.seq = e.seq,
+                                    .group = g,
+                                    .reason = why + "; now in group " + std::to_string(e.group)});
     }
 }
 

@@ -55,6 +55,14 @@ struct MergedPart {
     std::vector<std::size_t> scans;  ///< Its entries (indices into State::scans).
 };
 
+/// What a failed check decided for each scan of a group (by position in the group's list).
+struct Verdicts {
+    std::vector<std::string> reasons;  ///< Why it is taken out and flagged; empty: kept.
+    /// 0: stays in the group; m + 1: leaves with merged part m as a group of its own.
+    std::vector<int> unit;
+    std::vector<std::string> moved;  ///< Why it leaves with its part (unit > 0).
+};
+
 /// A multi-view link between two entries (indices into State::scans).
 struct Link {
     std::size_t target = 0, source = 0;
@@ -218,18 +226,19 @@ struct LiveRegistrar::State {
     /// groups: their updates are returned).
     std::vector<PoseUpdate> check_groups();
     void check_group(int group, std::vector<PoseUpdate>& regrouped);
-    /// Reasons (by position in `ids`, empty: kept) for the merged parts of `group` that a
-    /// disagreeing pair of `result` touches, each taken out whole with every part merged after
-    /// it (those were merged onto a model that held it).
+    /// The merged parts of `group` (oldest first) that a disagreeing pair of `result` touches:
+    /// a part whose own scans disagree is flagged whole, one that only disagrees with the
+    /// rest leaves as a group of its own, and so does every part merged after (onto a model
+    /// that held it).
     void take_out_merged_parts(int group, const std::vector<std::size_t>& ids,
                                const GroupConsistency& result,
-                               const std::vector<std::string>& names,
-                               std::vector<std::string>& reasons);
-    /// The kept scans of `group` (positions in `ids` whose reason is empty) by components of
-    /// agreeing pairs of `result`: the component of the earliest stays, each other one becomes
-    /// a group of its own, in the frame of its first scan (consistency_split.cpp).
+                               const std::vector<std::string>& names, live::Verdicts& verdicts);
+    /// The kept scans of `group` by components of agreeing pairs of `result` within each unit
+    /// (the group's own scans, each part that leaves): the component of the earliest of the
+    /// group's own stays, each other one becomes a group of its own, in the frame of its first
+    /// scan (consistency_split.cpp).
     void split_unsupported(int group, const std::vector<std::size_t>& ids,
-                           const GroupConsistency& result, const std::vector<std::string>& reasons,
+                           const GroupConsistency& result, const live::Verdicts& verdicts,
                            std::vector<PoseUpdate>& regrouped);
     std::map<int, live::CheckedGroup> checked_groups;
     /// Merges into each group since it last passed its check, oldest first.
