@@ -1,6 +1,7 @@
 #include "anascan/sim/sim_scanner.hpp"
 
 #include <cstdio>
+#include <limits>
 
 namespace anascan::sim {
 
@@ -53,6 +54,20 @@ void SimScanner::stamp(Scan& scan, const Pose& T_world_scan) {
     scan.meta.sensor_origin_scan_m = Eigen::Vector3d::Zero();
     scan.meta.T_world_scan = T_world_scan;
     scan.meta.settings_json = drivers::settings_to_json(settings_);
+}
+
+Scan SimScanner::with_output_faults(Scan scan) {
+    if (!faults_) return scan;
+    if (faults_->frozen.load() && last_delivered_) return *last_delivered_;
+    int left = faults_->garbage_scans.load();
+    while (left > 0 && !faults_->garbage_scans.compare_exchange_weak(left, left - 1)) {
+    }
+    if (left > 0) {
+        for (Eigen::Vector3f& p : scan.cloud.positions)
+            p.setConstant(std::numeric_limits<float>::quiet_NaN());
+    }
+    last_delivered_ = scan;
+    return scan;
 }
 
 }  // namespace anascan::sim

@@ -171,7 +171,7 @@ Expected<Scan> SimStructuredLightScanner::capture_scan(const drivers::CaptureCon
     }
     stamp(*scan, head.cam1.T_world_device);
     station_.azimuth_deg += config_.advance_deg;
-    return scan;
+    return with_output_faults(std::move(*scan));
 }
 
 Expected<std::vector<drivers::Frame>> SimStructuredLightScanner::preview_frames(

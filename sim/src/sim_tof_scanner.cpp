@@ -87,7 +87,7 @@ Expected<Scan> SimTofScanner::capture_scan(const drivers::CaptureControl& contro
     Scan scan = std::move(result->scan);
     stamp(scan, T_world_scanner);
     station_.azimuth_deg += config_.advance_deg;
-    return scan;
+    return with_output_faults(std::move(scan));
 }
 
 }  // namespace anascan::sim

@@ -60,6 +60,10 @@ struct CaptureSession::Impl {
     Expected<CapturedScan> capture_one(PendingCapture& pending, std::stop_token stop);
     /// Opens the scanner when it is not open, with the operator's applied settings.
     Expected<void> open_if_needed();
+    /// Refuses what no real scan is: no finite point, or the previous scan's points again.
+    Expected<void> check_delivered(const Scan& scan);
+    /// A failed capture: stored as a device-error event and announced.
+    void report_device_error(const Error& error);
     void run_device_task(PendingCapture& pending);
     // Persistence thread (capture_session_save.cpp).
     void save_loop();
@@ -90,6 +94,8 @@ struct CaptureSession::Impl {
     ScannerOpener open_scanner;
     std::unique_ptr<drivers::Scanner> scanner;  ///< Scanner thread only.
     bool scanner_failed = false;                ///< Last capture failed: say when it is back.
+    /// Digest of the last delivered scan's points: the same points twice is a frozen device.
+    std::optional<std::uint64_t> last_scan_digest;
     /// Settings the operator applied: again at every opening (scanner thread only).
     std::optional<drivers::DeviceSettings> applied_settings;
 

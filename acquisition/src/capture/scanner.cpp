@@ -1,9 +1,26 @@
 // The scanner thread of a capture session: opens the device, runs the operator's step,
 // captures, and hands the scan to the persistence thread.
+#include <algorithm>
+
 #include "capture/impl.hpp"
 
 namespace anascan::acquisition {
 namespace {
+
+std::size_t count_finite_points(const PointCloud& cloud) {
+    return static_cast<std::size_t>(
+        std::count_if(cloud.positions.begin(), cloud.positions.end(),
+                      [](const Eigen::Vector3f& p) { return p.allFinite(); }));
+}
+
+/// FNV-1a over the points' bytes: a real scan's noise never repeats bit for bit.
+std::uint64_t points_digest(const PointCloud& cloud) {
+    std::uint64_t h = 1469598103934665603ull;
+    const auto* bytes = reinterpret_cast<const unsigned char*>(cloud.positions.data());
+    for (std::size_t i = 0; i < cloud.positions.size() * sizeof(Eigen::Vector3f); ++i)
+        h = (h ^ bytes[i]) * 1099511628211ull;
+    return h;
+}
 
 void record_device_event(SessionStore& store, std::string_view kind, std::string_view uri,
                          std::string_view message) {
@@ -43,14 +60,11 @@ Expected<void> CaptureSession::Impl::open_if_needed() {
         if (auto ok = (*opened)->configure(*applied_settings); !ok) opened = fail(ok.error());
     }
     if (!opened) {
-        scanner_failed = true;
-        record_device_event(*store, "device-error", scanner_uri, opened.error().message);
-        emit({.kind = SessionEventKind::kDeviceError,
-              .device = scanner_uri,
-              .message = opened.error().message});
+        report_device_error(opened.error());
         return fail(opened.error());
     }
     scanner = std::move(*opened);
+    last_scan_digest.reset();  // a frozen device repeats itself while open
     if (scanner_failed) {
         scanner_failed = false;
         record_device_event(*store, "device-back", scanner_uri, "opened again");
@@ -58,6 +72,31 @@ Expected<void> CaptureSession::Impl::open_if_needed() {
               .device = scanner_uri,
               .message = scanner_uri + ": back, capturing again"});
     }
+    return {};
+}
+
+void CaptureSession::Impl::report_device_error(const Error& error) {
+    scanner_failed = true;
+    record_device_event(*store, "device-error", scanner_uri, error.message);
+    emit({.kind = SessionEventKind::kDeviceError, .device = scanner_uri, .message = error.message});
+}
+
+Expected<void> CaptureSession::Impl::check_delivered(const Scan& scan) {
+    const std::size_t finite = count_finite_points(scan.cloud);
+    if (finite == 0)
+        return fail(ErrorCode::kFormat,
+                    scanner_uri + ": the scan has no valid point (" +
+                        std::to_string(scan.cloud.size()) +
+                        " points, none finite); nothing saved. Check the scanner's view and "
+                        "exposure, then capture again");
+    const std::uint64_t digest = points_digest(scan.cloud);
+    if (last_scan_digest == digest)
+        return fail(ErrorCode::kFormat,
+                    scanner_uri +
+                        ": delivered exactly the points of the previous scan, as a "
+                        "frozen device does; nothing saved. Unplug and reconnect the "
+                        "scanner if it happens again");
+    last_scan_digest = digest;
     return {};
 }
 
@@ -69,16 +108,16 @@ Expected<CapturedScan> CaptureSession::Impl::capture_one(PendingCapture& pending
     const drivers::CaptureControl control{.stop = stop, .timeout = config.capture_timeout};
     auto scan = scanner->capture_scan(control);
     if (!scan) {
-        scanner_failed = true;
-        record_device_event(*store, "device-error", scanner_uri, scan.error().message);
-        emit({.kind = SessionEventKind::kDeviceError,
-              .device = scanner_uri,
-              .message = scan.error().message});
+        report_device_error(scan.error());
         if (scan.error().code == ErrorCode::kDisconnected) {
             scanner->close();
             scanner.reset();  // opened again at the next capture
         }
         return fail(scan.error());
+    }
+    if (auto ok = check_delivered(*scan); !ok) {
+        report_device_error(ok.error());
+        return fail(ok.error());
     }
     CapturedScan captured;
     captured.scan = std::move(*scan);

@@ -5,6 +5,7 @@
 /// the sim-only placement of the block, injected faults and the metadata of each scan.
 
 #include <memory>
+#include <optional>
 
 #include "anascan/drivers/scanner.hpp"
 #include "anascan/sim/scene.hpp"
@@ -52,6 +53,8 @@ protected:
     /// Fills id, sequence, device id and kind, sensor origin (0), the true pose and the
     /// settings; counts the capture.
     void stamp(Scan& scan, const Pose& T_world_scan);
+    /// The scan as the injected output faults deliver it (garbage points, a frozen repeat).
+    Scan with_output_faults(Scan scan);
     const SceneConfig& scene() const { return scene_; }
     const std::shared_ptr<SimDeviceFaults>& faults() const { return faults_; }
     std::int64_t sequence() const { return sequence_; }
@@ -64,6 +67,7 @@ private:
     std::shared_ptr<SimWorldCache> worlds_;
     std::shared_ptr<SimDeviceFaults> faults_;
     std::shared_ptr<const SimWorld> world_;
+    std::optional<Scan> last_delivered_;  ///< Kept only while faults are injected.
     std::int64_t sequence_ = 0;
     bool closed_ = false;
     bool unplugged_ = false;
