@@ -53,6 +53,8 @@ struct CheckedGroup {
 struct MergedPart {
     int from = -1;                   ///< The group merged in.
     std::vector<std::size_t> scans;  ///< Its entries (indices into State::scans).
+    /// Entries add() placed in the group after this merge: their placement rests on it.
+    std::vector<std::size_t> followers;
 };
 
 /// What a failed check decided for each scan of a group (by position in the group's list).
