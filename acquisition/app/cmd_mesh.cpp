@@ -14,6 +14,8 @@ struct MeshCommandOptions {
 };
 
 void run(const MeshCommandOptions& o) {
+    if (o.conf.empty() || o.mesh.out.empty())
+        throw CommandFailed("mesh: give POSES.conf and --out MESH (or `mesh eval`)");
     auto conf = io::read_conf(o.conf);
     if (!conf) fail_command(conf.error());
     if (conf->entries.empty()) throw CommandFailed(o.conf + ": no bmesh lines: nothing to mesh");
@@ -49,12 +51,15 @@ void add_mesh_command(CLI::App& app) {
         "Fragment model of scans placed by a Stanford .conf: screened Poisson surface whose "
         "vertices and triangles say what was measured and what was filled in");
     cmd->add_option("conf", o->conf, "Pose file (bmesh FILE tx ty tz qx qy qz qw)")
-        ->required()
         ->check(CLI::ExistingFile);
-    cmd->add_option("--out", o->mesh.out, "Mesh (.ply, .obj or .stl)")->required();
+    cmd->add_option("--out", o->mesh.out, "Mesh (.ply, .obj or .stl)");
     add_mesh_options(cmd, o->mesh);
     add_sensor_options(cmd, o->sensor);
-    cmd->callback([o] { run(*o); });
+    add_mesh_eval_command(*cmd);
+    cmd->callback([o, cmd] {
+        if (cmd->got_subcommand("eval")) return;
+        run(*o);
+    });
 }
 
 }  // namespace anascan::cli

@@ -86,7 +86,7 @@ std::string report_json(const acquisition::SessionCheckReport& report) {
     return nlohmann::json{{"session", report.dir.string()}, {"scans_checked", report.scans_checked},
                           {"scans_ok", report.scans_ok},    {"integrity", report.integrity},
                           {"clean", report.clean()},        {"issues", issues}}
-        .dump(2);
+        .dump(2, ' ', false, nlohmann::json::error_handler_t::replace);  // file names from rows
 }
 
 void run_check(const InfoOptions& o) {

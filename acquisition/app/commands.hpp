@@ -49,6 +49,8 @@ void add_convert_command(CLI::App& app);
 void add_assemble_command(CLI::App& app);
 /// `mesh POSES.conf --out MESH`: the fragment model of scans placed by a .conf.
 void add_mesh_command(CLI::App& app);
+/// `mesh eval MESH --truth TRUE.ply`: a fragment model against the true surface.
+void add_mesh_eval_command(CLI::App& mesh);
 void add_demo_command(CLI::App& app);
 void add_eval_command(CLI::App& app);
 void add_register_command(CLI::App& app);

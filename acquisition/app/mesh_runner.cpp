@@ -108,7 +108,8 @@ nlohmann::json report_json(const ModelReport& r, const SurfaceResult& s, const M
           {"normals", d.seconds_normals},
           {"poisson", d.seconds_poisson},
           {"support", d.seconds_support},
-          {"total", seconds}}},
+          {"total", seconds},
+          {"processor", processor_seconds()}}},
         {"peak_memory_mb", double(peak_memory_bytes()) / 1048576.0},
     };
 }
@@ -130,6 +131,13 @@ io::PlyWriteOptions ply_options(const FragmentModel& m, bool ascii) {
 
 }  // namespace
 
+double processor_seconds() {
+    rusage u{};
+    getrusage(RUSAGE_SELF, &u);
+    return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+           1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
 std::size_t peak_memory_bytes() {
     rusage usage{};
     getrusage(RUSAGE_SELF, &usage);
@@ -150,9 +158,11 @@ void run_mesh(const std::vector<MeshScanEntry>& entries, const MeshOptions& o) {
     const double seconds = watch.seconds();
     if (auto ok = io::write_mesh(o.out, result.model.mesh, ply_options(result.model, o.ascii)); !ok)
         fail_command(ok.error());
-    std::printf("mesh: %s (%s surface, %.2f mm resolution, %.1f s, peak memory %.0f MB)\n",
-                o.out.c_str(), o.surface.c_str(), o.resolution_mm, seconds,
-                double(peak_memory_bytes()) / 1048576.0);
+    std::printf(
+        "mesh: %s (%s surface, %.2f mm resolution, %.1f s, %.1f s of processor time, peak "
+        "memory %.0f MB)\n",
+        o.out.c_str(), o.surface.c_str(), o.resolution_mm, seconds, processor_seconds(),
+        double(peak_memory_bytes()) / 1048576.0);
     std::fputs(model_report_table(report).c_str(), stdout);
     if (!o.report.empty()) {
         const std::string json = report_json(report, result, o, seconds).dump(2) + "\n";

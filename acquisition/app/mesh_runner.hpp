@@ -34,6 +34,9 @@ void run_mesh(const std::vector<MeshScanEntry>& entries, const MeshOptions& opti
 /// Adds --resolution-mm, --surface, --report, --ascii and --max-memory-mb to `cmd`.
 void add_mesh_options(CLI::App* cmd, MeshOptions& options);
 
+/// Processor time of this process so far (all threads, user + system), seconds.
+double processor_seconds();
+
 /// Peak resident memory of this process so far, bytes.
 std::size_t peak_memory_bytes();
 

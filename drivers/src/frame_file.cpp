@@ -1,6 +1,7 @@
 #include "frame_file.hpp"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 #include <zlib.h>
 
@@ -30,6 +31,14 @@ T get(const std::array<std::uint8_t, kFrameHeaderBytes>& h, std::size_t at) {
     T v;
     std::memcpy(&v, h.data() + at, sizeof(T));
     return v;
+}
+
+/// Bytes from the current position to the end of the file (0 when it cannot tell).
+std::uint64_t bytes_left(std::FILE* file) {
+    const long here = std::ftell(file);
+    struct stat st {};
+    if (here < 0 || ::fstat(::fileno(file), &st) != 0 || st.st_size < here) return 0;
+    return static_cast<std::uint64_t>(st.st_size - here);
 }
 
 std::uint32_t crc_of(const std::vector<std::uint8_t>& data) {
@@ -117,6 +126,11 @@ Expected<Frame> FrameFileReader::next() {
         get<std::uint16_t>(h, 6) > static_cast<int>(PixelFormat::kZ16)) {
         stopped_early_ = true;
         return fail(ErrorCode::kEmpty, where + ": implausible frame record; recording ends here");
+    }
+    if (payload > bytes_left(file_.get())) {  // a lying length: never allocate what is not there
+        stopped_early_ = true;
+        return fail(ErrorCode::kEmpty, where + ": frame " + std::to_string(f.sequence) +
+                                           " is cut short; recording ends here");
     }
     f.data.resize(payload);
     if (std::fread(f.data.data(), 1, payload, file_.get()) != payload ||

@@ -73,6 +73,7 @@ Expected<RecordingManifest> manifest_from_json(const std::string& text,
         return fail(ErrorCode::kFormat, path.string() + ": not an anascan recording (version 1)");
     }
     RecordingManifest m;
+    std::string settings_text;
     try {
         const json& d = j.at("device");
         m.device = DeviceInfo{
@@ -94,10 +95,11 @@ Expected<RecordingManifest> manifest_from_json(const std::string& text,
         get_range(c, "angular_step_deg", m.capabilities.angular_step_deg);
         get_range(c, "range_m", m.capabilities.range_m);
         m.calibration_json = j.at("calibration").dump();
+        settings_text = j.at("settings").dump();
     } catch (const json::exception& e) {
         return fail(ErrorCode::kFormat, path.string() + ": " + e.what());
     }
-    auto settings = settings_from_json(j.at("settings").dump(), path.string());
+    auto settings = settings_from_json(settings_text, path.string());
     if (!settings) return fail(settings.error());
     m.settings = *settings;
     return m;

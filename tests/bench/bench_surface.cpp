@@ -1,7 +1,9 @@
 // Fragment models, ours against Open3D's documented path in the same run, on scans placed
 // by a .conf, evaluated against a reference mesh:
 //   anascan_bench_surface POSES.conf REFERENCE.ply [--resolution-mm R] [--sensor X Y Z]
-//                         [--reference-samples] [--skip-open3d]
+//                         [--reference-samples] [--skip-open3d] [--poisson-sample-cells C]
+//                         [--poisson-scale S] [--poisson-threads N] [--linear-fit]
+//                         [--max-memory-mb M]
 // Open3D's path: normals from 20 nearest neighbours per scan oriented toward the scanner,
 // screened Poisson at depth 10, the 1% lowest-density vertices trimmed.
 // Accuracy: mesh-surface samples within 1 mm of a scan point, distance to the reference.
@@ -38,6 +40,7 @@ struct Args {
     double resolution_mm = 0.5;
     Eigen::Vector3d sensor_scan_m{0.0, 0.0, 1.0};
     bool reference_samples = false, skip_open3d = false;
+    anascan::SurfaceConfig config;  ///< Ours; the resolution is set from resolution_mm.
 };
 
 struct Scans {
@@ -45,6 +48,15 @@ struct Scans {
     std::vector<Eigen::Vector3d> sensors_world_m;
     PointCloud all;
 };
+
+// Processor time of the process so far (all threads, user + system), seconds: on a loaded
+// machine the wall time of each path depends on the other users, this does much less.
+double cpu_seconds() {
+    rusage u{};
+    getrusage(RUSAGE_SELF, &u);
+    return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+           1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
 
 double peak_mb() {
     rusage u{};
@@ -138,11 +150,11 @@ Mesh open3d_path(const Scans& scans) {
     return mesh;
 }
 
-void print_quality(const char* who, double seconds, const Quality& q) {
+void print_quality(const char* who, double seconds, double cpu, const Quality& q) {
     std::printf(
-        "%-8s %9.2f s  accuracy median %.4f mm  p95 %.4f mm (%zu samples)  "
+        "%-8s %9.2f s wall %9.2f s cpu  accuracy median %.4f mm  p95 %.4f mm (%zu samples)  "
         "completeness %.2f%% within 0.5 mm\n",
-        who, seconds, q.accuracy_median_mm, q.accuracy_p95_mm, q.accuracy_samples,
+        who, seconds, cpu, q.accuracy_median_mm, q.accuracy_p95_mm, q.accuracy_samples,
         100.0 * q.completeness);
 }
 
@@ -155,6 +167,16 @@ Args parse(int argc, char** argv) {
             a.resolution_mm = std::atof(argv[++i]);
         } else if (s == "--sensor" && i + 3 < argc) {
             for (int k = 0; k < 3; ++k) a.sensor_scan_m[k] = std::atof(argv[++i]);
+        } else if (s == "--poisson-sample-cells" && i + 1 < argc) {
+            a.config.poisson_sample_cells = std::atof(argv[++i]);
+        } else if (s == "--poisson-scale" && i + 1 < argc) {
+            a.config.poisson_scale = std::atof(argv[++i]);
+        } else if (s == "--poisson-threads" && i + 1 < argc) {
+            a.config.poisson_threads = std::atoi(argv[++i]);
+        } else if (s == "--max-memory-mb" && i + 1 < argc) {
+            a.config.max_memory_bytes = std::size_t(std::atof(argv[++i]) * 1048576.0);
+        } else if (s == "--linear-fit") {
+            a.config.poisson_linear_fit = true;
         } else if (s == "--reference-samples") {
             a.reference_samples = true;
         } else if (s == "--skip-open3d") {
@@ -184,16 +206,18 @@ int main(int argc, char** argv) {
         placed.push_back({&scans.clouds[i], scans.sensors_world_m[i]});
     }
     anascan::Stopwatch watch;
-    const auto ours =
-        anascan::reconstruct_surface(placed, {.resolution_m = a.resolution_mm * 1e-3});
+    double cpu = cpu_seconds();
+    anascan::SurfaceConfig config = a.config;
+    config.resolution_m = a.resolution_mm * 1e-3;
+    const auto ours = anascan::reconstruct_surface(placed, config);
     const auto report = anascan::make_model_report(ours.model, ours.merged);
-    const double t_ours = watch.lap();
+    const double t_ours = watch.lap(), cpu_ours = cpu_seconds() - cpu;
     const auto& dg = ours.diagnostics;
     std::printf(
         "ours: stages merge %.2f s, normals %.2f s, poisson %.2f s, support %.2f s; "
-        "%zu merged points, spacing %.3f mm\n",
+        "%zu merged points (%zu to Poisson), spacing %.3f mm\n",
         dg.seconds_merge, dg.seconds_normals, dg.seconds_poisson, dg.seconds_support,
-        dg.merged_points, 1e3 * dg.spacing_m);
+        dg.merged_points, dg.poisson_samples, 1e3 * dg.spacing_m);
     std::printf(
         "ours: status %s, depth %d, %zu triangles, peak memory %.0f MB (%.0f MB after "
         "loading)\n%s",
@@ -211,13 +235,16 @@ int main(int argc, char** argv) {
     std::printf("reference: closed %d, volume %.9f m^3, box %.2f x %.2f x %.2f mm\n",
                 ref_report.closed, ref_report.volume_m3, ref_report.obb_mm.x(),
                 ref_report.obb_mm.y(), ref_report.obb_mm.z());
-    print_quality("ours", t_ours,
+    print_quality("ours", t_ours, cpu_ours,
                   evaluate(ours.model.mesh, *reference, scans, a.reference_samples));
     if (a.skip_open3d) return 0;
     watch.restart();
+    cpu = cpu_seconds();
     const Mesh peer = open3d_path(scans);
-    const double t_peer = watch.lap();
-    print_quality("open3d", t_peer, evaluate(peer, *reference, scans, a.reference_samples));
-    std::printf("time ratio open3d / ours: %.2f\n", t_peer / t_ours);
+    const double t_peer = watch.lap(), cpu_peer = cpu_seconds() - cpu;
+    print_quality("open3d", t_peer, cpu_peer,
+                  evaluate(peer, *reference, scans, a.reference_samples));
+    std::printf("time ratio open3d / ours: %.2f wall, %.2f cpu\n", t_peer / t_ours,
+                cpu_peer / cpu_ours);
     return 0;
 }

@@ -129,7 +129,8 @@ Expected<std::string> session_info_json(const SessionStore& store, int indent) {
                                 {"text", n.text},
                                 {"time", format_utc(n.time)}});
     }
-    return doc.dump(indent);
+    // Text from the database (device ids, notes, events) need not be valid UTF-8.
+    return doc.dump(indent, ' ', false, json::error_handler_t::replace);
 }
 
 }  // namespace anascan::acquisition

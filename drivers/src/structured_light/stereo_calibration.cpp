@@ -7,13 +7,26 @@
 namespace anascan::drivers::sl {
 namespace {
 
+/// Whether a node may be read as a matrix: a sequence holds its own elements; an
+/// `!!opencv-matrix` map must declare at most `max_elements` and hold as many as it
+/// declares. OpenCV allocates rows x cols before it reads the data, so a hostile `rows`
+/// would allocate gigabytes: this is checked first.
+bool plausible_matrix(const cv::FileNode& node, long long max_elements) {
+    if (!node.isMap()) return true;
+    const cv::FileNode rows = node["rows"], cols = node["cols"], data = node["data"];
+    if (!rows.isInt() || !cols.isInt() || !data.isSeq()) return false;
+    const long long r = int(rows), c = int(cols);
+    return r > 0 && c > 0 && r * c <= max_elements &&
+           data.size() == static_cast<std::size_t>(r * c);
+}
+
 /// A matrix of doubles stored under `key` with the given shape (cols 0: any).
 Expected<cv::Mat> read_matrix(const cv::FileStorage& fs, const std::string& file,
                               const std::string& key, int rows, int cols) {
     const cv::FileNode node = fs[key];
     if (node.empty()) return fail(ErrorCode::kFormat, file + ": missing key '" + key + "'");
     cv::Mat m;
-    node >> m;
+    if (plausible_matrix(node, static_cast<long long>(rows) * (cols > 0 ? cols : 16))) node >> m;
     if (m.empty() || m.channels() != 1 || m.rows != rows || (cols > 0 && m.cols != cols)) {
         return fail(ErrorCode::kFormat, file + ": '" + key + "' is not a " + std::to_string(rows) +
                                             "x" + (cols > 0 ? std::to_string(cols) : "N") +
@@ -39,7 +52,7 @@ Expected<CameraIntrinsics> read_camera(const cv::FileStorage& fs, const std::str
     if (dist.empty()) dist = fs[name + "_distortion"];
     if (!dist.empty()) {
         cv::Mat d;
-        dist >> d;
+        if (plausible_matrix(dist, 8)) dist >> d;
         if (d.total() > 8 || (d.rows != 1 && d.cols != 1))
             return fail(ErrorCode::kFormat, file + ": '" + name + "' distortion is not a vector");
         d.convertTo(d, CV_64F);
@@ -99,6 +112,9 @@ Expected<StereoCalibration> load_stereo_calibration(const std::filesystem::path&
             .cam1 = *first, .cam2 = *second, .T_cam1_cam2 = T_second_first->inverse()};
     } catch (const cv::Exception& e) {
         return fail(ErrorCode::kFormat, file + ": " + e.msg);
+    } catch (const std::exception& e) {  // OpenCV's parser lets std::length_error and others out
+        return fail(ErrorCode::kFormat,
+                    file + ": not a readable calibration file (" + e.what() + ")");
     }
 }
 
@@ -130,6 +146,9 @@ Expected<std::optional<RecordedPatternLayout>> load_pattern_layout(
         return std::optional<RecordedPatternLayout>{layout};
     } catch (const cv::Exception& e) {
         return fail(ErrorCode::kFormat, file + ": " + e.msg);
+    } catch (const std::exception& e) {  // OpenCV's parser lets std::length_error and others out
+        return fail(ErrorCode::kFormat,
+                    file + ": not a readable calibration file (" + e.what() + ")");
     }
 }
 

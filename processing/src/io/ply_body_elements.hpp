@@ -14,8 +14,8 @@ Expected<void> BodyReader<Source>::read_vertices(const PlyElement& element) {
     }
     if (!fits(element)) return doomed(element);
     PointCloud& cloud = data_.cloud;
-    allocate(cloud, plan, element.count);
-    const std::vector<VertexSink> sinks = make_sinks(cloud, element, plan);
+    allocate(cloud, data_.vertex_scalars, element, plan, element.count);
+    const std::vector<VertexSink> sinks = make_sinks(cloud, data_.vertex_scalars, element, plan);
     if constexpr (Source::kBinary) {
         if (!element.has_lists()) {  // fast path: offset table, no per-value checks
             const std::size_t record = element.fixed_record_bytes();

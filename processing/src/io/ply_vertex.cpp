@@ -9,7 +9,7 @@ namespace {
 static_assert(sizeof(Eigen::Vector3f) == 3 * sizeof(float), "Vector3f must be 3 packed floats");
 static_assert(sizeof(Rgb8) == 3, "Rgb8 must be 3 packed bytes");
 
-constexpr std::size_t kSlotCount = 12;
+constexpr std::size_t kSlotCount = 13;
 
 std::size_t index(Slot slot) { return static_cast<std::size_t>(slot); }
 
@@ -61,6 +61,8 @@ bool slot_used(const VertexPlan& plan, Slot slot) {
             return plan.intensity;
         case Slot::kConfidence:
             return plan.confidence;
+        case Slot::kExtra:
+            return true;
         case Slot::kNone:
             return false;
     }
@@ -125,6 +127,11 @@ VertexPlan plan_vertices(const PlyElement& element) {
     for (std::size_t k = 0; k < element.properties.size(); ++k) {
         const PlyProperty& property = element.properties[k];
         const Slot slot = property.is_list ? Slot::kNone : slot_named(property.name);
+        if (slot == Slot::kNone && !property.is_list && plan.extras.size() < kMaxExtraScalars) {
+            plan.extras.push_back(k);
+            plan.slots[k] = Slot::kExtra;
+            continue;
+        }
         if (slot == Slot::kNone || taken[index(slot)]) continue;
         taken[index(slot)] = true;
         plan.slots[k] = slot;
@@ -143,7 +150,11 @@ VertexPlan plan_vertices(const PlyElement& element) {
     return plan;
 }
 
-void allocate(PointCloud& cloud, const VertexPlan& plan, std::size_t count) {
+void allocate(PointCloud& cloud, std::vector<PlyScalarProperty>& extras, const PlyElement& element,
+              const VertexPlan& plan, std::size_t count) {
+    extras.clear();
+    for (const std::size_t k : plan.extras)
+        extras.push_back({.name = element.properties[k].name, .values = std::vector<float>(count)});
     if (plan.positions) cloud.positions.resize(count);
     if (plan.normals) cloud.normals.resize(count);
     if (plan.colors) cloud.colors.resize(count);
@@ -151,12 +162,17 @@ void allocate(PointCloud& cloud, const VertexPlan& plan, std::size_t count) {
     if (plan.confidence) cloud.confidence.resize(count);
 }
 
-std::vector<VertexSink> make_sinks(PointCloud& cloud, const PlyElement& element,
-                                   const VertexPlan& plan) {
+std::vector<VertexSink> make_sinks(PointCloud& cloud, std::vector<PlyScalarProperty>& extras,
+                                   const PlyElement& element, const VertexPlan& plan) {
     std::vector<VertexSink> sinks(element.properties.size());
     if (cloud.positions.empty()) return sinks;  // nothing to point into
+    for (std::size_t j = 0; j < plan.extras.size(); ++j) {
+        sinks[plan.extras[j]] = {.floats = extras[j].values.data(),
+                                 .stride = 1,
+                                 .type = element.properties[plan.extras[j]].type};
+    }
     for (std::size_t k = 0; k < sinks.size(); ++k) {
-        if (plan.slots[k] != Slot::kNone) {
+        if (plan.slots[k] != Slot::kNone && plan.slots[k] != Slot::kExtra) {
             sinks[k] = sink_for(cloud, plan.slots[k], element.properties[k].type);
         }
     }

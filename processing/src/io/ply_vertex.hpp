@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "anascan/processing/core/point_cloud.hpp"
+#include "anascan/processing/io/ply.hpp"
 #include "ply_header.hpp"
 #include "ply_source.hpp"
 
@@ -28,8 +29,13 @@ enum class Slot : std::uint8_t {
     kGreen,
     kBlue,
     kIntensity,
-    kConfidence
+    kConfidence,
+    kExtra,  ///< A scalar we do not know by name, kept in PlyData::vertex_scalars.
 };
+
+/// At most this many unknown scalar properties are kept (the rest are skipped), so a file
+/// of many small properties cannot make the reader allocate many times its size.
+inline constexpr std::size_t kMaxExtraScalars = 8;
 
 /// Which property feeds which slot; a group (position, normal, colour) counts only when
 /// all three of its components are present, else its properties are skipped.
@@ -37,13 +43,15 @@ struct VertexPlan {
     std::vector<Slot> slots;  ///< One per property of the element.
     bool positions = false, normals = false, colors = false;
     bool intensity = false, confidence = false;
+    std::vector<std::size_t> extras;  ///< Properties kept as extra scalars, in file order.
 };
 
 /// Plans the vertex element `element`.
 VertexPlan plan_vertices(const PlyElement& element);
 
-/// Sizes the cloud's attributes for `count` points as the plan says.
-void allocate(PointCloud& cloud, const VertexPlan& plan, std::size_t count);
+/// Sizes the cloud's attributes and the extra scalars for `count` points as the plan says.
+void allocate(PointCloud& cloud, std::vector<PlyScalarProperty>& extras, const PlyElement& element,
+              const VertexPlan& plan, std::size_t count);
 
 /// Where one property's values go: value i to floats[i * stride] or bytes[i * stride].
 struct VertexSink {
@@ -58,8 +66,8 @@ struct VertexSink {
 
 /// The sink of each property (no-op sinks for skipped ones); call after allocate().
 /// Position sinks subtract `cloud.origin_m` (set it first).
-std::vector<VertexSink> make_sinks(PointCloud& cloud, const PlyElement& element,
-                                   const VertexPlan& plan);
+std::vector<VertexSink> make_sinks(PointCloud& cloud, std::vector<PlyScalarProperty>& extras,
+                                   const PlyElement& element, const VertexPlan& plan);
 
 /// A PLY colour value as 8 bits: float types scale 0..1 to 0..255, 16-bit types scale
 /// 0..65535 to 0..255, other integers clamp to 0..255; NaN gives 0.

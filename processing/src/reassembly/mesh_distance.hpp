@@ -6,7 +6,7 @@
 // angle-weighted sum of the incident triangles' normals at a vertex). Exact on a closed
 // manifold mesh. On an open mesh a closest feature on the boundary (an edge of one
 // triangle, or a vertex of such an edge) has no inside: it is reported as `boundary`.
-// CGAL's AABB tree finds the closest point; only cgal_closest.cpp includes CGAL.
+// The shared TriangleTree (CGAL's AABB tree) finds the closest point.
 #include <Eigen/Core>
 #include <cstddef>
 #include <cstdint>
@@ -14,24 +14,9 @@
 #include <span>
 #include <vector>
 
+#include "anascan/processing/spatial/triangle_tree.hpp"
+
 namespace anascan::reassembly::detail {
-
-/// The closest point on a set of triangles (CGAL AABB tree behind a plain type).
-class ClosestTriangle {
-public:
-    /// Degenerate (zero-area) triangles are left out.
-    ClosestTriangle(std::span<const Eigen::Vector3f> vertices,
-                    std::span<const Eigen::Vector3i> triangles);
-    ~ClosestTriangle();
-    ClosestTriangle(ClosestTriangle&&) noexcept;
-    ClosestTriangle& operator=(ClosestTriangle&&) noexcept;
-    /// False when there is no triangle; else the closest point and its triangle's index.
-    bool closest(const Eigen::Vector3d& x, Eigen::Vector3d& point, std::size_t& triangle) const;
-
-private:
-    struct Impl;
-    std::unique_ptr<Impl> impl_;
-};
 
 struct SignedDistance {
     double distance_m = 0.0;  ///< Negative inside.
@@ -54,7 +39,7 @@ private:
     /// and whether that edge is on the boundary (one triangle) or non-manifold (three).
     std::vector<Eigen::Vector3d> edge_normal_;
     std::vector<char> edge_boundary_;
-    ClosestTriangle tree_;
+    TriangleTree tree_;
 };
 
 }  // namespace anascan::reassembly::detail

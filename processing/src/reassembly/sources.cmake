@@ -1,6 +1,6 @@
 # processing/reassembly: block features (planar faces, adjacency, roughness, holes), face
-# matching and neighbour proposals (method paper §5.1-5.2). CGAL only in cgal_geometry.cpp and
-# cgal_closest.cpp.
+# matching and neighbour proposals (method paper §5.1-5.2). CGAL only in cgal_geometry.cpp (the
+# closest-point tree is spatial/triangle_tree.cpp).
 list(APPEND ANASCAN_PROCESSING_SOURCES
     src/reassembly/block_features.cpp
     src/reassembly/cgal_geometry.cpp
@@ -17,7 +17,6 @@ list(APPEND ANASCAN_PROCESSING_SOURCES
     src/reassembly/assembly_qp.cpp
     src/reassembly/assembly_terms.cpp
     src/reassembly/block_assembly.cpp
-    src/reassembly/cgal_closest.cpp
     src/reassembly/constrained_lsq.cpp
     src/reassembly/horn_placement.cpp
     src/reassembly/mesh_distance.cpp

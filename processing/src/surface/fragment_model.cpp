@@ -38,6 +38,18 @@ FragmentModel select_triangles(const FragmentModel& model, const std::vector<boo
     return out;
 }
 
+std::vector<SurfaceClass> triangle_classes_from_vertices(
+    const Mesh& mesh, std::span<const SurfaceClass> vertex_class) {
+    std::vector<SurfaceClass> out(mesh.triangles.size());
+    for (std::size_t t = 0; t < out.size(); ++t) {
+        int measured = 0;
+        for (int k = 0; k < 3; ++k)
+            measured += vertex_class[std::size_t(mesh.triangles[t][k])] == SurfaceClass::kMeasured;
+        out[t] = measured >= 2 ? SurfaceClass::kMeasured : SurfaceClass::kInterpolated;
+    }
+    return out;
+}
+
 void colour_by_class(FragmentModel& model) {
     constexpr Rgb8 kMeasured{178, 172, 160};
     constexpr Rgb8 kInterpolated{235, 120, 30};

@@ -33,12 +33,12 @@ PoissonDepth choose_depth(double box_m, double resolution_m, std::size_t points,
     return d;
 }
 
-Mesh poisson_surface(const PointCloud& cloud, int depth, double scale, int threads) {
+Mesh poisson_surface(const PointCloud& cloud, const PoissonParams& params) {
     open3d::geometry::PointCloud pcd;
     pcd.points_.reserve(cloud.size());
     pcd.normals_.reserve(cloud.size());
     for (std::size_t i = 0; i < cloud.size(); ++i) {
-        if (cloud.normals[i].squaredNorm() == 0.0f) continue;  // no normal: no sample
+        if (!(cloud.normals[i].squaredNorm() > 0.0f)) continue;  // no normal (or NaN): no sample
         pcd.points_.push_back(cloud.positions[i].cast<double>());
         pcd.normals_.push_back(cloud.normals[i].cast<double>());
     }
@@ -46,7 +46,8 @@ Mesh poisson_surface(const PointCloud& cloud, int depth, double scale, int threa
     mesh.vertices.origin_m = cloud.origin_m;
     if (pcd.points_.size() < 4) return mesh;
     auto [o3d, densities] = open3d::geometry::TriangleMesh::CreateFromPointCloudPoisson(
-        pcd, static_cast<std::size_t>(depth), 0.0f, static_cast<float>(scale), false, threads);
+        pcd, static_cast<std::size_t>(params.depth), 0.0f, static_cast<float>(params.scale),
+        params.linear_fit, params.threads);
     if (!o3d || o3d->triangles_.empty()) return mesh;
     o3d->ComputeVertexNormals();
     mesh.vertices.positions.reserve(o3d->vertices_.size());

@@ -18,9 +18,15 @@ struct PoissonDepth {
 PoissonDepth choose_depth(double box_m, double resolution_m, std::size_t points,
                           std::size_t max_memory_bytes);
 
-/// Runs screened Poisson on `cloud` (positions and unit normals) at `depth`, in a box
-/// `scale` times the points' bounding cube, on `threads` threads. Returns the mesh in the cloud's
-/// frame (same origin) with vertex normals; empty on failure.
-Mesh poisson_surface(const PointCloud& cloud, int depth, double scale, int threads);
+struct PoissonParams {
+    int depth = 8;
+    double scale = 1.1;  ///< The box relative to the points' bounding cube.
+    int threads = 1;
+    bool linear_fit = false;
+};
+
+/// Runs screened Poisson on `cloud` (positions and unit normals). Returns the mesh in the
+/// cloud's frame (same origin) with vertex normals; empty on failure.
+Mesh poisson_surface(const PointCloud& cloud, const PoissonParams& params);
 
 }  // namespace anascan::surface_detail

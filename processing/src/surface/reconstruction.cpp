@@ -5,6 +5,7 @@
 #include <string>
 
 #include "anascan/processing/core/stopwatch.hpp"
+#include "anascan/processing/spatial/voxel_grid.hpp"
 #include "anascan/processing/surface/mesh_topology.hpp"
 #include "merge.hpp"
 #include "poisson.hpp"
@@ -72,6 +73,23 @@ SurfaceStatus merge_and_orient(std::span<const PlacedScan> scans, const SurfaceC
     return SurfaceStatus::kOk;
 }
 
+// Poisson on the merged points, or on a thinned copy (poisson_sample_cells).
+Mesh poisson_on_samples(const PointCloud& merged, const surface_detail::PoissonDepth& depth,
+                        const SurfaceConfig& config, SurfaceDiagnostics& d) {
+    const surface_detail::PoissonParams params{.depth = depth.depth,
+                                               .scale = config.poisson_scale,
+                                               .threads = config.poisson_threads,
+                                               .linear_fit = config.poisson_linear_fit};
+    const double voxel_m = config.poisson_sample_cells * depth.cell_m;
+    if (voxel_m <= config.resolution_m) {
+        d.poisson_samples = merged.size();
+        return surface_detail::poisson_surface(merged, params);
+    }
+    const PointCloud thinned = voxel_downsample(merged, {.voxel_size_m = voxel_m});
+    d.poisson_samples = thinned.size();
+    return surface_detail::poisson_surface(thinned, params);
+}
+
 }  // namespace
 
 SurfaceResult reconstruct_surface(std::span<const PlacedScan> scans, const SurfaceConfig& config,
@@ -93,8 +111,7 @@ SurfaceResult reconstruct_surface(std::span<const PlacedScan> scans, const Surfa
                   double(depth.estimated_memory_bytes) / 1048576.0);
     say(progress, line);
     Stopwatch watch;
-    result.model.mesh = surface_detail::poisson_surface(
-        merged.cloud, depth.depth, config.poisson_scale, config.poisson_threads);
+    result.model.mesh = poisson_on_samples(merged.cloud, depth, config, d);
     d.seconds_poisson = watch.seconds();
     if (result.model.mesh.triangles.empty()) {
         result.status = SurfaceStatus::kPoissonFailed;

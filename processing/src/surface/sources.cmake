@@ -7,7 +7,10 @@ list(APPEND ANASCAN_PROCESSING_SOURCES
     src/surface/mesh_measures.cpp
     src/surface/mesh_topology.cpp
     src/surface/model_report.cpp
+    src/surface/oriented_box.cpp
     src/surface/poisson.cpp
     src/surface/reconstruction.cpp
     src/surface/support.cpp
+    src/surface/truth_comparison.cpp
+    src/surface/truth_visibility.cpp
 )

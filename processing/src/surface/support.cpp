@@ -34,15 +34,7 @@ void classify_support(FragmentModel& model, const MergedCloud& merged, double th
                 model.vertex_class[i] = SurfaceClass::kMeasured;
         }
     });
-    model.triangle_class.resize(model.mesh.triangles.size());
-    for (std::size_t t = 0; t < model.mesh.triangles.size(); ++t) {
-        int measured = 0;
-        for (int k = 0; k < 3; ++k) {
-            measured += model.vertex_class[model.mesh.triangles[t][k]] == SurfaceClass::kMeasured;
-        }
-        model.triangle_class[t] =
-            measured >= 2 ? SurfaceClass::kMeasured : SurfaceClass::kInterpolated;
-    }
+    model.triangle_class = triangle_classes_from_vertices(model.mesh, model.vertex_class);
 }
 
 }  // namespace anascan::surface_detail

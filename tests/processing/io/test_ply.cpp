@@ -120,6 +120,42 @@ TEST_P(PlyRoundTrip, MeshIsBitExact) {
     EXPECT_EQ(read->triangles, mesh.triangles);
 }
 
+TEST_P(PlyRoundTrip, ExtraVertexScalarsAreReadBackByName) {
+    PointCloud cloud = full_cloud(40);
+    PlyScalarProperty support{.name = "support_distance_m"}, cls{.name = "interpolated"};
+    for (std::size_t i = 0; i < cloud.size(); ++i) {
+        support.values.push_back(0.001f * float(i));
+        cls.values.push_back(float(i % 3 == 0));
+    }
+    const std::vector<char> bytes =
+        serialize_ply(cloud, {}, {.format = GetParam(), .vertex_scalars = {support, cls}});
+    const Expected<PlyData> read = parse_ply(bytes, "scalars.ply");
+    ASSERT_TRUE(read) << read.error().message;
+    expect_same_cloud(cloud, read->cloud);
+    ASSERT_EQ(read->vertex_scalars.size(), 2u);
+    EXPECT_EQ(read->vertex_scalars[0].name, "support_distance_m");
+    EXPECT_EQ(read->vertex_scalars[0].values, support.values);
+    EXPECT_EQ(read->vertex_scalars[1].name, "interpolated");
+    EXPECT_EQ(read->vertex_scalars[1].values, cls.values);
+}
+
+TEST(Ply, AtMostEightUnknownScalarsAreKept) {
+    std::string text =
+        "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n"
+        "property float y\nproperty float z\n";
+    std::string row = "1 2 3";
+    for (int k = 0; k < 10; ++k) {
+        text += "property uchar s" + std::to_string(k) + "\n";
+        row += " " + std::to_string(k);
+    }
+    text += "end_header\n" + row + "\n";
+    const Expected<PlyData> read = parse_ply(std::span(text.data(), text.size()), "many.ply");
+    ASSERT_TRUE(read) << read.error().message;
+    ASSERT_EQ(read->vertex_scalars.size(), 8u);
+    EXPECT_EQ(read->vertex_scalars[7].name, "s7");
+    EXPECT_EQ(read->vertex_scalars[7].values, std::vector<float>{7.0f});
+}
+
 TEST_P(PlyRoundTrip, NanAndInfinityAreKept) {
     PointCloud cloud;
     const float nan = std::numeric_limits<float>::quiet_NaN();

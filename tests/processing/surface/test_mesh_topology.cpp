@@ -3,25 +3,12 @@
 #include "anascan/processing/surface/mesh_distance.hpp"
 #include "anascan/processing/surface/mesh_topology.hpp"
 #include "anascan/processing/surface/model_report.hpp"
+#include "surface_test_meshes.hpp"
 
 namespace anascan {
 namespace {
 
-// A unit cube (metres) with outward winding, 12 triangles.
-Mesh cube(double size = 1.0) {
-    Mesh m;
-    for (int i = 0; i < 8; ++i) {
-        m.vertices.positions.emplace_back(float(size * (i & 1)), float(size * ((i >> 1) & 1)),
-                                          float(size * ((i >> 2) & 1)));
-    }
-    const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
-                             {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-    for (const auto& q : quads) {
-        m.triangles.emplace_back(q[0], q[1], q[2]);
-        m.triangles.emplace_back(q[0], q[2], q[3]);
-    }
-    return m;
-}
+using test::cube;
 
 TEST(MeshTopology, CubeIsClosedManifoldOneComponent) {
     const Mesh m = cube();
@@ -79,7 +66,7 @@ TEST(MeshTopology, TwoCubesTouchingAtAVertexAreNotVertexManifold) {
 
 TEST(MeshDistance, MatchesBruteForceOnTheCube) {
     const Mesh m = cube(0.1);
-    const MeshDistance d(m, 8);
+    const MeshDistance d(m);
     EXPECT_NEAR(d.distance_m({0.05, 0.05, 0.3}), 0.2, 1e-7);  // float vertices
     EXPECT_NEAR(d.distance_m({0.05, 0.05, 0.05}), 0.05, 1e-7);
     EXPECT_NEAR(d.distance_m({0.2, 0.2, 0.05}), std::sqrt(0.02), 1e-7);

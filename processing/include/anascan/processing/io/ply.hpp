@@ -3,10 +3,10 @@
 /// PLY (Stanford polygon file format) read and write: ASCII, binary little and big endian.
 ///
 /// Reading accepts any property order and any PLY scalar type for the vertex properties
-/// x y z, nx ny nz, red green blue (also r g b / diffuse_*), intensity, confidence; other
-/// vertex properties are skipped. `face` lists become triangles (polygons are fan
-/// triangulated); the Stanford `range_grid` element is kept as a RangeGrid; any other
-/// element is skipped and its name reported. An anascan origin comment
+/// x y z, nx ny nz, red green blue (also r g b / diffuse_*), intensity, confidence; the
+/// first eight other scalar vertex properties are kept by name (`vertex_scalars`). `face` lists
+/// become triangles (polygons are fan triangulated); the Stanford `range_grid` element is kept as a
+/// RangeGrid; any other element is skipped and its name reported. An anascan origin comment
 /// (`comment anascan origin_m X Y Z`) restores the double-precision origin.
 
 #include <filesystem>
@@ -25,6 +25,13 @@ namespace anascan::io {
 
 enum class PlyFormat { kAscii, kBinaryLittleEndian, kBinaryBigEndian };
 
+/// An extra per-vertex property written as `property float NAME` after the cloud's own
+/// attributes (a mesh's support distance, its class); `values` is as long as the cloud.
+struct PlyScalarProperty {
+    std::string name;
+    std::vector<float> values;
+};
+
 /// Everything a PLY file told us.
 struct PlyData {
     PointCloud cloud;                        ///< The vertices and their attributes.
@@ -33,6 +40,8 @@ struct PlyData {
     PlyFormat format = PlyFormat::kBinaryLittleEndian;
     std::vector<std::string> comments;          ///< `comment` and `obj_info` lines, in order.
     std::vector<std::string> skipped_elements;  ///< Names of elements we did not read.
+    /// The vertex's other scalar properties (the first eight, as floats), in file order.
+    std::vector<PlyScalarProperty> vertex_scalars;
 };
 
 /// Parses PLY bytes. `source_name` (usually the path) starts every error message, followed
@@ -42,14 +51,6 @@ Expected<PlyData> parse_ply(std::span<const char> bytes, std::string_view source
 
 /// Reads and parses a PLY file.
 Expected<PlyData> read_ply(const std::filesystem::path& path);
-
-/// An extra per-vertex property written as `property float NAME` after the cloud's own
-/// attributes (a mesh's support distance, its class); `values` is as long as the cloud.
-/// Readers that do not know the name skip it.
-struct PlyScalarProperty {
-    std::string name;
-    std::vector<float> values;
-};
 
 struct PlyWriteOptions {
     PlyFormat format = PlyFormat::kBinaryLittleEndian;

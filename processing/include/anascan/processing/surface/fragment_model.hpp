@@ -6,6 +6,7 @@
 /// parts no scan saw.
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "anascan/processing/core/mesh.hpp"
@@ -36,6 +37,11 @@ struct FragmentModel {
 /// Keeps the triangles for which `keep[t]` is true and the vertices they use (with their
 /// attributes), renumbering the triangles.
 FragmentModel select_triangles(const FragmentModel& model, const std::vector<bool>& keep);
+
+/// The triangle classes of a mesh whose vertices carry a class: a triangle is measured when
+/// at least two of its vertices are.
+std::vector<SurfaceClass> triangle_classes_from_vertices(
+    const Mesh& mesh, std::span<const SurfaceClass> vertex_class);
 
 /// Colours each vertex by its class (measured: stone grey, interpolated: orange), so that
 /// any viewer shows what was filled in.

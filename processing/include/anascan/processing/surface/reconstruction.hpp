@@ -49,6 +49,12 @@ struct SurfaceConfig {
     /// Threads of Poisson's own pool. 1 (the default) makes the surface independent of the
     /// machine and avoids the pool's per-slice barriers, which stall on a loaded machine.
     int poisson_threads = 1;
+    /// Poisson's samples: the merged points thinned to one per cube of this many finest
+    /// Poisson cells (0: every merged point). Support and accuracy use every merged point.
+    double poisson_sample_cells = 0.0;
+    /// Open3D's linear_fit: iso-vertices placed by linear interpolation of the implicit
+    /// function instead of at the cell edges' midpoints.
+    bool poisson_linear_fit = false;
 };
 
 enum class SurfaceStatus {
@@ -62,8 +68,9 @@ enum class SurfaceStatus {
 
 /// What the reconstruction did, with figures for the report.
 struct SurfaceDiagnostics {
-    std::size_t input_points = 0;   ///< Finite points over all scans.
-    std::size_t merged_points = 0;  ///< After merging on the grid.
+    std::size_t input_points = 0;     ///< Finite points over all scans.
+    std::size_t merged_points = 0;    ///< After merging on the grid.
+    std::size_t poisson_samples = 0;  ///< Merged points Poisson was given.
     std::size_t scans_with_sensor = 0;
     std::vector<std::size_t> isolated_scans;  ///< Indices of scans sharing no cell with others.
     std::size_t normals_unoriented = 0;       ///< Merged points whose normal could not be fitted.

@@ -1,0 +1,120 @@
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <numbers>
+
+#include "anascan/processing/spatial/triangle_tree.hpp"
+#include "anascan/processing/surface/model_report.hpp"
+#include "anascan/processing/surface/truth_comparison.hpp"
+#include "surface_test_meshes.hpp"
+
+namespace anascan {
+namespace {
+
+using test::grid_box;
+
+// Coarse samples: the figures here do not need the default 0.2 / 0.5 mm ones.
+const TruthComparisonConfig kCoarse{.model_spacing_m = 2e-3, .truth_spacing_m = 3e-3};
+
+Mesh moved(Mesh m, const Pose& T) {
+    m.vertices = transformed(m.vertices, T);
+    return m;
+}
+
+TEST(TriangleTree, ClosestPointAndSegmentHitsOnABox) {
+    const Mesh box = grid_box({0.4, 0.3, 0.2}, 4);
+    const TriangleTree tree(box.vertices.positions, box.triangles);
+    EXPECT_EQ(tree.size(), box.triangles.size());
+    Eigen::Vector3d q;
+    std::size_t t = 0;
+    ASSERT_TRUE(tree.closest({0.0, 0.0, 0.5}, q, t));
+    EXPECT_NEAR(q.z(), 0.1, 1e-7);
+    EXPECT_TRUE(tree.segment_hits({0.0, 0.0, 0.5}, {0.0, 0.0, 0.0}));   // into the box
+    EXPECT_FALSE(tree.segment_hits({0.0, 0.0, 0.5}, {0.5, 0.0, 0.5}));  // above it
+    const TriangleTree empty({}, {});
+    EXPECT_FALSE(empty.closest({0, 0, 0}, q, t));
+    EXPECT_FALSE(empty.segment_hits({0, 0, 0}, {1, 1, 1}));
+}
+
+TEST(OrientedBox, ARotatedBoxGivesItsEdgesWhateverItsPose) {
+    const Mesh box = grid_box({0.45, 0.40, 0.35}, 6);
+    for (const double angle_deg : {3.0, 20.0, 45.0}) {
+        const Pose T(Eigen::AngleAxisd(angle_deg * std::numbers::pi / 180.0,
+                                       Eigen::Vector3d(0.3, 0.2, 1.0).normalized()));
+        const Eigen::Vector3d obb = oriented_box_mm(moved(box, T));
+        EXPECT_NEAR(obb.x(), 450.0, 0.5) << angle_deg;
+        EXPECT_NEAR(obb.y(), 400.0, 0.5) << angle_deg;
+        EXPECT_NEAR(obb.z(), 350.0, 0.5) << angle_deg;
+    }
+}
+
+TEST(TruthComparison, AnOffsetSurfaceIsMeasuredAtItsOffset) {
+    const Mesh truth = grid_box({0.4, 0.3, 0.2}, 8);
+    const Mesh model = grid_box({0.402, 0.302, 0.202}, 5);  // 1 mm outside every face
+    const TruthComparison c = compare_with_truth(model, {}, truth, kCoarse);
+    EXPECT_GT(c.measured_samples, 50000u);
+    EXPECT_EQ(c.interpolated_samples, 0u);
+    EXPECT_NEAR(c.measured_median_m, 1e-3, 1e-5);
+    EXPECT_GT(c.measured_max_m, 1.2e-3);  // near the corners: up to sqrt(3) mm
+    EXPECT_LT(c.measured_max_m, std::sqrt(3.0) * 1e-3 + 1e-6);
+    EXPECT_LT(c.completeness, 0.01);  // 1 mm away everywhere: nothing within 0.5 mm
+    const TruthComparison self = compare_with_truth(truth, {}, truth, kCoarse);
+    EXPECT_LT(self.measured_p95_m, 1e-6);
+    EXPECT_DOUBLE_EQ(self.completeness, 1.0);
+    EXPECT_NEAR(self.truth_box_m.x(), 0.4, 1e-6);
+}
+
+TEST(TruthComparison, InterpolatedTrianglesAreLeftOutOfTheMeasuredAccuracy) {
+    const Mesh truth = grid_box({0.4, 0.3, 0.2}, 8);
+    Mesh model = truth;
+    std::vector<SurfaceClass> classes(model.triangles.size(), SurfaceClass::kMeasured);
+    for (std::size_t t = 0; t < model.triangles.size(); ++t) {
+        const auto& p = model.vertices.positions;
+        const Eigen::Vector3i& f = model.triangles[t];
+        if (p[f[0]].z() > 0.099f && p[f[1]].z() > 0.099f && p[f[2]].z() > 0.099f) {
+            classes[t] = SurfaceClass::kInterpolated;  // the top face, moved up by 5 mm
+            for (int k = 0; k < 3; ++k) model.vertices.positions[f[k]].z() = 0.105f;
+        }
+    }
+    const TruthComparison c = compare_with_truth(model, classes, truth, kCoarse);
+    EXPECT_LT(c.measured_p95_m, 1e-6);
+    EXPECT_NEAR(c.interpolated_median_m, 5e-3, 1e-4);
+}
+
+TEST(TruthVisibility, TheBottomOfABoxSeenFromAboveIsTheUnseenPart) {
+    const Mesh truth = grid_box({0.4, 0.3, 0.2}, 10);
+    // Four sensors 1 m away around and above, looking at the centre.
+    std::vector<Pose> views;
+    for (int k = 0; k < 4; ++k) {
+        const double a = k * std::numbers::pi / 2.0;
+        const Eigen::Vector3d eye(std::cos(a), std::sin(a), 0.8);
+        const Eigen::Vector3d z = -eye.normalized(),
+                              x = z.cross(Eigen::Vector3d::UnitZ()).normalized();
+        Pose T = Pose::Identity();
+        T.linear() << x, z.cross(x), z;
+        T.translation() = eye;
+        views.push_back(T);
+    }
+    // The model: the truth with its bottom classed interpolated.
+    std::vector<SurfaceClass> classes(truth.triangles.size(), SurfaceClass::kMeasured);
+    for (std::size_t t = 0; t < truth.triangles.size(); ++t)
+        if (truth.vertices.positions[truth.triangles[t][0]].z() < -0.099f &&
+            truth.vertices.positions[truth.triangles[t][1]].z() < -0.099f &&
+            truth.vertices.positions[truth.triangles[t][2]].z() < -0.099f)
+            classes[t] = SurfaceClass::kInterpolated;
+    const VisibilityConfig config{.sample_spacing_m = 4e-3};
+    const VisibilityAgreement a =
+        compare_classes_with_visibility(truth, classes, truth, views, config);
+    EXPECT_NEAR(a.unseen_area_m2, 0.4 * 0.3, 0.01);  // the bottom, and nothing else
+    EXPECT_GT(a.unseen_interpolated_share(), 0.95);
+    EXPECT_LT(a.seen_interpolated_share(), 0.02);
+    // A narrow field of view sees only the middle of each side: more is unseen.
+    const VisibilityConfig narrow{
+        .horizontal_fov_deg = 5.0, .vertical_fov_deg = 5.0, .sample_spacing_m = 4e-3};
+    const VisibilityAgreement b =
+        compare_classes_with_visibility(truth, classes, truth, views, narrow);
+    EXPECT_GT(b.unseen_area_m2, a.unseen_area_m2 + 0.1);
+}
+
+}  // namespace
+}  // namespace anascan
