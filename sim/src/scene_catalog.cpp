@@ -1,7 +1,10 @@
+#include <algorithm>
+#include <charconv>
 #include <cstdio>
 #include <string>
 
 #include "anascan/sim/scene.hpp"
+#include "hash_random.hpp"
 
 namespace anascan::sim {
 namespace {
@@ -47,6 +50,34 @@ SceneConfig turned(SceneConfig config, BlockFace resting_face, double yaw_deg) {
     return config;
 }
 
+constexpr std::string_view kRandomPrefix = "random-block:";
+
+/// `random-block:SEED`: a block of 0.4-1.5 m edges (its height at most its width), its
+/// features (holes, ornament, chips) and its yaw drawn from the seed; the mesh step follows
+/// the size (2 mm up to 0.6 m, then 3 mm, as the named scenes).
+SceneConfig random_block(std::uint64_t seed) {
+    const auto unit = [seed](std::uint64_t k) {
+        return detail::unit_from_hash(detail::hash3(seed, 0x5CE4E, k));
+    };
+    const double a = 0.4 + 1.1 * unit(0), b = 0.4 + 1.1 * unit(1), c = 0.4 + 1.1 * unit(2);
+    const double length = std::max(a, b), width = std::min(a, b), height = std::min(c, width);
+    SceneConfig config{.name = std::string(kRandomPrefix) + std::to_string(seed)};
+    StoneBlockConfig& block = config.block;
+    block.size_m = {length, width, height};
+    block.grid_step_m = length > 0.6 ? 0.003 : 0.002;
+    block.seed = static_cast<std::uint32_t>(seed);
+    block.chip_count = 2 + static_cast<int>(unit(3) * 10.0);
+    block.chip_max_depth_m = 0.01 + 0.02 * unit(4);
+    block.chip_max_half_length_m = std::min(0.1, 0.15 * width);
+    block.clamp_holes = {ClampHole{.edge_face = unit(5) < 0.5 ? BlockFace::kPosX : BlockFace::kPosY,
+                                   .length_m = std::min(0.12, 0.3 * width)}};
+    block.dowel_holes = {DowelHole{.face = BlockFace::kNegZ, .radius_m = 0.015}};
+    block.ornament.face = unit(6) < 0.5 ? BlockFace::kNegY : BlockFace::kPosX;
+    block.ornament.height_m = std::min(block.ornament.height_m, 0.3 * height);
+    config.placement.yaw_deg = 360.0 * unit(7);
+    return config;
+}
+
 std::vector<SceneConfig> all_scenes() {
     return {octagon_block(), turned(octagon_block(), BlockFace::kPosZ, 20.0),
             small_block(),   turned(small_block(), BlockFace::kPosZ, -30.0),
@@ -67,15 +98,29 @@ std::string describe(const SceneConfig& c) {
 std::vector<SceneInfo> scene_catalog() {
     std::vector<SceneInfo> infos;
     for (const SceneConfig& c : all_scenes()) infos.push_back({c.name, describe(c)});
+    infos.push_back(
+        {"random-block:SEED", "a block of 0.4-1.5 m edges, its features and yaw drawn from SEED"});
     return infos;
 }
 
 Expected<SceneConfig> named_scene(std::string_view name) {
+    if (name.starts_with(kRandomPrefix)) {
+        const std::string_view digits = name.substr(kRandomPrefix.size());
+        std::uint64_t seed = 0;
+        const auto [end, error] =
+            std::from_chars(digits.data(), digits.data() + digits.size(), seed);
+        if (error == std::errc() && end == digits.data() + digits.size() && !digits.empty())
+            return random_block(seed);
+        return fail(ErrorCode::kInvalidArgument, "scene '" + std::string(name) +
+                                                     "': a random block is random-block:SEED, "
+                                                     "SEED a non-negative integer");
+    }
     std::string known;
     for (const SceneConfig& c : all_scenes()) {
         if (c.name == name) return c;
         known += (known.empty() ? "" : ", ") + c.name;
     }
+    known += ", random-block:SEED";
     return fail(ErrorCode::kInvalidArgument,
                 "unknown scene '" + std::string(name) + "' (known: " + known + ")");
 }

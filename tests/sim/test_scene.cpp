@@ -3,6 +3,8 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <map>
+#include <set>
+#include <string>
 
 #include "anascan/sim/ray_caster.hpp"
 #include "anascan/sim/scene.hpp"
@@ -155,6 +157,7 @@ TEST(Scene, HasGroundAndTentAndOneKindPerTriangle) {
 
 TEST(Scene, CatalogueNamesResolveAndUnknownNamesAreRejected) {
     for (const SceneInfo& info : scene_catalog()) {
+        if (info.name == "random-block:SEED") continue;  // RandomBlocksAreDrawnFromTheirSeed.
         const auto config = named_scene(info.name);
         ASSERT_TRUE(config.has_value()) << info.name;
         EXPECT_GE(config->block.size_m.maxCoeff(), 0.4);
@@ -164,6 +167,31 @@ TEST(Scene, CatalogueNamesResolveAndUnknownNamesAreRejected) {
     ASSERT_FALSE(unknown.has_value());
     EXPECT_EQ(unknown.error().code, ErrorCode::kInvalidArgument);
     EXPECT_NE(unknown.error().message.find("octagon-block"), std::string::npos);
+}
+
+TEST(Scene, RandomBlocksAreDrawnFromTheirSeed) {
+    std::set<long> lengths_mm;
+    for (int seed = 0; seed < 50; ++seed) {
+        const auto config = named_scene("random-block:" + std::to_string(seed));
+        ASSERT_TRUE(config.has_value()) << seed;
+        const Eigen::Vector3d size = config->block.size_m;
+        EXPECT_GE(size.minCoeff(), 0.4) << seed;
+        EXPECT_LE(size.maxCoeff(), 1.5) << seed;
+        EXPECT_LE(size.z(), size.y()) << seed;
+        EXPECT_LE(size.y(), size.x()) << seed;
+        lengths_mm.insert(std::lround(size.x() * 1e3));
+        const auto again = named_scene("random-block:" + std::to_string(seed));
+        EXPECT_EQ(again->block.size_m, size);
+        EXPECT_EQ(again->placement.yaw_deg, config->placement.yaw_deg);
+    }
+    EXPECT_GT(lengths_mm.size(), 40u);  // Drawn, not a few fixed sizes.
+    const Scene scene = make_scene(named_scene("random-block:1").value());
+    EXPECT_GT(scene.mesh.triangles.size(), 1000u);
+    for (const char* bad : {"random-block:", "random-block:x", "random-block:-3"}) {
+        const auto rejected = named_scene(bad);
+        ASSERT_FALSE(rejected.has_value()) << bad;
+        EXPECT_NE(rejected.error().message.find("random-block:SEED"), std::string::npos);
+    }
 }
 
 }  // namespace

@@ -192,9 +192,14 @@ bool CaptureSession::Impl::refine_in_background(bool interruptible) {
     const LiveRefineReport& report = registrar.last_refine_report();
     // refine() works to a budget per call: call again while it still finds work.
     const bool more = !updates.empty() || report.new_links > 0 || report.merges > 0 ||
-                      report.merge_attempts > 0 || report.interrupted || !report.taken_out.empty();
+                      report.merge_attempts > 0 || report.interrupted ||
+                      !report.taken_out.empty() || !report.split_off.empty();
     refine_due = more;
     record_taken_out(report.taken_out);
+    for (const LiveTakenOut& t : report.split_off)
+        (void)store->add_event("registration-split", "",
+                               "scan " + std::to_string(t.seq) + " leaves group " +
+                                   std::to_string(t.group) + ": " + t.reason);
     if (updates.empty()) return more;
     std::vector<std::pair<std::int64_t, PoseInGroup>> poses;
     poses.reserve(updates.size());

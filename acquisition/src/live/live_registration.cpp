@@ -163,6 +163,10 @@ void LiveRegistrar::State::record(std::size_t index, const std::optional<live::V
         decision.group = group;
         accepted_rms_m.push_back(decision.rms_m);
         accepted_normal_deviation.push_back(decision.normal_deviation_deg);
+        // Placed on a model that holds an unchecked merge: it leaves if that merge does.
+        if (auto it = unchecked_merges.find(group);
+            it != unchecked_merges.end() && !it->second.empty())
+            it->second.back().followers.push_back(index);
     } else {
         decision.method = first ? LiveMethod::kFirst : LiveMethod::kNewGroup;
         decision.group = next_group++;

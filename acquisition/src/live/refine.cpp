@@ -95,13 +95,20 @@ std::vector<PoseUpdate> LiveRegistrar::State::merge(int into, int from,
                                                     const Pose& T_into_from_voted) {
     const Pose T_into_from = refined_merge(into, from, T_into_from_voted);
     std::vector<PoseUpdate> updates;
-    for (ScanEntry& e : scans) {
+    // Until `into` next passes its check the moved scans are one part (consistency.cpp); the
+    // parts merged into `from` before are inside it.
+    live::MergedPart part{.from = from};
+    for (std::size_t i = 0; i < scans.size(); ++i) {
+        ScanEntry& e = scans[i];
         if (e.group != from) continue;
+        part.scans.push_back(i);
         e.group = into;
         e.T_group_scan = orthonormalized(T_into_from * e.T_group_scan);
         if (live::active(e))
             updates.push_back({.seq = e.seq, .group = into, .T_group_scan = e.T_group_scan});
     }
+    unchecked_merges.erase(from);
+    unchecked_merges[into].push_back(std::move(part));
     ++report.merges;
     return updates;
 }
@@ -177,8 +184,10 @@ std::vector<PoseUpdate> LiveRegistrar::refine(const std::function<bool()>& inter
     if (!s.interrupted())
         for (const PoseUpdate& u : s.refine_groups()) changed[u.seq] = u;
     // The solved poses checked against each other: contradicting scans leave their group.
-    if (!s.interrupted()) s.check_groups();
+    std::vector<PoseUpdate> regrouped;
+    if (!s.interrupted()) regrouped = s.check_groups();
     for (const LiveTakenOut& t : s.report.taken_out) changed.erase(t.seq);
+    for (const PoseUpdate& u : regrouped) changed[u.seq] = u;
     s.interrupt = {};
     s.report.time_s = seconds_since(start);
     std::vector<PoseUpdate> out;

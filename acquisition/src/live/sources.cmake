@@ -1,6 +1,7 @@
 # acquisition/live: on-site registration of each new scan (the live registrar).
 list(APPEND ANASCAN_ACQUISITION_SOURCES
     src/live/consistency.cpp
+    src/live/consistency_split.cpp
     src/live/hypotheses.cpp
     src/live/json.cpp
     src/live/links.cpp

@@ -47,6 +47,24 @@ struct CheckedGroup {
     std::vector<Pose> poses;
 };
 
+/// The entries a merge moved into a group (the group merged in, whole), kept until the group
+/// next passes its consistency check: a check that fails after a merge is evidence against
+/// the merge, so the part leaves whole (see consistency.cpp).
+struct MergedPart {
+    int from = -1;                   ///< The group merged in.
+    std::vector<std::size_t> scans;  ///< Its entries (indices into State::scans).
+    /// Entries add() placed in the group after this merge: their placement rests on it.
+    std::vector<std::size_t> followers;
+};
+
+/// What a failed check decided for each scan of a group (by position in the group's list).
+struct Verdicts {
+    std::vector<std::string> reasons;  ///< Why it is taken out and flagged; empty: kept.
+    /// 0: stays in the group; m + 1: leaves with merged part m as a group of its own.
+    std::vector<int> unit;
+    std::vector<std::string> moved;  ///< Why it leaves with its part (unit > 0).
+};
+
 /// A multi-view link between two entries (indices into State::scans).
 struct Link {
     std::size_t target = 0, source = 0;
@@ -205,10 +223,28 @@ struct LiveRegistrar::State {
                                              LiveDecision& decision);
 
     /// Group consistency (consistency.cpp): each group whose scans or poses changed since its
-    /// last check is checked; the scans to take out are flagged and leave the group.
-    void check_groups();
-    void check_group(int group);
+    /// last check is checked; the scans to take out are flagged and leave the group, and what
+    /// stays is split into the parts that overlapping, agreeing pairs hold together (new
+    /// groups: their updates are returned).
+    std::vector<PoseUpdate> check_groups();
+    void check_group(int group, std::vector<PoseUpdate>& regrouped);
+    /// The merged parts of `group` (oldest first) that a disagreeing pair of `result` touches:
+    /// a part whose own scans disagree is flagged whole, one that only disagrees with the
+    /// rest leaves as a group of its own, and so does every part merged after (onto a model
+    /// that held it).
+    void take_out_merged_parts(int group, const std::vector<std::size_t>& ids,
+                               const GroupConsistency& result,
+                               const std::vector<std::string>& names, live::Verdicts& verdicts);
+    /// The kept scans of `group` by components of agreeing pairs of `result` within each unit
+    /// (the group's own scans, each part that leaves): the component of the earliest of the
+    /// group's own stays, each other one becomes a group of its own, in the frame of its first
+    /// scan (consistency_split.cpp).
+    void split_unsupported(int group, const std::vector<std::size_t>& ids,
+                           const GroupConsistency& result, const live::Verdicts& verdicts,
+                           std::vector<PoseUpdate>& regrouped);
     std::map<int, live::CheckedGroup> checked_groups;
+    /// Merges into each group since it last passed its check, oldest first.
+    std::map<int, std::vector<live::MergedPart>> unchecked_merges;
 
     /// Multi-view refinement machinery (live_registration_refine.cpp).
     std::size_t make_links();

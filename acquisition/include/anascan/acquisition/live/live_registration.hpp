@@ -227,8 +227,10 @@ struct LiveMergeConfig {
 
 /// After each refinement every group's scans are checked against each other in their current
 /// poses (processing's `check_group_consistency`: crossing normals, free space, overlap
-/// angle, at thresholds from the reduced scans' own spacing and noise). The scans whose
-/// removal restores agreement are taken out of the model and flagged.
+/// angle, at thresholds from the reduced scans' own spacing and noise). A group merged in
+/// since the last passing check that a disagreeing pair touches is taken out whole (with the
+/// merges after it); then the scans whose removal restores agreement, one at a time. What
+/// stays is split into the parts that agreeing overlapping pairs hold together.
 struct LiveConsistencyConfig {
     bool enabled = true;
     /// The relief test on: a near-symmetric stone's look-alike fits its faces, not its
@@ -341,6 +343,10 @@ struct LiveRefineReport {
     double time_s = 0.0;
     std::size_t groups_checked = 0;       ///< Group consistency checks run.
     std::vector<LiveTakenOut> taken_out;  ///< Scans taken out and flagged by them.
+    /// Scans moved to a new group after scans were taken out: nothing that stayed ties them to
+    /// the rest of their old group any more (`group` is the old group; the new one is in the
+    /// returned updates).
+    std::vector<LiveTakenOut> split_off;
 };
 
 /// One registered scan of the model (for coverage): its reduced stone-only cloud.
