@@ -130,7 +130,8 @@ Expected<Frame> FrameFileReader::next() {
     if (payload > bytes_left(file_.get())) {  // a lying length: never allocate what is not there
         stopped_early_ = true;
         return fail(ErrorCode::kEmpty, where + ": frame " + std::to_string(f.sequence) +
-                                           " is cut short; recording ends here");
+                                           " is cut short or corrupt (shorter than its length); "
+                                           "recording ends here");
     }
     f.data.resize(payload);
     if (std::fread(f.data.data(), 1, payload, file_.get()) != payload ||
