@@ -191,6 +191,21 @@ Args parse(int argc, char** argv) {
     return a;
 }
 
+/// The reference mesh's own report: whether it is closed, its volume and box.
+void print_reference(const Mesh& reference) {
+    const auto ref_report = anascan::make_model_report(
+        {.mesh = reference,
+         .support_distance_m = std::vector<float>(reference.vertices.size()),
+         .support_scans = std::vector<std::uint16_t>(reference.vertices.size()),
+         .vertex_class = std::vector(reference.vertices.size(), anascan::SurfaceClass::kMeasured),
+         .triangle_class =
+             std::vector(reference.triangles.size(), anascan::SurfaceClass::kMeasured)},
+        {});
+    std::printf("reference: closed %d, volume %.9f m^3, box %.2f x %.2f x %.2f mm\n",
+                ref_report.closed, ref_report.volume_m3, ref_report.obb_mm.x(),
+                ref_report.obb_mm.y(), ref_report.obb_mm.z());
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -224,17 +239,7 @@ int main(int argc, char** argv) {
         std::string(to_string(ours.status)).c_str(), ours.diagnostics.poisson_depth,
         ours.model.mesh.triangles.size(), peak_mb(), load_mb,
         anascan::model_report_table(report).c_str());
-    const auto ref_report = anascan::make_model_report(
-        {.mesh = *reference,
-         .support_distance_m = std::vector<float>(reference->vertices.size()),
-         .support_scans = std::vector<std::uint16_t>(reference->vertices.size()),
-         .vertex_class = std::vector(reference->vertices.size(), anascan::SurfaceClass::kMeasured),
-         .triangle_class =
-             std::vector(reference->triangles.size(), anascan::SurfaceClass::kMeasured)},
-        {});
-    std::printf("reference: closed %d, volume %.9f m^3, box %.2f x %.2f x %.2f mm\n",
-                ref_report.closed, ref_report.volume_m3, ref_report.obb_mm.x(),
-                ref_report.obb_mm.y(), ref_report.obb_mm.z());
+    print_reference(*reference);
     print_quality("ours", t_ours, cpu_ours,
                   evaluate(ours.model.mesh, *reference, scans, a.reference_samples));
     if (a.skip_open3d) return 0;
