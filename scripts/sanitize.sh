@@ -114,7 +114,10 @@ status=0
 if [ "$which" = ci ]; then
     part "asan (CI set) build" configure_and_build build-asan "address;undefined" \
         "${ci_targets[@]}"
-    part "asan (CI set) tests" run_tests build-asan -E "$common_exclude" || status=1
+    # The replays of the recording, calibration and session-database harnesses need the
+    # driver and acquisition libraries, which this set does not build.
+    part "asan (CI set) tests" run_tests build-asan \
+        -E "$common_exclude|^fuzz_(recording|calibration|session_db)_replay\$" || status=1
 fi
 if [ "$which" = asan ] || [ "$which" = all ]; then
     part "asan build" configure_and_build build-asan "address;undefined" "${asan_targets[@]}"
