@@ -56,6 +56,15 @@ std::string manifest_to_json(const RecordingManifest& m) {
 
 namespace {
 
+// Typed look-ups: json::value() throws when a key holds another type ("version": {}).
+bool is_recording_header(const json& j) {
+    if (j.is_discarded() || !j.is_object()) return false;
+    const auto format = j.find("format");
+    const auto version = j.find("version");
+    return format != j.end() && format->is_string() && *format == "anascan-recording" &&
+           version != j.end() && version->is_number_integer() && *version == 1;
+}
+
 DeviceKind kind_from_string(const std::string& s) {
     for (DeviceKind k :
          {DeviceKind::kStructuredLight, DeviceKind::kTimeOfFlight, DeviceKind::kImported})
@@ -68,8 +77,7 @@ DeviceKind kind_from_string(const std::string& s) {
 Expected<RecordingManifest> manifest_from_json(const std::string& text,
                                                const std::filesystem::path& path) {
     const json j = json::parse(text, nullptr, false);
-    if (j.is_discarded() || !j.is_object() || j.value("format", "") != "anascan-recording" ||
-        j.value("version", 0) != 1) {
+    if (!is_recording_header(j)) {
         return fail(ErrorCode::kFormat, path.string() + ": not an anascan recording (version 1)");
     }
     RecordingManifest m;
