@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include "anascan/processing/io/file_bytes.hpp"
+#include "json_integer.hpp"
 
 namespace anascan::drivers {
 namespace {
@@ -95,7 +96,8 @@ Expected<RecordingManifest> manifest_from_json(const std::string& text,
             auto format = parse_pixel_format(p.at("format").get<std::string>());
             if (!format)
                 return fail(ErrorCode::kFormat, path.string() + ": " + format.error().message);
-            m.capabilities.profiles.push_back({p.at("width").get<int>(), p.at("height").get<int>(),
+            m.capabilities.profiles.push_back({json_integer<int>(p.at("width")),
+                                               json_integer<int>(p.at("height")),
                                                *format, p.at("frame_rate_hz").get<double>()});
         }
         get_range(c, "exposure_us", m.capabilities.exposure_us);

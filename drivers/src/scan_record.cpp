@@ -6,6 +6,7 @@
 
 #include "anascan/processing/io/file_bytes.hpp"
 #include "anascan/processing/io/ply.hpp"
+#include "json_integer.hpp"
 
 namespace anascan::drivers {
 namespace {
@@ -52,12 +53,12 @@ DeviceKind kind_named(const std::string& s) {
 ScanMetadata meta_from_json(const json& j) {
     ScanMetadata m;
     m.id = j.at("id").get<std::string>();
-    m.sequence = j.at("sequence").get<std::int64_t>();
+    m.sequence = json_integer<std::int64_t>(j.at("sequence"));
     m.device_id = j.at("device_id").get<std::string>();
     m.device_kind = kind_named(j.at("device_kind").get<std::string>());
     m.time = std::chrono::system_clock::time_point(
         std::chrono::duration_cast<std::chrono::system_clock::duration>(
-            std::chrono::nanoseconds(j.at("time_ns").get<std::int64_t>())));
+            std::chrono::nanoseconds(json_integer<std::int64_t>(j.at("time_ns")))));
     m.settings_json = j.at("settings").get<std::string>();
     if (const json& o = j.at("sensor_origin_scan_m"); !o.is_null())
         m.sensor_origin_scan_m =

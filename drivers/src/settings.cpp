@@ -3,6 +3,8 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "json_integer.hpp"
+
 namespace anascan::drivers {
 namespace {
 
@@ -129,7 +131,7 @@ Expected<DeviceSettings> settings_from_json(std::string_view json, std::string_v
             if (!format)
                 return fail(ErrorCode::kFormat,
                             std::string(source) + ": " + format.error().message);
-            s.profile = StreamProfile{p.at("width").get<int>(), p.at("height").get<int>(), *format,
+            s.profile = StreamProfile{json_integer<int>(p.at("width")), json_integer<int>(p.at("height")), *format,
                                       p.value("frame_rate_hz", 0.0)};
         }
         read_optional(j, "exposure_us", s.exposure_us);

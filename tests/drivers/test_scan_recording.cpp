@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <sstream>
+#include <string>
 
 #include "anascan/drivers/device_registry.hpp"
 #include "anascan/drivers/ptx_station_scanner.hpp"
@@ -65,6 +67,31 @@ TEST(ScanRecording, AScanWithoutItsMetadataIsNotPlayedBack) {
     EXPECT_TRUE((*player)->capture_scan({}));
     EXPECT_EQ((*player)->capture_scan({}).error().code, ErrorCode::kEmpty);
     EXPECT_EQ(open_playback({.folder = tmp.path() / "rec"}).error().code, ErrorCode::kUnsupported);
+}
+
+// A JSON float where an integer belongs: converting 1.7e20 to a 64-bit integer is undefined,
+// so the record is refused with the file's name (found by fuzz_recording).
+TEST(ScanRecording, AnOutOfRangeTimeIsRefusedWithTheFileNamed) {
+    test::TempFolder tmp;
+    write_stations(tmp.path() / "ptx", 1);
+    record_stations(tmp.path() / "ptx", tmp.path() / "rec");
+    const std::filesystem::path record = tmp.path() / "rec/scans/000000.json";
+    std::ostringstream read;
+    read << std::ifstream(record).rdbuf();
+    std::string text = read.str();
+    const std::size_t at = text.find("\"time_ns\":");
+    ASSERT_NE(at, std::string::npos) << text;
+    const std::size_t end = text.find_first_of(",}", at);
+    text.replace(at, end - at, "\"time_ns\": 1.7e20");
+    std::ofstream(record, std::ios::trunc) << text;
+    auto player = open_scan_playback({.folder = tmp.path() / "rec"});
+    ASSERT_TRUE(player) << player.error().message;
+    const auto scan = (*player)->capture_scan({});
+    ASSERT_FALSE(scan);
+    EXPECT_EQ(scan.error().code, ErrorCode::kFormat);
+    EXPECT_NE(scan.error().message.find(record.string()), std::string::npos)
+        << scan.error().message;
+    EXPECT_NE(scan.error().message.find("integer"), std::string::npos) << scan.error().message;
 }
 
 }  // namespace

@@ -84,5 +84,41 @@ TEST_F(CalibrationFile, ErrorsNameFileAndKey) {
     EXPECT_NE(r.error().message.find("garbage.yml"), std::string::npos);
 }
 
+// OpenCV 4.6's YAML parser loops for ever on text after a document start followed by a
+// marker-like line (found by fuzz_calibration); without the check this test never returns.
+TEST_F(CalibrationFile, TextAfterTheDocumentStartIsRefusedBeforeTheParserCanHang) {
+    const std::filesystem::path path = dir_ / "document_start.yml";
+    for (const char* start_line : {"---%YAML:1.0", "----YAML:1.0", "--- YAML:2", "---x:y"}) {
+        std::ofstream(path) << "%YAML:1.0\n" << start_line << "\n--%-\ncam\n";
+        const auto refused = load_stereo_calibration(path, {});
+        ASSERT_FALSE(refused) << start_line;
+        EXPECT_NE(refused.error().message.find("line 2: text after the document start"),
+                  std::string::npos)
+            << refused.error().message;
+    }
+    const auto calibration = load_stereo_calibration(path, {});
+    ASSERT_FALSE(calibration);
+    EXPECT_EQ(calibration.error().code, ErrorCode::kFormat);
+    EXPECT_NE(calibration.error().message.find(path.string() + ": line 2:"),
+              std::string::npos)
+        << calibration.error().message;
+    const auto layout = load_pattern_layout(path);
+    ASSERT_FALSE(layout);
+    EXPECT_NE(layout.error().message.find(path.string()), std::string::npos);
+}
+
+// OpenCV 4.6's XML parser reads a null pointer on a NUL byte in the header (fuzz_calibration).
+TEST_F(CalibrationFile, ANulByteIsRefusedBeforeTheParserCanCrash) {
+    const std::filesystem::path path = dir_ / "nul.xml";
+    const char bytes[] = "<?xml version=\0\0\"1.0\"?>\n<opencv_storage>\n</opencv_storage>\n";
+    std::ofstream(path, std::ios::binary).write(bytes, sizeof(bytes) - 1);
+    const auto refused = load_stereo_calibration(path, {});
+    ASSERT_FALSE(refused);
+    EXPECT_EQ(refused.error().code, ErrorCode::kFormat);
+    EXPECT_NE(refused.error().message.find(path.string() + ": byte 14: a NUL byte"),
+              std::string::npos)
+        << refused.error().message;
+}
+
 }  // namespace
 }  // namespace anascan::drivers::sl

@@ -1,11 +1,45 @@
 #include "anascan/drivers/structured_light/stereo_calibration.hpp"
 
+#include <algorithm>
+
 #include <Eigen/Geometry>
 #include <opencv2/core.hpp>
 #include <string>
+#include <string_view>
+
+#include "anascan/processing/io/file_bytes.hpp"
 
 namespace anascan::drivers::sl {
 namespace {
+
+/// Inputs on which OpenCV 4.6's FileStorage parsers fail badly, found by fuzz_calibration, are
+/// refused before OpenCV sees them: a NUL byte (the XML parser reads a null pointer), and
+/// text after a document start "---" (the YAML parser never returns when a marker-like line
+/// such as "--%-" follows). OpenCV writes neither: its files are text, "---" alone on its line.
+Expected<void> refuse_parser_traps(const std::filesystem::path& path) {
+    auto bytes = io::read_file_bytes(path);
+    if (!bytes) return fail(bytes.error());
+    const std::string_view text(bytes->data(), bytes->size());
+    if (const std::size_t nul = text.find('\0'); nul != std::string_view::npos) {
+        return fail(ErrorCode::kFormat, path.string() + ": byte " + std::to_string(nul) +
+                                            ": a NUL byte; a calibration file is OpenCV YAML "
+                                            "or XML text");
+    }
+    std::size_t line_number = 1;
+    for (std::size_t start = 0; start < text.size(); ++line_number) {
+        const std::size_t end = std::min(text.find('\n', start), text.size());
+        const std::string_view line = text.substr(start, end - start);
+        if (line.starts_with("---") &&
+            line.find_first_not_of(" \t\r", 3) != std::string_view::npos) {
+            return fail(ErrorCode::kFormat,
+                        path.string() + ": line " + std::to_string(line_number) +
+                            ": text after the document start '---'; a calibration file is an "
+                            "OpenCV YAML document with '---' alone on its line");
+        }
+        start = end + 1;
+    }
+    return {};
+}
 
 /// Whether a node may be read as a matrix: a sequence holds its own elements; an
 /// `!!opencv-matrix` map must declare at most `max_elements` and hold as many as it
@@ -93,6 +127,7 @@ Expected<StereoCalibration> load_stereo_calibration(const std::filesystem::path&
         return fail(ErrorCode::kInvalidArgument, "calibration unit must be positive");
     if (!std::filesystem::is_regular_file(path))
         return fail(ErrorCode::kIo, file + ": no such calibration file");
+    if (auto trap = refuse_parser_traps(path); !trap) return fail(trap.error());
     cv::FileStorage fs;
     try {
         if (!fs.open(file, cv::FileStorage::READ | cv::FileStorage::FORMAT_AUTO))
@@ -123,6 +158,7 @@ Expected<std::optional<RecordedPatternLayout>> load_pattern_layout(
     const std::string file = path.string();
     if (!std::filesystem::is_regular_file(path))
         return fail(ErrorCode::kIo, file + ": no such calibration file");
+    if (auto trap = refuse_parser_traps(path); !trap) return fail(trap.error());
     try {
         cv::FileStorage fs(file, cv::FileStorage::READ | cv::FileStorage::FORMAT_AUTO);
         if (!fs.isOpened())
