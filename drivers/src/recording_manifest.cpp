@@ -97,8 +97,8 @@ Expected<RecordingManifest> manifest_from_json(const std::string& text,
             if (!format)
                 return fail(ErrorCode::kFormat, path.string() + ": " + format.error().message);
             m.capabilities.profiles.push_back({json_integer<int>(p.at("width")),
-                                               json_integer<int>(p.at("height")),
-                                               *format, p.at("frame_rate_hz").get<double>()});
+                                               json_integer<int>(p.at("height")), *format,
+                                               p.at("frame_rate_hz").get<double>()});
         }
         get_range(c, "exposure_us", m.capabilities.exposure_us);
         get_range(c, "gain", m.capabilities.gain);

@@ -131,8 +131,9 @@ Expected<DeviceSettings> settings_from_json(std::string_view json, std::string_v
             if (!format)
                 return fail(ErrorCode::kFormat,
                             std::string(source) + ": " + format.error().message);
-            s.profile = StreamProfile{json_integer<int>(p.at("width")), json_integer<int>(p.at("height")), *format,
-                                      p.value("frame_rate_hz", 0.0)};
+            s.profile =
+                StreamProfile{json_integer<int>(p.at("width")), json_integer<int>(p.at("height")),
+                              *format, p.value("frame_rate_hz", 0.0)};
         }
         read_optional(j, "exposure_us", s.exposure_us);
         read_optional(j, "gain", s.gain);

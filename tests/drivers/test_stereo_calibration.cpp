@@ -99,8 +99,7 @@ TEST_F(CalibrationFile, TextAfterTheDocumentStartIsRefusedBeforeTheParserCanHang
     const auto calibration = load_stereo_calibration(path, {});
     ASSERT_FALSE(calibration);
     EXPECT_EQ(calibration.error().code, ErrorCode::kFormat);
-    EXPECT_NE(calibration.error().message.find(path.string() + ": line 2:"),
-              std::string::npos)
+    EXPECT_NE(calibration.error().message.find(path.string() + ": line 2:"), std::string::npos)
         << calibration.error().message;
     const auto layout = load_pattern_layout(path);
     ASSERT_FALSE(layout);

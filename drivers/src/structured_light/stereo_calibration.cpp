@@ -1,8 +1,7 @@
 #include "anascan/drivers/structured_light/stereo_calibration.hpp"
 
-#include <algorithm>
-
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <opencv2/core.hpp>
 #include <string>
 #include <string_view>
