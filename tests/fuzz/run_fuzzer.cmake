@@ -1,8 +1,8 @@
 # Runs one libFuzzer target for SECONDS on a scratch copy of its seed corpus.
 # A crash, leak or sanitizer finding makes the fuzzer exit non-zero and fails the test;
 # the reproducer is left in WORK (crash-*, leak-*, timeout-*).
-# The random seed is fixed (SEED, default 1): the suite's short run walks the same inputs
-# every time, so a red test is reproducible and a finding is not down to chance; exploring
+# The random seed is fixed (SEED, default 1): the same build walks the same inputs every time,
+# so a red test can be rerun; a change to the code or the seeds changes the walk. Exploring
 # new inputs is the long runs' job (scripts/fuzz-long.sh, random seeds).
 if(NOT DEFINED SEED)
     set(SEED 1)
