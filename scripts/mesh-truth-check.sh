@@ -30,7 +30,7 @@ session() {  # NAME VIEWS FLIP_AFTER
 echo "== $scene, 24 views turned over after 12, $res mm"
 session turned 24 12
 "$anascan" mesh eval "$out/turned.ply" --truth "$out/truth.ply" --poses "$out/turned-poses.conf" \
-    --truth-poses "$out/turned-truth.conf" --json "$out/turned-eval.json"
+    --truth-poses "$out/turned-truth.conf" --visibility --json "$out/turned-eval.json"
 echo "== $scene, 12 views of one side (never turned over), $res mm"
 session one-side 12 12
 "$anascan" mesh eval "$out/one-side.ply" --truth "$out/truth.ply" \

@@ -4,9 +4,11 @@
 // from its true poses is classed interpolated.
 #include <spdlog/spdlog.h>
 
+#include <cmath>
 #include <cstdio>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <numbers>
 
 #include "anascan/processing/core/stopwatch.hpp"
 #include "anascan/processing/io/file_bytes.hpp"
@@ -18,6 +20,8 @@
 #include "anascan/processing/surface/mesh_topology.hpp"
 #include "anascan/processing/surface/model_report.hpp"
 #include "anascan/processing/surface/truth_comparison.hpp"
+#include "anascan/sim/sim_structured_light_scanner.hpp"
+#include "anascan/sim/structured_light_rig.hpp"
 #include "commands.hpp"
 
 namespace anascan::cli {
@@ -26,8 +30,11 @@ namespace {
 struct MeshEvalOptions {
     std::string mesh, truth, poses, truth_poses, json;
     bool icp = false, visibility = false;
-    std::vector<double> fov_deg{33.0, 25.0};  ///< The structured-light head's (planning's).
+    std::string sensor = "structured-light";  ///< Or "camera": one device of fov_deg.
+    std::vector<double> fov_deg{33.0, 25.0};  ///< For --sensor camera.
     std::vector<double> depth_m{0.3, 3.0};
+    std::vector<double> incidence_deg{VisibilityConfig{}.seen_incidence_deg,
+                                      VisibilityConfig{}.unseen_incidence_deg};
 };
 
 struct ClassedMesh {
@@ -169,29 +176,99 @@ void print_figures(const TruthComparison& c, const ModelReport& m, const ModelRe
                 1e3 * c.truth_box_m.y(), 1e3 * c.truth_box_m.z());
 }
 
+VisibilityDevice device_of(const sim::PinholeModel& m, const Pose& T_world_view) {
+    const auto full_angle_deg = [](double half_extent_px, double focal_px) {
+        return 2.0 * std::atan(half_extent_px / focal_px) * 180.0 / std::numbers::pi;
+    };
+    return {.T_view_device = T_world_view.inverse() * m.T_world_device,
+            .horizontal_fov_deg = full_angle_deg(0.5 * m.width_px, m.fx_px),
+            .vertical_fov_deg = full_angle_deg(0.5 * m.height_px, m.fy_px)};
+}
+
+// What must see a point for the sensor to measure it. The scan frame (the true poses) of a
+// structured-light scan is cam1's: the simulated head's cam2 and projector are placed from it.
+std::vector<VisibilityDevice> sensor_devices(const MeshEvalOptions& o) {
+    if (o.sensor == "camera")
+        return {{.horizontal_fov_deg = o.fov_deg[0], .vertical_fov_deg = o.fov_deg[1]}};
+    const sim::StructuredLightRig rig =
+        sim::make_structured_light_rig(sim::SimStructuredLightConfig{}.rig, Pose::Identity());
+    const Pose& T_rig_cam1 = rig.cam1.T_world_device;
+    return {device_of(rig.cam1, T_rig_cam1), device_of(rig.cam2, T_rig_cam1),
+            device_of(rig.projector, T_rig_cam1)};
+}
+
+// The truth's area by the incidence of its best view, and the share the model classes
+// measured: the scanner's response to incidence.
+void print_bands(const std::vector<IncidenceBand>& bands) {
+    std::printf("truth area by its best view's incidence (all devices), classed measured:\n");
+    for (const IncidenceBand& b : bands) {
+        if (b.area_m2 <= 0.0) continue;
+        const double measured = 100.0 * (1.0 - b.interpolated_m2 / b.area_m2);
+        if (b.from_deg >= 90.0)
+            std::printf("  out of sight   %8.1f cm^2  %6.2f %%\n", 1e4 * b.area_m2, measured);
+        else
+            std::printf("  %4.0f-%2.0f deg     %8.1f cm^2  %6.2f %%\n", b.from_deg, b.to_deg,
+                        1e4 * b.area_m2, measured);
+    }
+}
+
+nlohmann::json bands_json(const std::vector<IncidenceBand>& bands) {
+    nlohmann::json out = nlohmann::json::array();
+    for (const IncidenceBand& b : bands)
+        out.push_back({{"from_deg", b.from_deg},
+                       {"to_deg", b.to_deg},
+                       {"area_m2", b.area_m2},
+                       {"interpolated_m2", b.interpolated_m2}});
+    return out;
+}
+
 nlohmann::json visibility(const MeshEvalOptions& o, const ClassedMesh& model, const Mesh& truth) {
     const VisibilityConfig config{.min_depth_m = o.depth_m[0],
                                   .max_depth_m = o.depth_m[1],
-                                  .horizontal_fov_deg = o.fov_deg[0],
-                                  .vertical_fov_deg = o.fov_deg[1]};
+                                  .seen_incidence_deg = o.incidence_deg[0],
+                                  .unseen_incidence_deg = o.incidence_deg[1],
+                                  .devices = sensor_devices(o)};
     const std::vector<Pose> views = sensor_views(o.truth_poses);
     const VisibilityAgreement a =
         compare_classes_with_visibility(model.mesh, model.triangle_class, truth, views, config);
+    print_bands(a.bands);
+    const double share_grazing =
+        a.grazing_area_m2 > 0.0 ? a.grazing_interpolated_m2 / a.grazing_area_m2 : 0.0;
     std::printf(
-        "never seen from the %zu true sensor poses: %.1f cm^2, %.2f %% of it classed "
-        "interpolated\n",
-        views.size(), 1e4 * a.unseen_area_m2, 100.0 * a.unseen_interpolated_share());
-    std::printf("seen: %.1f cm^2, %.2f %% of it classed interpolated\n", 1e4 * a.seen_area_m2,
+        "never seen (beyond %.1f deg) from the %zu true sensor poses: %.1f cm^2, %.2f %% of it "
+        "classed interpolated\n",
+        config.unseen_incidence_deg, views.size(), 1e4 * a.unseen_area_m2,
+        100.0 * a.unseen_interpolated_share());
+    std::printf("seen (within %.1f deg): %.1f cm^2, %.2f %% of it classed interpolated\n",
+                config.seen_incidence_deg, 1e4 * a.seen_area_m2,
                 100.0 * a.seen_interpolated_share());
+    std::printf("grazing (between): %.1f cm^2, %.2f %% of it classed interpolated\n",
+                1e4 * a.grazing_area_m2, 100.0 * share_grazing);
     std::printf("no model surface within 3 mm: %.1f cm^2 of the unseen, %.1f cm^2 of the seen\n",
                 1e4 * a.unseen_missing_m2, 1e4 * a.seen_missing_m2);
+    const auto share = [](double part, double whole) { return whole > 0.0 ? part / whole : 0.0; };
+    std::printf(
+        "completeness (within 0.5 mm, 1 mm samples): %.2f %% of the seen, %.2f %% of the "
+        "grazing, %.2f %% of the never seen\n",
+        100.0 * share(a.seen_covered_m2, a.seen_area_m2),
+        100.0 * share(a.grazing_covered_m2, a.grazing_area_m2),
+        100.0 * share(a.unseen_covered_m2, a.unseen_area_m2));
     return {{"views", views.size()},
+            {"sensor", o.sensor},
+            {"seen_incidence_deg", config.seen_incidence_deg},
+            {"unseen_incidence_deg", config.unseen_incidence_deg},
             {"unseen_area_m2", a.unseen_area_m2},
             {"unseen_interpolated_share", a.unseen_interpolated_share()},
             {"seen_area_m2", a.seen_area_m2},
             {"seen_interpolated_share", a.seen_interpolated_share()},
+            {"grazing_area_m2", a.grazing_area_m2},
+            {"grazing_interpolated_share", share_grazing},
             {"unseen_missing_m2", a.unseen_missing_m2},
-            {"seen_missing_m2", a.seen_missing_m2}};
+            {"seen_missing_m2", a.seen_missing_m2},
+            {"seen_covered_m2", a.seen_covered_m2},
+            {"grazing_covered_m2", a.grazing_covered_m2},
+            {"unseen_covered_m2", a.unseen_covered_m2},
+            {"bands", bands_json(a.bands)}};
 }
 
 void run(const MeshEvalOptions& o) {
@@ -242,9 +319,21 @@ void add_mesh_eval_command(CLI::App& mesh) {
     cmd->add_flag("--icp", o->icp, "Refine the alignment by ICP of the mesh onto the truth");
     cmd->add_flag("--visibility", o->visibility,
                   "Also compare the classes with what the true sensor poses could see");
-    cmd->add_option("--fov-deg", o->fov_deg, "Field of view for --visibility, full angles")
+    cmd->add_option("--sensor", o->sensor,
+                    "What must see a point for --visibility: structured-light (both cameras "
+                    "and the projector of sim:structured-light's head, placed from cam1's "
+                    "pose) or camera (one device of --fov-deg)")
+        ->check(CLI::IsMember({"structured-light", "camera"}))
+        ->capture_default_str();
+    cmd->add_option("--fov-deg", o->fov_deg, "Field of view of --sensor camera, full angles")
         ->expected(2);
     cmd->add_option("--depth-m", o->depth_m, "Depth range for --visibility, metres")->expected(2);
+    cmd->add_option("--incidence-deg", o->incidence_deg,
+                    "For --visibility: seen within the first angle, never seen beyond the "
+                    "second, grazing between (degrees)")
+        ->expected(2)
+        ->check(CLI::Range(0.0, 90.0))
+        ->capture_default_str();
     cmd->add_option("--json", o->json, "Write the figures as JSON");
     cmd->callback([o] { run(*o); });
 }

@@ -108,12 +108,74 @@ TEST(TruthVisibility, TheBottomOfABoxSeenFromAboveIsTheUnseenPart) {
     EXPECT_NEAR(a.unseen_area_m2, 0.4 * 0.3, 0.01);  // the bottom, and nothing else
     EXPECT_GT(a.unseen_interpolated_share(), 0.95);
     EXPECT_LT(a.seen_interpolated_share(), 0.02);
+    EXPECT_NEAR(a.seen_covered_m2, a.seen_area_m2, 1e-9);  // the model is the truth
+    EXPECT_NEAR(a.unseen_covered_m2, a.unseen_area_m2, 1e-9);
     // A narrow field of view sees only the middle of each side: more is unseen.
     const VisibilityConfig narrow{
-        .horizontal_fov_deg = 5.0, .vertical_fov_deg = 5.0, .sample_spacing_m = 4e-3};
+        .sample_spacing_m = 4e-3,
+        .devices = {{.horizontal_fov_deg = 5.0, .vertical_fov_deg = 5.0}}};
     const VisibilityAgreement b =
         compare_classes_with_visibility(truth, classes, truth, views, narrow);
     EXPECT_GT(b.unseen_area_m2, a.unseen_area_m2 + 0.1);
+}
+
+TEST(TruthVisibility, ASampleIsSeenOnlyWhereEveryDeviceOfTheSensorSeesIt) {
+    const Mesh truth = grid_box({0.4, 0.3, 0.2}, 10);
+    Pose T_world_view = Pose::Identity();  // 1 m above, looking down (+z of the view is -z)
+    T_world_view.linear() = Eigen::AngleAxisd(std::numbers::pi, Eigen::Vector3d::UnitX()).matrix();
+    T_world_view.translation() = Eigen::Vector3d(0.0, 0.0, 1.1);
+    const std::vector<Pose> views{T_world_view};
+    const std::vector<SurfaceClass> classes(truth.triangles.size(), SurfaceClass::kMeasured);
+    const VisibilityDevice camera{.horizontal_fov_deg = 60.0, .vertical_fov_deg = 60.0};
+    const VisibilityConfig one{.sample_spacing_m = 4e-3, .devices = {camera}};
+    const VisibilityAgreement a =
+        compare_classes_with_visibility(truth, classes, truth, views, one);
+    EXPECT_NEAR(a.seen_area_m2, 0.4 * 0.3, 0.01);  // the top face
+    // The top lies within 14 degrees of the view, the top hides the sides.
+    double total = 0.0, below_15 = 0.0;
+    for (const IncidenceBand& band : a.bands) {
+        total += band.area_m2;
+        if (band.to_deg <= 15.0) below_15 += band.area_m2;
+    }
+    EXPECT_NEAR(total, a.seen_area_m2 + a.grazing_area_m2 + a.unseen_area_m2, 1e-9);
+    EXPECT_NEAR(below_15, a.seen_area_m2, 1e-9);
+    // From 0.4 m beyond the +x side, that side faces the view at 68 to 72 degrees: the part
+    // beyond 70 degrees is grazing (between the default limits), unless the limits are one.
+    Pose T_world_beside = T_world_view;
+    T_world_beside.translation().x() = 0.6;
+    const std::vector<Pose> beside{T_world_beside};
+    const VisibilityAgreement g =
+        compare_classes_with_visibility(truth, classes, truth, beside, one);
+    EXPECT_GT(g.grazing_area_m2, 0.01);
+    EXPECT_LT(g.grazing_area_m2, 0.2 * 0.3);
+    const VisibilityConfig hard{.seen_incidence_deg = 75.0,
+                                .unseen_incidence_deg = 75.0,
+                                .sample_spacing_m = 4e-3,
+                                .devices = {camera}};
+    const VisibilityAgreement h =
+        compare_classes_with_visibility(truth, classes, truth, beside, hard);
+    EXPECT_EQ(h.grazing_area_m2, 0.0);
+    EXPECT_NEAR(h.seen_area_m2, g.seen_area_m2 + g.grazing_area_m2, 1e-9);
+    // A second device at the same place changes nothing.
+    const VisibilityConfig twice{.sample_spacing_m = 4e-3, .devices = {camera, camera}};
+    EXPECT_NEAR(compare_classes_with_visibility(truth, classes, truth, views, twice).seen_area_m2,
+                a.seen_area_m2, 1e-9);
+    // A device 0.5 m to the side, looking parallel: it sees only part of the top, so the
+    // sensor measures only the part both see.
+    VisibilityDevice aside = camera;
+    aside.T_view_device.translation() = Eigen::Vector3d(0.5, 0.0, 0.0);
+    const VisibilityConfig offset{.sample_spacing_m = 4e-3, .devices = {camera, aside}};
+    const VisibilityAgreement b =
+        compare_classes_with_visibility(truth, classes, truth, views, offset);
+    EXPECT_GT(b.seen_area_m2, 0.02);
+    EXPECT_LT(b.seen_area_m2, a.seen_area_m2 - 0.02);
+    // A device looking the other way sees none of it.
+    VisibilityDevice backward = camera;
+    backward.T_view_device.linear() =
+        Eigen::AngleAxisd(std::numbers::pi, Eigen::Vector3d::UnitY()).matrix();
+    const VisibilityConfig opposed{.sample_spacing_m = 4e-3, .devices = {camera, backward}};
+    EXPECT_EQ(compare_classes_with_visibility(truth, classes, truth, views, opposed).seen_area_m2,
+              0.0);
 }
 
 }  // namespace
