@@ -196,18 +196,43 @@ std::string resume_command(const CaptureOptions& o) {
     return command + " --views " + std::to_string(o.views);
 }
 
-/// Exit code 3 when the session has two or more scans but no two of them were joined.
-void check_joined(const acquisition::SessionStore& store) {
+std::string scan_list(const std::vector<std::int64_t>& seqs) {
+    std::string out;
+    for (std::size_t k = 0; k < seqs.size(); ++k)
+        out += (k == 0 ? "" : k + 1 == seqs.size() ? " and " : ", ") + std::to_string(seqs[k]);
+    return out;
+}
+
+/// How much of the session the model (its largest group) holds: exit code 3 for no model
+/// or an unconfirmed pair (seen on a 0.8 m block: scans 2 and 4 joined 103 mm apart at
+/// 0.005°), a warning for a partial one.
+void check_model(const acquisition::SessionStore& store) {
     auto scans = store.scans();
     if (!scans || scans->size() < 2) return;
-    const int group = acquisition::largest_group(*scans);
-    const auto joined = std::count_if(scans->begin(), scans->end(), [&](const auto& s) {
-        return acquisition::counts_in_group(s) && s.group == group;
-    });
-    if (joined >= 2) return;
-    report_poor_result("no two of the " + std::to_string(scans->size()) +
-                       " scans were joined, so there is no model and no coverage: the views "
-                       "need to overlap (or the device's scans are too sparse to match)");
+    const acquisition::ModelMembers m = acquisition::model_members(*scans);
+    const std::string of = " of the " + std::to_string(m.active) + " scans";
+    const std::string rest = " (" + std::to_string(m.flagged) + " flagged, " +
+                             std::to_string(m.active - m.joined.size() - m.flagged) + " elsewhere)";
+    switch (m.strength()) {
+        case acquisition::ModelStrength::kNone:
+            report_poor_result("no two" + of +
+                               " were joined, so there is no model and no coverage: the views "
+                               "need to overlap (or the device's scans are too sparse to match)");
+            break;
+        case acquisition::ModelStrength::kUnconfirmedPair:
+            report_poor_result(
+                "the model is only scans " + scan_list(m.joined) + of + rest +
+                ", joined by one fit that no other scan confirms: two views of a flat face fit "
+                "anywhere along it, so their placement is unverified; take views that overlap "
+                "both, or register again");
+            break;
+        case acquisition::ModelStrength::kPartial:
+            spdlog::warn("the model holds only {}{}{}: the rest is not in it", m.joined.size(), of,
+                         rest);
+            break;
+        case acquisition::ModelStrength::kWhole:
+            break;
+    }
 }
 
 scanner_sources::SimulatedTour simulated_tour(const CaptureOptions& o) {
@@ -309,7 +334,7 @@ void run_capture(const CaptureOptions& o) {
     if (!stone_note.empty()) std::printf("stone check: %s\n", stone_note.c_str());
     if (stopped) throw CommandFailed("capture stopped: " + stopped->message);
     if (g_interrupted) throw_interrupted((*session)->store(), o);
-    if (!o.no_register) check_joined((*session)->store());
+    if (!o.no_register) check_model((*session)->store());
 }
 
 /// How the simulated operator walks (simulated devices only; a real scanner's operator

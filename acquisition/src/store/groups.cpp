@@ -26,4 +26,22 @@ int largest_group(const std::vector<ScanRecord>& scans) {
     return largest_group_id(groups);
 }
 
+ModelStrength ModelMembers::strength() const {
+    if (joined.size() < 2) return ModelStrength::kNone;
+    if (joined.size() == 2 && active >= 3) return ModelStrength::kUnconfirmedPair;
+    return 2 * joined.size() < active ? ModelStrength::kPartial : ModelStrength::kWhole;
+}
+
+ModelMembers model_members(const std::vector<ScanRecord>& scans) {
+    ModelMembers out;
+    const int group = largest_group(scans);
+    for (const ScanRecord& s : scans) {
+        if (s.excluded) continue;
+        ++out.active;
+        if (s.state == ScanState::kFlagged) ++out.flagged;
+        if (counts_in_group(s) && s.group == group) out.joined.push_back(s.seq);
+    }
+    return out;
+}
+
 }  // namespace anascan::acquisition
