@@ -204,10 +204,9 @@ Expected<std::optional<RecordedPatternLayout>> read_pattern_layout(
     }
 }
 
-IsolatedCallConfig parser_call(const std::filesystem::path& path) {
-    return {.subject = path.string(),
-            .worker = "the calibration parser",
-            .time_limit = kCalibrationParseTimeLimit};
+IsolatedCallConfig parser_call(const std::filesystem::path& path,
+                               std::chrono::milliseconds time_limit) {
+    return {.subject = path.string(), .worker = "the calibration parser", .time_limit = time_limit};
 }
 
 }  // namespace
@@ -229,17 +228,18 @@ Expected<StereoCalibration> load_stereo_calibration(const std::filesystem::path&
                                                     const StereoCalibrationLoadConfig& config) {
     if (auto unit = check_unit(config); !unit) return fail(unit.error());
     if (auto checked = check_before_parsing(path); !checked) return fail(checked.error());
-    const auto message = call_isolated(
-        parser_call(path), [&] { return encode_result(read_stereo_calibration(path, config)); });
+    const auto message = call_isolated(parser_call(path, config.parse_time_limit), [&] {
+        return encode_result(read_stereo_calibration(path, config));
+    });
     if (!message) return fail(message.error());
     return decode_stereo_calibration(*message, path.string());
 }
 
 Expected<std::optional<RecordedPatternLayout>> load_pattern_layout(
-    const std::filesystem::path& path) {
+    const std::filesystem::path& path, const PatternLayoutLoadConfig& config) {
     if (auto checked = check_before_parsing(path); !checked) return fail(checked.error());
-    const auto message =
-        call_isolated(parser_call(path), [&] { return encode_result(read_pattern_layout(path)); });
+    const auto message = call_isolated(parser_call(path, config.parse_time_limit),
+                                       [&] { return encode_result(read_pattern_layout(path)); });
     if (!message) return fail(message.error());
     return decode_pattern_layout(*message, path.string());
 }

@@ -36,6 +36,11 @@ struct StereoCalibration {
     Pose T_cam1_cam2 = Pose::Identity();  ///< X_cam1 = T_cam1_cam2 * X_cam2, metres.
 };
 
+/// How long OpenCV may parse a calibration file before the load gives up with kTimeout. A
+/// valid file takes milliseconds, also under a sanitizer; a few seconds leave room for a
+/// loaded machine and stay well under the fuzzers' own 10 s limit.
+inline constexpr std::chrono::milliseconds kCalibrationParseTimeLimit{3000};
+
 /// How to read a calibration file.
 struct StereoCalibrationLoadConfig {
     /// The file's "cam1" is the camera of the cam2 images and vice versa (true for the
@@ -44,16 +49,13 @@ struct StereoCalibrationLoadConfig {
     bool swap_cameras = false;
     /// Length of one unit of the file's T, metres (calibration boards in mm: 1e-3).
     double file_unit_m = 1e-3;
+    /// How long OpenCV's parser may run in the child process.
+    std::chrono::milliseconds parse_time_limit = kCalibrationParseTimeLimit;
 };
-
-/// How long OpenCV may parse a calibration file before the load gives up with kTimeout. A
-/// valid file takes milliseconds, also under a sanitizer; a few seconds leave room for a
-/// loaded machine and stay well under the fuzzers' own 10 s limit.
-inline constexpr std::chrono::milliseconds kCalibrationParseTimeLimit{3000};
 
 /// Reads and checks a calibration (3x3 matrices, positive focal lengths, a rotation R,
 /// image sizes). Errors name the file and the key; a parser that does not finish within
-/// kCalibrationParseTimeLimit gives kTimeout, one that crashes kFormat ("the calibration
+/// `config.parse_time_limit` gives kTimeout, one that crashes kFormat ("the calibration
 /// parser crashed (signal SIGSEGV) on this file"); kIo when no child process can be started.
 Expected<StereoCalibration> load_stereo_calibration(const std::filesystem::path& path,
                                                     const StereoCalibrationLoadConfig& config);
@@ -67,10 +69,16 @@ struct RecordedPatternLayout {
     int phase_period_px = 0;
 };
 
+/// How to read the pattern layout of a calibration file.
+struct PatternLayoutLoadConfig {
+    /// How long OpenCV's parser may run in the child process.
+    std::chrono::milliseconds parse_time_limit = kCalibrationParseTimeLimit;
+};
+
 /// Reads the recorded layout; empty when the file has no `proj_size`. kFormat naming the
 /// file and key for a malformed entry, kIo when the file is missing; a parser that hangs or
 /// crashes as for load_stereo_calibration.
 Expected<std::optional<RecordedPatternLayout>> load_pattern_layout(
-    const std::filesystem::path& path);
+    const std::filesystem::path& path, const PatternLayoutLoadConfig& config = {});
 
 }  // namespace anascan::drivers::sl
