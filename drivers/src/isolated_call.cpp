@@ -103,14 +103,15 @@ struct Received {
     int error_number = 0;  ///< errno of poll or read, with kFailed.
 };
 
-/// Waits until `fd` can be read or the deadline passes; a signal's interruption is retried.
-Ending wait_readable(int fd, Clock::time_point deadline, int& error_number) {
+/// Waits until `fd` can be read (empty), the deadline passes (kTimedOut) or poll fails
+/// (kFailed, with `error_number`); a signal's interruption is retried.
+std::optional<Ending> wait_readable(int fd, Clock::time_point deadline, int& error_number) {
     for (;;) {
         const auto left = std::chrono::ceil<std::chrono::milliseconds>(deadline - Clock::now());
         if (left.count() <= 0) return Ending::kTimedOut;
         pollfd entry{.fd = fd, .events = POLLIN, .revents = 0};
         const int ready = ::poll(&entry, 1, static_cast<int>(left.count()));
-        if (ready > 0) return Ending::kComplete;
+        if (ready > 0) return std::nullopt;
         if (ready < 0 && errno != EINTR) {
             error_number = errno;
             return Ending::kFailed;
@@ -127,8 +128,10 @@ Received receive(int fd, Clock::time_point deadline) {
             received.ending = Ending::kFailed;  // errno 0: oversized, not a read error
             return received;
         }
-        received.ending = wait_readable(fd, deadline, received.error_number);
-        if (received.ending != Ending::kComplete) return received;
+        if (const auto ended = wait_readable(fd, deadline, received.error_number)) {
+            received.ending = *ended;
+            return received;
+        }
         const ssize_t n = ::read(fd, chunk.data(), chunk.size());
         if (n < 0 && errno == EINTR) continue;
         if (n < 0) {
@@ -223,11 +226,11 @@ Expected<std::string> call_isolated(const IsolatedCallConfig& config,
     ChildProcess child(pid);
     write_end.reset();  // The parent sees the end of the pipe when the child's end closes.
     const Received received = receive(read_end.get(), deadline);
-    if (received.ending == Ending::kTimedOut) {
+    if (received.ending == Ending::kTimedOut) {  // `child` kills and reaps it on return.
         return fail(ErrorCode::kTimeout,
                     config.subject + ": " + config.worker + " did not finish within " +
                         seconds_text(config.time_limit) + " (malformed file?)");
-    }  // The child's destructor kills and reaps it.
+    }
     if (received.ending == Ending::kFailed) child.kill();
     return outcome(config, received, child.reap());
 }
