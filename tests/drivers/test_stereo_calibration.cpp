@@ -1,21 +1,34 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <opencv2/core.hpp>
 
 #include "anascan/drivers/structured_light/stereo_calibration.hpp"
+#include "process_resources.hpp"
+#include "structured_light/calibration_message.hpp"
+#include "structured_light/calibration_parse.hpp"
 
 namespace anascan::drivers::sl {
 namespace {
 
+// Every load forks a child that parses the file: each test also checks that no descriptor,
+// thread or child (zombie or not) is left behind.
 class CalibrationFile : public ::testing::Test {
 protected:
     std::filesystem::path dir_ =
         std::filesystem::temp_directory_path() / ("anascan_sl_calib_" + std::to_string(::getpid()));
+    std::size_t descriptors_before_ = test::open_descriptors();
+    std::size_t threads_before_ = test::threads();
     void SetUp() override { std::filesystem::create_directories(dir_); }
-    void TearDown() override { std::filesystem::remove_all(dir_); }
+    void TearDown() override {
+        std::filesystem::remove_all(dir_);
+        EXPECT_EQ(test::open_descriptors(), descriptors_before_);
+        EXPECT_EQ(test::threads_settled_to(threads_before_), threads_before_);
+        EXPECT_FALSE(test::has_child());
+    }
 
     // OpenCV convention: X_2 = R X_1 + T, T in mm; R turns 20 degrees about y.
     std::filesystem::path write(const std::string& name, bool with_r = true, double r_scale = 1.0) {
@@ -117,6 +130,110 @@ TEST_F(CalibrationFile, ANulByteIsRefusedBeforeTheParserCanCrash) {
     EXPECT_NE(refused.error().message.find(path.string() + ": byte 14: a NUL byte"),
               std::string::npos)
         << refused.error().message;
+}
+
+void expect_same(const CameraIntrinsics& a, const CameraIntrinsics& b) {
+    EXPECT_EQ(a.K, b.K);
+    EXPECT_EQ(a.distortion, b.distortion);
+    EXPECT_EQ(a.width_px, b.width_px);
+    EXPECT_EQ(a.height_px, b.height_px);
+}
+
+// The loader parses in a child process and sends the result back: the values are the very
+// ones an in-process parse gives, bit for bit, in YAML and XML, with and without the swap.
+TEST_F(CalibrationFile, TheChildProcessGivesTheInProcessResultBitForBit) {
+    for (const char* name : {"c.yml", "c.xml"}) {
+        const std::filesystem::path path = write(name);
+        for (const bool swap : {false, true}) {
+            const StereoCalibrationLoadConfig config{.swap_cameras = swap};
+            const auto loaded = load_stereo_calibration(path, config);
+            const auto parsed = parse_stereo_calibration(path, config);
+            ASSERT_TRUE(loaded && parsed) << name;
+            expect_same(loaded->cam1, parsed->cam1);
+            expect_same(loaded->cam2, parsed->cam2);
+            EXPECT_EQ(loaded->T_cam1_cam2.matrix(), parsed->T_cam1_cam2.matrix());
+        }
+    }
+    std::ofstream(dir_ / "layout.yml") << "%YAML:1.0\nproj_size: [1280, 800]\n"
+                                          "pattern_phase_steps: 4\npattern_phase_period_px: 16\n";
+    const auto layout = load_pattern_layout(dir_ / "layout.yml");
+    ASSERT_TRUE(layout && *layout) << (layout ? "no layout" : layout.error().message);
+    EXPECT_EQ((*layout)->projector_width_px, 1280);
+    EXPECT_EQ((*layout)->projector_height_px, 800);
+    EXPECT_EQ((*layout)->phase_steps, 4);
+    EXPECT_EQ((*layout)->phase_period_px, 16);
+    const auto none = load_pattern_layout(write("no_layout.yml"));
+    ASSERT_TRUE(none);
+    EXPECT_FALSE(*none);
+}
+
+bool malformed(const Expected<StereoCalibration>& decoded) {
+    return !decoded &&
+           decoded.error().message.find("c.yml: the calibration parser sent a malformed result") !=
+               std::string::npos;
+}
+
+// A message cut short or lengthened is refused with the file named, never read past its end.
+TEST(CalibrationMessage, AMalformedMessageIsAFormatErrorNamingTheFile) {
+    StereoCalibration calibration;
+    calibration.cam1.distortion = {0.1, -0.2, 0.0, 0.0, 0.3};
+    const std::string values = encode_result(Expected<StereoCalibration>(calibration));
+    const std::string error =
+        encode_result(Expected<StereoCalibration>(fail(ErrorCode::kUnsupported, "c.yml: bad")));
+    const auto decoded = decode_stereo_calibration(values, "c.yml");
+    ASSERT_TRUE(decoded);
+    EXPECT_EQ(decoded->cam1.distortion, calibration.cam1.distortion);
+    const auto refused = decode_stereo_calibration(error, "c.yml");
+    ASSERT_FALSE(refused);
+    EXPECT_EQ(refused.error().code, ErrorCode::kUnsupported);
+    EXPECT_EQ(refused.error().message, "c.yml: bad");
+    for (const std::string& message : {values, error}) {
+        for (std::size_t n = 0; n < message.size(); ++n)
+            EXPECT_TRUE(malformed(decode_stereo_calibration(message.substr(0, n), "c.yml"))) << n;
+        EXPECT_TRUE(malformed(decode_stereo_calibration(message + "x", "c.yml")));
+    }
+}
+
+using std::chrono::steady_clock;
+
+// OpenCV 4.6's YAML parser never returns on these three lines (found by fuzz_calibration):
+// the child parsing them is killed at the time limit.
+TEST_F(CalibrationFile, AParserThatNeverReturnsEndsInATimeoutNamingTheFile) {
+    const std::filesystem::path path = dir_ / "hang.yml";
+    std::ofstream(path) << "%YAML:1.0\n   rows:t\na-b-   : 0\n";
+    const std::string expected =
+        path.string() + ": the calibration parser did not finish within 3 s (malformed file?)";
+    auto start = steady_clock::now();
+    const auto calibration = load_stereo_calibration(path, {});
+    EXPECT_LT(steady_clock::now() - start, kCalibrationParseTimeLimit + std::chrono::seconds(1));
+    ASSERT_FALSE(calibration);
+    EXPECT_EQ(calibration.error().code, ErrorCode::kTimeout);
+    EXPECT_EQ(calibration.error().message, expected);
+    // The layout's loader, with a shorter limit of its own.
+    start = steady_clock::now();
+    const auto layout =
+        load_pattern_layout(path, {.parse_time_limit = std::chrono::milliseconds(250)});
+    EXPECT_LT(steady_clock::now() - start, std::chrono::milliseconds(1250));
+    ASSERT_FALSE(layout);
+    EXPECT_EQ(layout.error().code, ErrorCode::kTimeout);
+    EXPECT_EQ(
+        layout.error().message,
+        path.string() + ": the calibration parser did not finish within 0.25 s (malformed file?)");
+}
+
+// OpenCV 4.6's XML parser reads a null pointer on this truncated header (fuzz_calibration).
+TEST_F(CalibrationFile, AParserCrashEndsInAnErrorNamingTheFileAndTheSignal) {
+    const std::filesystem::path path = dir_ / "crash.xml";
+    std::ofstream(path) << "<?xml verwiverwn=";
+    const std::string expected =
+        path.string() + ": the calibration parser crashed (signal SIGSEGV) on this file";
+    const auto calibration = load_stereo_calibration(path, {});
+    ASSERT_FALSE(calibration);
+    EXPECT_EQ(calibration.error().code, ErrorCode::kFormat);
+    EXPECT_EQ(calibration.error().message, expected);
+    const auto layout = load_pattern_layout(path);
+    ASSERT_FALSE(layout);
+    EXPECT_EQ(layout.error().message, expected);
 }
 
 }  // namespace

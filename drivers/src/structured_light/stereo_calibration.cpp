@@ -7,6 +7,9 @@
 #include <string_view>
 
 #include "anascan/processing/io/file_bytes.hpp"
+#include "calibration_message.hpp"
+#include "calibration_parse.hpp"
+#include "isolated_call.hpp"
 
 namespace anascan::drivers::sl {
 namespace {
@@ -15,6 +18,8 @@ namespace {
 /// refused before OpenCV sees them: a NUL byte (the XML parser reads a null pointer), and
 /// text after a document start "---" (the YAML parser never returns when a marker-like line
 /// such as "--%-" follows). OpenCV writes neither: its files are text, "---" alone on its line.
+/// The child process bounds these faults too; the check stays because it names the line or
+/// byte at once, where the child would end in a time-limit error after seconds or a crash.
 Expected<void> refuse_parser_traps(const std::filesystem::path& path) {
     auto bytes = io::read_file_bytes(path);
     if (!bytes) return fail(bytes.error());
@@ -117,18 +122,33 @@ Expected<Pose> read_extrinsics(const cv::FileStorage& fs, const std::string& fil
     return pose;
 }
 
-}  // namespace
+/// The checks before any parser runs: the file exists, and it has none of the known traps.
+Expected<void> check_before_parsing(const std::filesystem::path& path) {
+    if (!std::filesystem::is_regular_file(path))
+        return fail(ErrorCode::kIo, path.string() + ": no such calibration file");
+    return refuse_parser_traps(path);
+}
 
-Expected<StereoCalibration> load_stereo_calibration(const std::filesystem::path& path,
-                                                    const StereoCalibrationLoadConfig& config) {
-    const std::string file = path.string();
+Expected<void> check_unit(const StereoCalibrationLoadConfig& config) {
     if (!(config.file_unit_m > 0.0))
         return fail(ErrorCode::kInvalidArgument, "calibration unit must be positive");
-    if (!std::filesystem::is_regular_file(path))
-        return fail(ErrorCode::kIo, file + ": no such calibration file");
-    if (auto trap = refuse_parser_traps(path); !trap) return fail(trap.error());
-    cv::FileStorage fs;
+    return {};
+}
+
+/// An exception out of OpenCV as an error naming the file.
+Error exception_error(const std::string& file, const std::exception& e) {
+    if (const auto* cv_error = dynamic_cast<const cv::Exception*>(&e))
+        return Error{ErrorCode::kFormat, file + ": " + cv_error->msg};
+    // OpenCV's parser lets std::length_error and others out.
+    return Error{ErrorCode::kFormat, file + ": not a readable calibration file (" + e.what() + ")"};
+}
+
+/// Opens the file with OpenCV and reads it: the part that runs in the child process.
+Expected<StereoCalibration> read_stereo_calibration(const std::filesystem::path& path,
+                                                    const StereoCalibrationLoadConfig& config) {
+    const std::string file = path.string();
     try {
+        cv::FileStorage fs;
         if (!fs.open(file, cv::FileStorage::READ | cv::FileStorage::FORMAT_AUTO))
             return fail(ErrorCode::kFormat, file + ": not an OpenCV FileStorage file");
         auto first = read_camera(fs, file, "cam1");
@@ -144,47 +164,84 @@ Expected<StereoCalibration> load_stereo_calibration(const std::filesystem::path&
         }
         return StereoCalibration{
             .cam1 = *first, .cam2 = *second, .T_cam1_cam2 = T_second_first->inverse()};
-    } catch (const cv::Exception& e) {
-        return fail(ErrorCode::kFormat, file + ": " + e.msg);
-    } catch (const std::exception& e) {  // OpenCV's parser lets std::length_error and others out
-        return fail(ErrorCode::kFormat,
-                    file + ": not a readable calibration file (" + e.what() + ")");
+    } catch (const std::exception& e) {
+        return fail(exception_error(file, e));
     }
 }
 
-Expected<std::optional<RecordedPatternLayout>> load_pattern_layout(
+Expected<std::optional<RecordedPatternLayout>> read_layout(const cv::FileStorage& fs,
+                                                           const std::string& file) {
+    const cv::FileNode size = fs["proj_size"];
+    if (size.empty()) return std::optional<RecordedPatternLayout>{};
+    RecordedPatternLayout layout;
+    if (size.isSeq() && size.size() == 2 && size[0].isInt() && size[1].isInt()) {
+        layout.projector_width_px = int(size[0]);
+        layout.projector_height_px = int(size[1]);
+    }
+    if (layout.projector_width_px <= 0 || layout.projector_height_px <= 0)
+        return fail(ErrorCode::kFormat, file + ": bad 'proj_size' (expected [w, h])");
+    const cv::FileNode steps = fs["pattern_phase_steps"];
+    const cv::FileNode period = fs["pattern_phase_period_px"];
+    if (!steps.empty()) layout.phase_steps = steps.isInt() ? int(steps) : -1;
+    if (!period.empty()) layout.phase_period_px = period.isInt() ? int(period) : -1;
+    if (layout.phase_steps < 0 || (layout.phase_steps > 0 && layout.phase_period_px < 2))
+        return fail(ErrorCode::kFormat,
+                    file + ": bad 'pattern_phase_steps' / 'pattern_phase_period_px'");
+    return std::optional<RecordedPatternLayout>{layout};
+}
+
+/// Opens the file with OpenCV and reads the layout: the part that runs in the child process.
+Expected<std::optional<RecordedPatternLayout>> read_pattern_layout(
     const std::filesystem::path& path) {
     const std::string file = path.string();
-    if (!std::filesystem::is_regular_file(path))
-        return fail(ErrorCode::kIo, file + ": no such calibration file");
-    if (auto trap = refuse_parser_traps(path); !trap) return fail(trap.error());
     try {
         cv::FileStorage fs(file, cv::FileStorage::READ | cv::FileStorage::FORMAT_AUTO);
         if (!fs.isOpened())
             return fail(ErrorCode::kFormat, file + ": not an OpenCV FileStorage file");
-        const cv::FileNode size = fs["proj_size"];
-        if (size.empty()) return std::optional<RecordedPatternLayout>{};
-        RecordedPatternLayout layout;
-        if (size.isSeq() && size.size() == 2 && size[0].isInt() && size[1].isInt()) {
-            layout.projector_width_px = int(size[0]);
-            layout.projector_height_px = int(size[1]);
-        }
-        if (layout.projector_width_px <= 0 || layout.projector_height_px <= 0)
-            return fail(ErrorCode::kFormat, file + ": bad 'proj_size' (expected [w, h])");
-        const cv::FileNode steps = fs["pattern_phase_steps"];
-        const cv::FileNode period = fs["pattern_phase_period_px"];
-        if (!steps.empty()) layout.phase_steps = steps.isInt() ? int(steps) : -1;
-        if (!period.empty()) layout.phase_period_px = period.isInt() ? int(period) : -1;
-        if (layout.phase_steps < 0 || (layout.phase_steps > 0 && layout.phase_period_px < 2))
-            return fail(ErrorCode::kFormat,
-                        file + ": bad 'pattern_phase_steps' / 'pattern_phase_period_px'");
-        return std::optional<RecordedPatternLayout>{layout};
-    } catch (const cv::Exception& e) {
-        return fail(ErrorCode::kFormat, file + ": " + e.msg);
-    } catch (const std::exception& e) {  // OpenCV's parser lets std::length_error and others out
-        return fail(ErrorCode::kFormat,
-                    file + ": not a readable calibration file (" + e.what() + ")");
+        return read_layout(fs, file);
+    } catch (const std::exception& e) {
+        return fail(exception_error(file, e));
     }
+}
+
+IsolatedCallConfig parser_call(const std::filesystem::path& path,
+                               std::chrono::milliseconds time_limit) {
+    return {.subject = path.string(), .worker = "the calibration parser", .time_limit = time_limit};
+}
+
+}  // namespace
+
+Expected<StereoCalibration> parse_stereo_calibration(const std::filesystem::path& path,
+                                                     const StereoCalibrationLoadConfig& config) {
+    if (auto unit = check_unit(config); !unit) return fail(unit.error());
+    if (auto checked = check_before_parsing(path); !checked) return fail(checked.error());
+    return read_stereo_calibration(path, config);
+}
+
+Expected<std::optional<RecordedPatternLayout>> parse_pattern_layout(
+    const std::filesystem::path& path) {
+    if (auto checked = check_before_parsing(path); !checked) return fail(checked.error());
+    return read_pattern_layout(path);
+}
+
+Expected<StereoCalibration> load_stereo_calibration(const std::filesystem::path& path,
+                                                    const StereoCalibrationLoadConfig& config) {
+    if (auto unit = check_unit(config); !unit) return fail(unit.error());
+    if (auto checked = check_before_parsing(path); !checked) return fail(checked.error());
+    const auto message = call_isolated(parser_call(path, config.parse_time_limit), [&] {
+        return encode_result(read_stereo_calibration(path, config));
+    });
+    if (!message) return fail(message.error());
+    return decode_stereo_calibration(*message, path.string());
+}
+
+Expected<std::optional<RecordedPatternLayout>> load_pattern_layout(
+    const std::filesystem::path& path, const PatternLayoutLoadConfig& config) {
+    if (auto checked = check_before_parsing(path); !checked) return fail(checked.error());
+    const auto message = call_isolated(parser_call(path, config.parse_time_limit),
+                                       [&] { return encode_result(read_pattern_layout(path)); });
+    if (!message) return fail(message.error());
+    return decode_pattern_layout(*message, path.string());
 }
 
 }  // namespace anascan::drivers::sl

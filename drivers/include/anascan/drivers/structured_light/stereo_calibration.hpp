@@ -3,8 +3,14 @@
 /// Calibration of a two-camera structured-light scanner, read from OpenCV FileStorage YAML
 /// (the keys written by OpenCV's stereo calibration samples: cam1_intrinsics,
 /// cam1_distorsion, cam1_size, cam2_..., R, T).
+///
+/// OpenCV 4.6's FileStorage parsers can loop for ever or crash on a malformed file, so both
+/// loaders run OpenCV in a child process, with a time limit (kCalibrationParseTimeLimit) and
+/// a crash boundary: such a file ends in an error naming it, never a hung or crashed caller.
+/// Thread-safe: each load forks its own child.
 
 #include <Eigen/Core>
+#include <chrono>
 #include <filesystem>
 #include <optional>
 #include <vector>
@@ -30,6 +36,11 @@ struct StereoCalibration {
     Pose T_cam1_cam2 = Pose::Identity();  ///< X_cam1 = T_cam1_cam2 * X_cam2, metres.
 };
 
+/// How long OpenCV may parse a calibration file before the load gives up with kTimeout. A
+/// valid file takes milliseconds, also under a sanitizer; a few seconds leave room for a
+/// loaded machine and stay well under the fuzzers' own 10 s limit.
+inline constexpr std::chrono::milliseconds kCalibrationParseTimeLimit{3000};
+
 /// How to read a calibration file.
 struct StereoCalibrationLoadConfig {
     /// The file's "cam1" is the camera of the cam2 images and vice versa (true for the
@@ -38,10 +49,14 @@ struct StereoCalibrationLoadConfig {
     bool swap_cameras = false;
     /// Length of one unit of the file's T, metres (calibration boards in mm: 1e-3).
     double file_unit_m = 1e-3;
+    /// How long OpenCV's parser may run in the child process.
+    std::chrono::milliseconds parse_time_limit = kCalibrationParseTimeLimit;
 };
 
 /// Reads and checks a calibration (3x3 matrices, positive focal lengths, a rotation R,
-/// image sizes). Errors name the file and the key.
+/// image sizes). Errors name the file and the key; a parser that does not finish within
+/// `config.parse_time_limit` gives kTimeout, one that crashes kFormat ("the calibration
+/// parser crashed (signal SIGSEGV) on this file"); kIo when no child process can be started.
 Expected<StereoCalibration> load_stereo_calibration(const std::filesystem::path& path,
                                                     const StereoCalibrationLoadConfig& config);
 
@@ -54,9 +69,16 @@ struct RecordedPatternLayout {
     int phase_period_px = 0;
 };
 
+/// How to read the pattern layout of a calibration file.
+struct PatternLayoutLoadConfig {
+    /// How long OpenCV's parser may run in the child process.
+    std::chrono::milliseconds parse_time_limit = kCalibrationParseTimeLimit;
+};
+
 /// Reads the recorded layout; empty when the file has no `proj_size`. kFormat naming the
-/// file and key for a malformed entry, kIo when the file is missing.
+/// file and key for a malformed entry, kIo when the file is missing; a parser that hangs or
+/// crashes as for load_stereo_calibration.
 Expected<std::optional<RecordedPatternLayout>> load_pattern_layout(
-    const std::filesystem::path& path);
+    const std::filesystem::path& path, const PatternLayoutLoadConfig& config = {});
 
 }  // namespace anascan::drivers::sl
