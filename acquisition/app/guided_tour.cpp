@@ -2,9 +2,12 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <string>
 
 #include "anascan/acquisition/coverage/session_coverage.hpp"
+#include "anascan/acquisition/store/groups.hpp"
 
 namespace anascan::cli {
 namespace {
@@ -22,12 +25,49 @@ bool turned_side_joined(const acquisition::SessionStore& store, std::int64_t las
     return false;
 }
 
+std::int64_t last_seq(const std::vector<acquisition::ScanRecord>& scans) {
+    std::int64_t last = 0;
+    for (const acquisition::ScanRecord& s : scans) last = std::max(last, s.seq);
+    return last;
+}
+
 std::int64_t scan_count(const acquisition::SessionStore& store) {
     auto scans = store.scans();
     return scans ? static_cast<std::int64_t>(scans->size()) : 0;
 }
 
 }  // namespace
+
+void GuidedOperator::note_whether_the_asked_view_joined(const acquisition::SessionStore& store) {
+    if (!asked_) return;
+    const AskedView asked = *asked_;
+    asked_.reset();
+    auto scans = store.scans();
+    if (!scans) return;
+    const int group = acquisition::largest_group(*scans);
+    for (const acquisition::ScanRecord& s : *scans) {
+        if (s.seq != asked.seq) continue;
+        if (acquisition::counts_in_group(s) && s.group == group) return;
+        failed_.push_back(asked);
+        std::printf(
+            "guided tour: scan %lld, from the view asked for, is not in the model (%s); that "
+            "view is not asked for again\n",
+            static_cast<long long>(s.seq), std::string(acquisition::to_string(s.state)).c_str());
+        return;
+    }
+}
+
+std::vector<Eigen::Vector3d> GuidedOperator::failed_views(
+    const acquisition::SessionStore& store) const {
+    auto scans = store.scans();
+    if (!scans) return {};
+    // Positions are in the frame of the group that was the model when they were asked for.
+    const int group = acquisition::largest_group(*scans);
+    std::vector<Eigen::Vector3d> out;
+    for (const AskedView& v : failed_)
+        if (v.group == group) out.push_back(v.sensor_model_m);
+    return out;
+}
 
 std::optional<acquisition::CaptureRequest> GuidedOperator::after_turn() {
     if (turned_side_views_ >= kTurnedSideWalk) return std::nullopt;
@@ -38,7 +78,10 @@ std::optional<acquisition::CaptureRequest> GuidedOperator::next(
     acquisition::CaptureSession& session, int index) {
     if (index == 0) return scanner_sources::tour_request(tour_, 0);
     session.wait_until_idle();
-    auto plan = acquisition::session_next_view(session.store(), {}, {});
+    note_whether_the_asked_view_joined(session.store());
+    NextViewConfig config;
+    config.failed_sensor_positions_world = failed_views(session.store());
+    auto plan = acquisition::session_next_view(session.store(), {}, config);
     if (!plan) {
         spdlog::warn("guided tour: no plan ({}); walking on", plan.error().message);
         return turned_ ? after_turn() : scanner_sources::tour_request(tour_, index);
@@ -53,6 +96,11 @@ std::optional<acquisition::CaptureRequest> GuidedOperator::next(
         auto to_truth = acquisition::group_to_truth(session.store());
         if (to_truth && *to_truth) {
             const Pose& T = **to_truth;
+            auto scans = session.store().scans();
+            if (scans)
+                asked_ = AskedView{.sensor_model_m = plan->view.sensor_world_m,
+                                   .group = acquisition::largest_group(*scans),
+                                   .seq = last_seq(*scans) + 1};
             return scanner_sources::guided_request(tour_,
                                                    {.sensor_m = T * plan->view.sensor_world_m,
                                                     .aim_m = T * plan->view.aim_world_m,

@@ -26,6 +26,11 @@ std::optional<Eigen::Vector3d> LiveRegistrar::State::group_up(int group) const {
     return sum.normalized();
 }
 
+std::size_t LiveRegistrar::State::first_scan(int group) const {
+    const std::vector<std::size_t> ids = members(group);
+    return ids.empty() ? scans.size() : *std::min_element(ids.begin(), ids.end());
+}
+
 int LiveRegistrar::State::group_side(int group) const {
     const std::vector<std::size_t> ids = members(group);  // Most recent first.
     return ids.empty() ? 0 : scans[ids.front()].side;
@@ -85,7 +90,9 @@ std::vector<PoseUpdate> LiveRegistrar::State::merge_whole_groups() {
             // seconds; doubling was too rare: a side of 12 scans last tried at 7 never was).
             const std::size_t size_a = members(ids[a]).size(), size_b = members(ids[b]).size();
             const std::size_t smaller = std::min(size_a, size_b), larger = std::max(size_a, size_b);
-            auto [it, first] = whole_merge_tried.try_emplace({ids[a], ids[b]}, smaller, larger);
+            const std::size_t first_a = first_scan(ids[a]), first_b = first_scan(ids[b]);
+            auto [it, first] = whole_merge_tried.try_emplace(
+                {std::min(first_a, first_b), std::max(first_a, first_b)}, smaller, larger);
             const auto grown = [](std::size_t now, std::size_t then) {
                 return 2 * now >= 3 * then;
             };

@@ -301,8 +301,14 @@ struct LiveRegistrar::State {
     std::vector<live::Prior> sequence_priors(std::size_t i, int group, int direction) const;
     /// Sequence merges tried: (entry, direction) and the other group's scans then.
     std::map<std::pair<std::size_t, int>, std::size_t> sequence_merge_tried;
-    /// Group pairs tried whole (lower id first) and the smaller and larger group's scans then.
-    std::map<std::pair<int, int>, std::pair<std::size_t, std::size_t>> whole_merge_tried;
+    /// Group pairs tried whole and the smaller and larger group's scans then. A group is
+    /// known by its first scan (lower first), not its id: a part that a check takes out of a
+    /// wrong merge comes back under a new id, and keyed by id the same merge was tried again
+    /// at once, again and again (random-block:1, guided: 354 splits in 24 scans).
+    std::map<std::pair<std::size_t, std::size_t>, std::pair<std::size_t, std::size_t>>
+        whole_merge_tried;
+    /// The group's first scan (lowest entry index): its name across splits and merges.
+    std::size_t first_scan(int group) const;
     /// The group's stone-only clouds in its frame, merged and voxel down-sampled.
     PointCloud group_cloud(int group) const;
     /// The voted transform between two groups refined by fine registration of the groups'

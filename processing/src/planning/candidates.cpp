@@ -75,6 +75,12 @@ private:
     std::vector<Eigen::Vector3d> directions_;
 };
 
+bool near_a_failed_view(const NextViewConfig& config, const Eigen::Vector3d& sensor) {
+    for (const Eigen::Vector3d& p : config.failed_sensor_positions_world)
+        if ((p - sensor).norm() < config.failed_view_radius_m) return true;
+    return false;
+}
+
 double lerp_step(double from, double to, int i, int steps) {
     return steps <= 1 ? 0.5 * (from + to) : from + (to - from) * i / (steps - 1);
 }
@@ -141,6 +147,7 @@ std::vector<Candidate> candidate_views(const CoverageReport& coverage, const Wan
                     if (!planes.empty() && outside_distance_m(planes, sensor) < s.min_clearance_m)
                         continue;
                     if (!step_limit.allows(sensor)) continue;
+                    if (near_a_failed_view(config, sensor)) continue;
                     out.push_back({sensor, aim, standoff, local.z()});
                 }
             }

@@ -100,6 +100,19 @@ TEST(NextBestView, WalksOnFromWhereTheModelWasScanned) {
     EXPECT_LE(step, 40.0 + 1e-6);
 }
 
+TEST(NextBestView, DoesNotAskAgainForAViewWhoseScanDidNotJoin) {
+    const CoverageReport coverage = block_coverage({true, false, true, false, true, false});
+    const NextView first = plan_next_view(coverage, {});
+    ASSERT_EQ(first.advice, NextViewAdvice::kScan) << first.hint;
+    NextViewConfig config;
+    config.failed_sensor_positions_world = {first.sensor_world_m};
+    const NextView second = plan_next_view(coverage, config);
+    ASSERT_EQ(second.advice, NextViewAdvice::kScan) << second.hint;
+    EXPECT_GE((second.sensor_world_m - first.sensor_world_m).norm(), config.failed_view_radius_m);
+    EXPECT_GT(second.gain_fraction, 0.0);
+    EXPECT_LE(second.gain_fraction, first.gain_fraction + 1e-12);  // the best was taken away
+}
+
 TEST(NextBestView, TakesTheUpHintWithoutAGround) {
     NextViewConfig config;
     config.up_hint_world = Eigen::Vector3d(0.05, 0.0, 1.0);

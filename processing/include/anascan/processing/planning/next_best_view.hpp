@@ -70,6 +70,12 @@ struct NextViewConfig {
     /// the model. Empty: anywhere.
     std::vector<Eigen::Vector3d> scanner_positions_world;
     double max_step_deg = 45.0;
+    /// Where views planned before were taken whose scans then did not join the model (model
+    /// frame). No view is planned within failed_view_radius_m of one: a view that did not
+    /// register is not asked for again (the coverage it promised is still missing, so the
+    /// same view would win every time).
+    std::vector<Eigen::Vector3d> failed_sensor_positions_world;
+    double failed_view_radius_m = 0.3;
 };
 
 /// The stone's own frame for words: +z up from the ground, origin on the ground under the
