@@ -119,18 +119,53 @@ TEST(TruthVisibility, TheBottomOfABoxSeenFromAboveIsTheUnseenPart) {
     EXPECT_GT(b.unseen_area_m2, a.unseen_area_m2 + 0.1);
 }
 
+// A 0.4 x 0.3 x 0.2 m box and a 60-degree camera 1 m above its top, looking down.
+struct TopView {
+    Mesh truth = grid_box({0.4, 0.3, 0.2}, 10);
+    std::vector<SurfaceClass> classes =
+        std::vector<SurfaceClass>(truth.triangles.size(), SurfaceClass::kMeasured);
+    VisibilityDevice camera{.horizontal_fov_deg = 60.0, .vertical_fov_deg = 60.0};
+    Pose T_world_view = looking_down_from(0.0);
+
+    static Pose looking_down_from(double x_m) {
+        Pose T = Pose::Identity();  // +z of the view is -z
+        T.linear() = Eigen::AngleAxisd(std::numbers::pi, Eigen::Vector3d::UnitX()).matrix();
+        T.translation() = Eigen::Vector3d(x_m, 0.0, 1.1);
+        return T;
+    }
+    VisibilityAgreement seen_by(std::vector<VisibilityDevice> devices, const Pose& T,
+                                double seen_deg = 70.0, double unseen_deg = 80.0) const {
+        const VisibilityConfig config{.seen_incidence_deg = seen_deg,
+                                      .unseen_incidence_deg = unseen_deg,
+                                      .sample_spacing_m = 4e-3,
+                                      .devices = std::move(devices)};
+        return compare_classes_with_visibility(truth, classes, truth, std::vector<Pose>{T}, config);
+    }
+};
+
 TEST(TruthVisibility, ASampleIsSeenOnlyWhereEveryDeviceOfTheSensorSeesIt) {
-    const Mesh truth = grid_box({0.4, 0.3, 0.2}, 10);
-    Pose T_world_view = Pose::Identity();  // 1 m above, looking down (+z of the view is -z)
-    T_world_view.linear() = Eigen::AngleAxisd(std::numbers::pi, Eigen::Vector3d::UnitX()).matrix();
-    T_world_view.translation() = Eigen::Vector3d(0.0, 0.0, 1.1);
-    const std::vector<Pose> views{T_world_view};
-    const std::vector<SurfaceClass> classes(truth.triangles.size(), SurfaceClass::kMeasured);
-    const VisibilityDevice camera{.horizontal_fov_deg = 60.0, .vertical_fov_deg = 60.0};
-    const VisibilityConfig one{.sample_spacing_m = 4e-3, .devices = {camera}};
-    const VisibilityAgreement a =
-        compare_classes_with_visibility(truth, classes, truth, views, one);
+    const TopView v;
+    const VisibilityAgreement a = v.seen_by({v.camera}, v.T_world_view);
     EXPECT_NEAR(a.seen_area_m2, 0.4 * 0.3, 0.01);  // the top face
+    // A second device at the same place changes nothing.
+    EXPECT_NEAR(v.seen_by({v.camera, v.camera}, v.T_world_view).seen_area_m2, a.seen_area_m2, 1e-9);
+    // A device 0.5 m to the side, looking parallel: it sees only part of the top, so the
+    // sensor measures only the part both see.
+    VisibilityDevice aside = v.camera;
+    aside.T_view_device.translation() = Eigen::Vector3d(0.5, 0.0, 0.0);
+    const VisibilityAgreement b = v.seen_by({v.camera, aside}, v.T_world_view);
+    EXPECT_GT(b.seen_area_m2, 0.02);
+    EXPECT_LT(b.seen_area_m2, a.seen_area_m2 - 0.02);
+    // A device looking the other way sees none of it.
+    VisibilityDevice backward = v.camera;
+    backward.T_view_device.linear() =
+        Eigen::AngleAxisd(std::numbers::pi, Eigen::Vector3d::UnitY()).matrix();
+    EXPECT_EQ(v.seen_by({v.camera, backward}, v.T_world_view).seen_area_m2, 0.0);
+}
+
+TEST(TruthVisibility, AreaIsBandedByIncidenceAndGrazingLiesBetweenTheLimits) {
+    const TopView v;
+    const VisibilityAgreement a = v.seen_by({v.camera}, v.T_world_view);
     // The top lies within 14 degrees of the view, the top hides the sides.
     double total = 0.0, below_15 = 0.0;
     for (const IncidenceBand& band : a.bands) {
@@ -141,41 +176,13 @@ TEST(TruthVisibility, ASampleIsSeenOnlyWhereEveryDeviceOfTheSensorSeesIt) {
     EXPECT_NEAR(below_15, a.seen_area_m2, 1e-9);
     // From 0.4 m beyond the +x side, that side faces the view at 68 to 72 degrees: the part
     // beyond 70 degrees is grazing (between the default limits), unless the limits are one.
-    Pose T_world_beside = T_world_view;
-    T_world_beside.translation().x() = 0.6;
-    const std::vector<Pose> beside{T_world_beside};
-    const VisibilityAgreement g =
-        compare_classes_with_visibility(truth, classes, truth, beside, one);
+    const Pose beside = TopView::looking_down_from(0.6);
+    const VisibilityAgreement g = v.seen_by({v.camera}, beside);
     EXPECT_GT(g.grazing_area_m2, 0.01);
     EXPECT_LT(g.grazing_area_m2, 0.2 * 0.3);
-    const VisibilityConfig hard{.seen_incidence_deg = 75.0,
-                                .unseen_incidence_deg = 75.0,
-                                .sample_spacing_m = 4e-3,
-                                .devices = {camera}};
-    const VisibilityAgreement h =
-        compare_classes_with_visibility(truth, classes, truth, beside, hard);
+    const VisibilityAgreement h = v.seen_by({v.camera}, beside, 75.0, 75.0);
     EXPECT_EQ(h.grazing_area_m2, 0.0);
     EXPECT_NEAR(h.seen_area_m2, g.seen_area_m2 + g.grazing_area_m2, 1e-9);
-    // A second device at the same place changes nothing.
-    const VisibilityConfig twice{.sample_spacing_m = 4e-3, .devices = {camera, camera}};
-    EXPECT_NEAR(compare_classes_with_visibility(truth, classes, truth, views, twice).seen_area_m2,
-                a.seen_area_m2, 1e-9);
-    // A device 0.5 m to the side, looking parallel: it sees only part of the top, so the
-    // sensor measures only the part both see.
-    VisibilityDevice aside = camera;
-    aside.T_view_device.translation() = Eigen::Vector3d(0.5, 0.0, 0.0);
-    const VisibilityConfig offset{.sample_spacing_m = 4e-3, .devices = {camera, aside}};
-    const VisibilityAgreement b =
-        compare_classes_with_visibility(truth, classes, truth, views, offset);
-    EXPECT_GT(b.seen_area_m2, 0.02);
-    EXPECT_LT(b.seen_area_m2, a.seen_area_m2 - 0.02);
-    // A device looking the other way sees none of it.
-    VisibilityDevice backward = camera;
-    backward.T_view_device.linear() =
-        Eigen::AngleAxisd(std::numbers::pi, Eigen::Vector3d::UnitY()).matrix();
-    const VisibilityConfig opposed{.sample_spacing_m = 4e-3, .devices = {camera, backward}};
-    EXPECT_EQ(compare_classes_with_visibility(truth, classes, truth, views, opposed).seen_area_m2,
-              0.0);
 }
 
 }  // namespace
