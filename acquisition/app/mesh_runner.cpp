@@ -9,56 +9,16 @@
 #include "anascan/processing/core/stopwatch.hpp"
 #include "anascan/processing/io/file_bytes.hpp"
 #include "anascan/processing/io/mesh_formats.hpp"
-#include "anascan/processing/io/ply.hpp"
 #include "anascan/processing/surface/model_report.hpp"
 #include "commands.hpp"
 
 namespace anascan::cli {
 namespace {
 
-struct LoadedScans {
-    std::vector<PointCloud> clouds;
-    std::vector<PlacedScan> placed;
-    std::vector<std::string> names;
-};
-
-LoadedScans load_scans(const std::vector<MeshScanEntry>& entries) {
-    LoadedScans s;
-    s.clouds.reserve(entries.size());
-    for (const MeshScanEntry& e : entries) {
-        auto ply = io::read_ply(e.file);
-        if (!ply) fail_command(ply.error());
-        PointCloud cloud = std::move(ply->cloud);
-        const std::size_t bad = remove_non_finite(cloud);
-        if (cloud.empty()) {
-            spdlog::warn("{}: no finite points ({} non-finite): left out", e.file.string(), bad);
-            continue;
-        }
-        spdlog::info("loaded {} ({} points)", e.file.filename().string(), cloud.size());
-        s.clouds.push_back(transformed(cloud, e.T_world_scan));
-        s.names.push_back(e.file.string());
-        std::optional<Eigen::Vector3d> sensor;
-        if (e.sensor_scan_m) sensor = e.T_world_scan * *e.sensor_scan_m;
-        s.placed.push_back({nullptr, sensor});
-    }
-    for (std::size_t i = 0; i < s.clouds.size(); ++i) s.placed[i].cloud = &s.clouds[i];
-    return s;
-}
-
 SurfaceMode parse_mode(const std::string& text) {
     if (text == "closed") return SurfaceMode::kClosed;
     if (text == "measured") return SurfaceMode::kMeasured;
     throw CommandFailed("--surface must be 'closed' or 'measured', not '" + text + "'");
-}
-
-void check_status(const SurfaceResult& r, const LoadedScans& s) {
-    if (r.status == SurfaceStatus::kOk) return;
-    std::string message = "cannot mesh: " + std::string(to_string(r.status));
-    for (const std::size_t i : r.diagnostics.isolated_scans) message += "; " + s.names[i];
-    if (r.status == SurfaceStatus::kTooFewPoints) {
-        message += " (" + std::to_string(r.diagnostics.merged_points) + " cells occupied)";
-    }
-    throw CommandFailed(message);
 }
 
 nlohmann::json hole_json(const HoleReport& h) {
@@ -149,11 +109,10 @@ void run_mesh(const std::vector<MeshScanEntry>& entries, const MeshOptions& o) {
     const SurfaceConfig config{.resolution_m = o.resolution_mm * 1e-3,
                                .mode = parse_mode(o.surface),
                                .max_memory_bytes = std::size_t(o.max_memory_mb * 1048576.0)};
-    const LoadedScans scans = load_scans(entries);
-    if (scans.placed.empty()) throw CommandFailed("cannot mesh: no scan has a finite point");
-    const SurfaceResult result = reconstruct_surface(
-        scans.placed, config, [](std::string_view m) { spdlog::info("{}", m); });
-    check_status(result, scans);
+    auto meshed =
+        acquisition::mesh_scans(entries, config, [](std::string_view m) { spdlog::info("{}", m); });
+    if (!meshed) fail_command(meshed.error());
+    const SurfaceResult& result = meshed->surface;
     const ModelReport report = make_model_report(result.model, result.merged);
     const double seconds = watch.seconds();
     if (auto ok = io::write_mesh(o.out, result.model.mesh, ply_options(result.model, o.ascii)); !ok)

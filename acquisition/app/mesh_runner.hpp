@@ -2,22 +2,14 @@
 // Shared by `mesh` and `session export --mesh`: load placed scans, reconstruct the fragment
 // model, write the mesh and its report, print the report table.
 #include <CLI/CLI.hpp>
-#include <Eigen/Core>
-#include <filesystem>
-#include <optional>
 #include <string>
 #include <vector>
 
-#include "anascan/processing/core/pose.hpp"
+#include "anascan/acquisition/assembly/mesh_scans.hpp"
 
 namespace anascan::cli {
 
-/// One scan to mesh: its file, its pose and, when known, its sensor position.
-struct MeshScanEntry {
-    std::filesystem::path file;
-    Pose T_world_scan = Pose::Identity();
-    std::optional<Eigen::Vector3d> sensor_scan_m;  ///< Sensor position in the scan frame.
-};
+using MeshScanEntry = acquisition::MeshScan;
 
 struct MeshOptions {
     std::string out;     ///< .ply, .obj or .stl

@@ -84,6 +84,20 @@ std::array<int, 4> view_rect(const gui::PanelLayout& layout, int fb_w, int fb_h)
             std::max(1, static_cast<int>(layout.view_height_px() * sy))};
 }
 
+/// The mesh, drawn straight into the view's rectangle each frame (no progressive image: a
+/// mesh of a few million triangles draws in one frame).
+void draw_mesh(const gui::MeshRenderer& mesh, const gui::OrbitCamera& camera,
+               const gui::ViewRect& rect) {
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(rect.x, rect.y, rect.width, rect.height);
+    glClearColor(kBackground.x(), kBackground.y(), kBackground.z(), 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glDisable(GL_SCISSOR_TEST);
+    glViewport(rect.x, rect.y, rect.width, rect.height);
+    mesh.draw(camera, static_cast<double>(rect.width) / rect.height);
+    glDisable(GL_DEPTH_TEST);
+}
+
 /// The 3D view fills the space between the side panels and above the status bar.
 gui::DrawStats draw_scene(AppState& app, const gui::PanelLayout& layout, int fb_w, int fb_h,
                           const gui::DrawConfig& draw) {
@@ -98,6 +112,11 @@ gui::DrawStats draw_scene(AppState& app, const gui::PanelLayout& layout, int fb_
         app.fit_pending = false;
     }
     handle_camera_input(app.camera, static_cast<float>(h));
+    if (app.view.view_mode == gui::ViewMode::kMesh && app.mesh_renderer->has_mesh()) {
+        draw_mesh(*app.mesh_renderer, app.camera, {x, y, w, h});
+        glViewport(0, 0, fb_w, fb_h);
+        return {.complete = true};
+    }
     const gui::DrawStats stats =
         app.view_image->render(*app.renderer, app.camera, {x, y, w, h}, draw);
     glViewport(0, 0, fb_w, fb_h);
@@ -113,6 +132,9 @@ Expected<void> create_renderer(AppState& app) {
     auto renderer = gui::PointRenderer::create();
     if (!renderer) return fail(renderer.error());
     app.renderer = std::move(*renderer);
+    auto mesh_renderer = gui::MeshRenderer::create();
+    if (!mesh_renderer) return fail(mesh_renderer.error());
+    app.mesh_renderer = std::move(*mesh_renderer);
     auto view_image = gui::ProgressiveView::create(kBackground);
     if (!view_image) return fail(view_image.error());
     app.view_image = std::move(*view_image);
@@ -142,6 +164,10 @@ void poll_session(AppState& app) {
     const bool had_points = app.renderer->total_points() > 0;
     app.link->poll(app.view, *app.renderer);
     if (!had_points && app.renderer->total_points() > 0) app.fit_pending = true;
+    if (std::optional<Mesh> mesh = app.link->take_mesh()) {
+        app.mesh_renderer->set_mesh(*mesh);
+        app.view.view_mode = gui::ViewMode::kMesh;  // the operator asked for it: show it
+    }
 }
 
 gui::DrawStats build_and_draw(const FrameDraw& frame, FieldWindow& window, AppState& app,

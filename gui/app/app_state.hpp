@@ -10,6 +10,7 @@
 #include <optional>
 
 #include "anascan/gui/field_view_state.hpp"
+#include "anascan/gui/mesh_renderer.hpp"
 #include "anascan/gui/orbit_camera.hpp"
 #include "anascan/gui/point_renderer.hpp"
 #include "anascan/gui/progressive_view.hpp"
@@ -27,6 +28,7 @@ struct AppState {
     gui::FieldViewState view;
     gui::OrbitCamera camera;
     std::unique_ptr<gui::PointRenderer> renderer;
+    std::unique_ptr<gui::MeshRenderer> mesh_renderer;  ///< The fragment model, once made.
     std::unique_ptr<gui::ProgressiveView> view_image;
     gui::ThemeConfig theme;
     bool fit_pending = true;  ///< Fit the camera in the next frame (its aspect is known there).
@@ -35,14 +37,15 @@ struct AppState {
     ~AppState();
 };
 
-/// The renderer and the progressive view (needs the window's GL context).
+/// The renderers and the progressive view (needs the window's GL context).
 Expected<void> create_renderer(AppState& app);
 
 /// Loads the PLY files and the synthetic stone into the renderer and the scan list; the
 /// renderer keeps the only copy of the points (on the GPU).
 Expected<void> load_scans(const CloudInputs& inputs, AppState& app);
 
-/// Events, futures and new points of the session; fits the view to the first points.
+/// Events, futures and new points of the session; fits the view to the first points;
+/// shows a mesh once it is made.
 void poll_session(AppState& app);
 
 /// How the frame draws.

@@ -25,7 +25,8 @@ SessionLinkConfig session_link_config(const SessionOptions& options) {
                                                                          : options.flip_after},
                            .sim_unplug_after = options.sim_unplug_after,
                            .worker_nice = options.worker_nice,
-                           .upload_points_per_frame = options.upload_points_per_frame};
+                           .upload_points_per_frame = options.upload_points_per_frame,
+                           .mesh_resolution_mm = options.mesh_resolution_mm};
     link.settings.angular_step_deg = options.angular_step_deg;
     return link;
 }
@@ -113,7 +114,8 @@ int run_field_app(const FieldAppConfig& config) {
     if (config.dump_state_json) {
         const ViewFigures figures{.points_total = app.renderer->total_points(),
                                   .chunks = app.link ? app.link->shown_scans() : 0,
-                                  .camera_preview_rect = camera_preview_rect()};
+                                  .camera_preview_rect = camera_preview_rect(),
+                                  .mesh_triangles = app.mesh_renderer->triangles()};
         if (auto ok = write_state_json(*config.dump_state_json, app.view, figures); !ok)
             return report_error(ok.error());
     }

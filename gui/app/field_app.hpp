@@ -47,6 +47,7 @@ struct SessionOptions {
     /// A loaded scan goes to the GPU in steps of this many points a frame; 0: all in one
     /// frame, shuffled on the UI thread (as before the staged upload; for measuring).
     std::size_t upload_points_per_frame = 20'000;
+    double mesh_resolution_mm = 1.0;  ///< Of the mesh the operator asks for (M).
 };
 
 struct FieldAppConfig {

@@ -74,6 +74,10 @@ HeadlessDriver::Phase HeadlessDriver::drive_session(AppState& app, gui::UiAction
         actions.push_back({.kind = gui::UiActionKind::kReRegister, .seq = config_.reregister_seq});
         return Phase::kReregistering;
     }
+    if (config_.make_mesh && !std::exchange(mesh_sent_, true)) {
+        actions.push_back({.kind = gui::UiActionKind::kMakeMesh});
+        return Phase::kSettling;  // settled again once the mesh is made (or failed)
+    }
     app.fit_pending = true;  // the whole model in the screenshot
     return Phase::kCounting;
 }

@@ -3,7 +3,7 @@
 /// Headless runs (tests, measurements) drive the app as an operator would: the capture
 /// button until `capture_views` captures have finished, then wait until the session has
 /// settled (registration done, points loaded), press the device panel's buttons, re-register
-/// a scan and settle again; then `frames` frames are counted and the last is the
+/// a scan, make the mesh and settle again; then `frames` frames are counted and the last is the
 /// screenshot. An interactive run (frames == 0) has nothing to drive.
 
 #include <cstdint>
@@ -28,6 +28,7 @@ struct HeadlessConfig {
     std::int64_t reregister_seq = 0;          ///< Re-register this scan once settled (0: none).
     bool connect_device = false;              ///< The device panel's "Connect" at start.
     std::vector<std::string> apply_settings;  ///< KEY=VALUE typed and applied once settled.
+    bool make_mesh = false;                   ///< Once settled, "Make the mesh" and wait for it.
     double session_timeout_s = 600.0;         ///< Give up waiting for the session.
     /// The simulated operator turns the view every frame (measuring interaction), pixels.
     double orbit_px_per_frame = 0.0;
@@ -63,6 +64,7 @@ private:
     Phase phase_ = Phase::kCounting;
     int counted_ = 0;
     bool reregister_sent_ = false, connect_sent_ = false, settings_sent_ = false;
+    bool mesh_sent_ = false;
     Stopwatch started_;
 };
 

@@ -58,6 +58,16 @@ void add_session_options(CLI::App& app, anascan::field::FieldAppConfig& config) 
         ->group("");
 }
 
+/// The mesh view: its resolution, and the headless run's "Make the mesh".
+void add_mesh_options(CLI::App& app, anascan::field::FieldAppConfig& config) {
+    app.add_option("--mesh-resolution-mm", config.session.mesh_resolution_mm,
+                   "Resolution of the mesh the operator asks for (M), millimetres (default 1)")
+        ->check(CLI::Range(0.1, 100.0));
+    app.add_flag("--make-mesh", config.headless.make_mesh,
+                 "Headless: once settled, press \"Make the mesh\" and wait for it (needs "
+                 "--session and --frames)");
+}
+
 void add_options(CLI::App& app, anascan::field::FieldAppConfig& config) {
     app.add_option("--cloud", config.inputs.clouds, "PLY file(s) to show, one scan each")
         ->check(CLI::ExistingFile);
@@ -109,6 +119,7 @@ int main(int argc, char** argv) {
     anascan::field::FieldAppConfig config;
     add_options(app, config);
     add_session_options(app, config);
+    add_mesh_options(app, config);
     CLI11_PARSE(app, argc, argv);
     anascan::field::HeadlessConfig& headless = config.headless;
     if (headless.screenshot_png && headless.frames == 0) headless.frames = 5;

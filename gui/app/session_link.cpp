@@ -29,7 +29,8 @@ SessionLink::SessionLink(SessionLinkConfig config)
     : config_(std::move(config)),
       chunks_({.worker_nice = config_.worker_nice,
                .upload_points_per_frame = config_.upload_points_per_frame}),
-      preview_(config_.worker_nice) {}
+      preview_(config_.worker_nice),
+      mesh_(config_.worker_nice, config_.mesh_resolution_mm) {}
 
 SessionLink::~SessionLink() = default;
 
@@ -104,6 +105,7 @@ void SessionLink::poll(gui::FieldViewState& view, gui::PointRenderer& renderer) 
     if (chunks_.poll(store(), renderer)) dirty_ = true;  // the pose may have moved meanwhile
     preview_.poll(store(), view.device);
     device_.poll(device_inputs(), view.device);
+    mesh_.poll(view.mesh, view.scans);
 }
 
 /// Once a second: another process may be capturing into the session (no events then), and
@@ -236,7 +238,8 @@ void SessionLink::refresh_coverage(gui::FieldViewState& view, gui::PointRenderer
 
 bool SessionLink::settled() const {
     return !pending_capture_ && !pending_check_ && !pending_idle_ && !dirty_ &&
-           reregistering_.empty() && chunks_.settled() && preview_.settled() && device_.settled();
+           reregistering_.empty() && chunks_.settled() && preview_.settled() && device_.settled() &&
+           mesh_.settled();
 }
 
 bool SessionLink::busy(const gui::FieldViewState& view) const {

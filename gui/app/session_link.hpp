@@ -7,7 +7,8 @@
 /// captures, scan loads, the crash check and "wait until idle" are futures the UI polls, so
 /// the UI thread never waits for capture, registration or disk. Its parts, by concern: the
 /// scans' points in the renderer (ScanChunks), the newest scan's picture (LastScanPreview)
-/// and the attached device's settings and cameras (DeviceLink); the link itself holds the
+/// the attached device's settings and cameras (DeviceLink) and the fragment model the
+/// operator asked for (MeshMaker); the link itself holds the
 /// session, the operator's actions and the rows.
 
 #include <chrono>
@@ -30,6 +31,7 @@
 #include "anascan/scanner_sources/scanner_source.hpp"
 #include "device_link.hpp"
 #include "last_scan_preview.hpp"
+#include "mesh_maker.hpp"
 #include "scan_chunks.hpp"
 
 namespace anascan::field {
@@ -51,6 +53,7 @@ struct SessionLinkConfig {
     /// A loaded scan's points go to the GPU in steps of this many a frame (glBufferSubData),
     /// shuffled on the load thread; 0: shuffled and uploaded in one frame.
     std::size_t upload_points_per_frame = 20'000;
+    double mesh_resolution_mm = 1.0;  ///< The mesh view's resolution.
 };
 
 /// Session events, pushed by acquisition's threads, drained by the UI thread.
@@ -96,6 +99,8 @@ public:
     /// Time each uploading poll spent taking the loaded scan and copying points, ms.
     const std::vector<double>& upload_work_ms() const { return chunks_.upload_work_ms(); }
     std::size_t shown_scans() const { return chunks_.shown(); }
+    /// The mesh the operator asked for, once it is made (once; then nothing until the next).
+    std::optional<Mesh> take_mesh() { return mesh_.take_mesh(); }
 
 private:
     const acquisition::SessionStore* store() const;
@@ -136,6 +141,7 @@ private:
     ScanChunks chunks_;
     LastScanPreview preview_;
     DeviceLink device_;
+    MeshMaker mesh_;
     std::optional<std::future<Expected<std::int64_t>>> pending_capture_;
     std::optional<std::future<Expected<acquisition::SessionCheckReport>>> pending_check_;
     std::optional<std::future<void>> pending_idle_;

@@ -164,6 +164,9 @@ bool SessionLink::apply(const gui::UiAction& action, gui::FieldViewState& view) 
         case gui::UiActionKind::kOpenDevice:
             open_device(view);
             return true;
+        case gui::UiActionKind::kMakeMesh:
+            mesh_.start(store(), view.mesh);
+            return true;
         case gui::UiActionKind::kApplySettings:
             device_.apply_settings(device_inputs(), view.device.settings);
             return true;

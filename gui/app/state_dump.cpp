@@ -97,6 +97,37 @@ nlohmann::json cameras_json(const gui::DevicePanelState& device,
             {"rect", rect ? nlohmann::json(*rect) : nlohmann::json(nullptr)}};
 }
 
+const char* mesh_status_name(gui::MeshViewState::Status status) {
+    switch (status) {
+        case gui::MeshViewState::Status::kNone:
+            return "none";
+        case gui::MeshViewState::Status::kMaking:
+            return "making";
+        case gui::MeshViewState::Status::kReady:
+            return "ready";
+        case gui::MeshViewState::Status::kFailed:
+            return "failed";
+    }
+    return "?";
+}
+
+nlohmann::json mesh_json(const gui::FieldViewState& view, std::size_t triangles_drawn) {
+    const gui::MeshViewState& m = view.mesh;
+    return {{"status", mesh_status_name(m.status)},
+            {"message", m.message},
+            {"summary", gui::mesh_summary(m)},
+            {"shown", view.view_mode == gui::ViewMode::kMesh},
+            {"resolution_mm", m.resolution_mm},
+            {"scans", m.scans},
+            {"triangles", m.triangles},
+            {"triangles_on_gpu", triangles_drawn},
+            {"area_m2", m.area_m2},
+            {"interpolated_share", m.interpolated_share},
+            {"closed", m.closed},
+            {"seconds", m.seconds},
+            {"outdated", m.outdated}};
+}
+
 }  // namespace
 
 Expected<void> write_state_json(const std::filesystem::path& file, const gui::FieldViewState& view,
@@ -127,6 +158,7 @@ Expected<void> write_state_json(const std::filesystem::path& file, const gui::Fi
           {"caption", view.device.preview_caption}}},
         {"device_settings", device_settings_json(view.device)},
         {"camera_preview", cameras_json(view.device, figures.camera_preview_rect)},
+        {"mesh", mesh_json(view, figures.mesh_triangles)},
         {"points_total", figures.points_total},
         {"chunks", figures.chunks}};
     std::ofstream out(file);

@@ -20,6 +20,7 @@ struct ViewFigures {
     /// Where the camera preview was drawn in the last frame: x, y, width, height in window
     /// pixels (top left origin); absent when it was not drawn.
     std::optional<std::array<float, 4>> camera_preview_rect;
+    std::size_t mesh_triangles = 0;  ///< Triangles of the mesh on the GPU.
 };
 
 /// {"session", "session_check", "scans": [{"seq", "device_id", "state" (queued|registered|

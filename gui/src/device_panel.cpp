@@ -69,6 +69,32 @@ void draw_view_options(const FieldViewState& state, UiActions& actions) {
     if (ImGui::Button("Fit view  (F)")) actions.push_back({.kind = UiActionKind::kFitView});
 }
 
+/// Points or mesh, the mesh button and what the mesh is (or why there is none).
+void draw_mesh_options(const FieldViewState& state, UiActions& actions) {
+    const MeshViewState& mesh = state.mesh;
+    const bool making = mesh.status == MeshViewState::Status::kMaking;
+    ImGui::BeginDisabled(making);
+    const char* label = mesh.status == MeshViewState::Status::kReady ? "Make the mesh again  (M)"
+                                                                     : "Make the mesh  (M)";
+    if (ImGui::Button(label)) actions.push_back({.kind = UiActionKind::kMakeMesh});
+    ImGui::EndDisabled();
+    if (mesh.status == MeshViewState::Status::kReady) {
+        ImGui::TextUnformatted("Show");
+        for (const auto& [mode, name] :
+             {std::pair{ViewMode::kPoints, "points"}, std::pair{ViewMode::kMesh, "mesh  (V)"}}) {
+            ImGui::SameLine();
+            if (ImGui::RadioButton(name, state.view_mode == mode))
+                actions.push_back({.kind = UiActionKind::kSetViewMode, .view_mode = mode});
+        }
+    }
+    const std::string summary = mesh_summary(mesh);
+    if (summary.empty()) return;
+    const bool bad = mesh.status == MeshViewState::Status::kFailed || !mesh.outdated.empty();
+    ImGui::PushStyleColor(ImGuiCol_Text, bad ? detail::kColorWarn : detail::kColorMuted);
+    ImGui::TextWrapped("%s", summary.c_str());
+    ImGui::PopStyleColor();
+}
+
 }  // namespace
 
 void draw_device_panel(const FieldViewState& state, const PanelLayout& layout, UiActions& actions) {
@@ -90,6 +116,7 @@ void draw_device_panel(const FieldViewState& state, const PanelLayout& layout, U
     draw_device_settings(state.device, actions);
     ImGui::Separator();
     draw_view_options(state, actions);
+    draw_mesh_options(state, actions);
     ImGui::TextWrapped("X excludes the newest scan, C cycles the colours.");
     draw_preview(state.device);  // last: the buttons above stay in view
     ImGui::End();

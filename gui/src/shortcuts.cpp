@@ -39,6 +39,16 @@ void handle_shortcuts(const FieldViewState& state, UiActions& actions) {
         actions.push_back(
             {.kind = UiActionKind::kSetColorMode, .color_mode = next_color_mode(state.color_mode)});
     }
+    if (ImGui::IsKeyPressed(kKeyMakeMesh, no_repeat) &&
+        state.mesh.status != MeshViewState::Status::kMaking) {
+        actions.push_back({.kind = UiActionKind::kMakeMesh});
+    }
+    if (ImGui::IsKeyPressed(kKeyViewMode, no_repeat) &&
+        state.mesh.status == MeshViewState::Status::kReady) {
+        actions.push_back({.kind = UiActionKind::kSetViewMode,
+                           .view_mode = state.view_mode == ViewMode::kMesh ? ViewMode::kPoints
+                                                                           : ViewMode::kMesh});
+    }
 }
 
 void draw_field_panels(const FieldViewState& state, const PanelLayout& layout, UiActions& actions) {

@@ -23,6 +23,11 @@ bool apply_view_action(FieldViewState& state, const UiAction& action) {
         case UiActionKind::kSetColorMode:
             state.color_mode = action.color_mode;
             return true;
+        case UiActionKind::kSetViewMode:
+            if (action.view_mode == ViewMode::kPoints ||
+                state.mesh.status == MeshViewState::Status::kReady)
+                state.view_mode = action.view_mode;
+            return true;
         case UiActionKind::kToggleContrast:
             state.high_contrast = !state.high_contrast;
             return true;

@@ -8,6 +8,7 @@
 
 #include "anascan/gui/scan_colors.hpp"
 #include "anascan/processing/coverage/coverage.hpp"
+#include "anascan/processing/surface/fragment_model.hpp"
 
 namespace anascan::gui {
 namespace {
@@ -72,7 +73,8 @@ void draw_axes(ImDrawList& draw, const OrbitCamera& camera, ImVec2 origin, float
 
 void draw_legend(ImDrawList& draw, const FieldViewState& state, ImVec2 bottom_right) {
     const std::vector<LegendEntry> entries = color_legend(state);
-    const char* title = legend_title(state.color_mode);
+    const char* title =
+        state.view_mode == ViewMode::kMesh ? "Mesh surface" : legend_title(state.color_mode);
     const float line = ImGui::GetTextLineHeightWithSpacing();
     float width = ImGui::CalcTextSize(title).x;
     for (const LegendEntry& e : entries)
@@ -123,6 +125,10 @@ std::array<Eigen::Vector2d, 3> axes_on_screen(const OrbitCamera& camera) {
 }
 
 std::vector<LegendEntry> color_legend(const FieldViewState& state, std::size_t max_scans) {
+    if (state.view_mode == ViewMode::kMesh)
+        return {{.color = surface_class_color(SurfaceClass::kMeasured), .label = "measured"},
+                {.color = surface_class_color(SurfaceClass::kInterpolated),
+                 .label = "interpolated (never seen)"}};
     switch (state.color_mode) {
         case ColorMode::kByScan:
             return scan_legend(state, max_scans);

@@ -146,6 +146,62 @@ TEST_F(FieldSession, ShowsASessionAsSessionInfoAndCoverageReportIt) {
     expect_damage_reported(session, state_file);
 }
 
+/// Share of the pixels in `rect` whose colour is the mesh's interpolated orange, shaded by
+/// the headlight (any brightness: red well above green, green well above blue).
+double orange_share(const cv::Mat& bgr, cv::Rect rect) {
+    int n = 0;
+    for (int y = rect.y; y < rect.y + rect.height; ++y) {
+        for (int x = rect.x; x < rect.x + rect.width; ++x) {
+            const cv::Vec3b p = bgr.at<cv::Vec3b>(y, x);
+            n += p[2] > 60 && p[2] > 1.5 * p[1] && p[1] > 1.8 * p[0];
+        }
+    }
+    return double(n) / rect.area();
+}
+
+TEST_F(FieldSession, TheMeshOfTheSessionIsMadeOnRequestAndShownWithItsInterpolatedPart) {
+    const fs::path session = dir_ / "session";
+    // Two structured-light views of one side: much of the stone was never seen.
+    const RunResult captured =
+        cli("--accept-poor capture --device sim:structured-light --scene small-block --session " +
+            session.string() + " --views 2 --flip-after 0 --no-coverage");
+    ASSERT_EQ(captured.exit_code, 0) << captured.output;
+    const fs::path png = dir_ / "mesh.png", state_file = dir_ / "state.json";
+    const RunResult r = field("--session " + session.string() +
+                              " --make-mesh --mesh-resolution-mm 4 --screenshot " + png.string() +
+                              " --dump-state " + state_file.string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const json mesh = read_json(state_file)["mesh"];
+    ASSERT_EQ(mesh["status"], "ready") << mesh.dump(2);
+    EXPECT_TRUE(mesh["shown"].get<bool>());
+    EXPECT_GT(mesh["triangles"].get<int>(), 1000);
+    EXPECT_EQ(mesh["triangles_on_gpu"], mesh["triangles"]);
+    // Of the model group (the views may not have joined: then one scan).
+    EXPECT_GE(mesh["scans"].get<int>(), 1);
+    EXPECT_LE(mesh["scans"].get<int>(), registered_rows(read_json(state_file)));
+    EXPECT_GT(mesh["interpolated_share"].get<double>(), 0.05) << "one side was never seen";
+    EXPECT_LT(mesh["interpolated_share"].get<double>(), 0.95);
+    EXPECT_EQ(mesh["outdated"], "");
+    EXPECT_NE(mesh["summary"].get<std::string>().find("interpolated"), std::string::npos);
+    const cv::Mat image = cv::imread(png.string());
+    ASSERT_FALSE(image.empty());
+    // The view lies between the scan list (300 px x font scale 1.5) and the device panel.
+    const cv::Rect view(460, 60, image.cols - 460 - 370, image.rows - 200);
+    EXPECT_GT(orange_share(image, view), 0.01) << "no interpolated (orange) surface drawn";
+    EXPECT_GT(fraction_not(image, view, kClearRgb), 0.05) << "no mesh drawn in the view";
+}
+
+TEST_F(FieldSession, AMeshAskedForBeforeAnyScanSaysWhy) {
+    const fs::path state_file = dir_ / "state.json";
+    const RunResult r = field("--session " + (dir_ / "new").string() +
+                              " --make-mesh --frames 2 --dump-state " + state_file.string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const json state = read_json(state_file);
+    EXPECT_EQ(state["mesh"]["status"], "failed") << state.dump(2);
+    EXPECT_NE(state["mesh"]["message"].get<std::string>().find("capture first"), std::string::npos);
+    EXPECT_FALSE(state["mesh"]["shown"].get<bool>());
+}
+
 TEST_F(FieldSession, CapturesFromTheCaptureActionRegisterLive) {
     const fs::path session = dir_ / "live", state_file = dir_ / "state.json";
     const RunResult r = field("--session " + session.string() + " " + kDevice +

@@ -7,6 +7,8 @@
 
 #include "anascan/gui/panels.hpp"
 #include "anascan/gui/theme.hpp"
+#include "anascan/gui/view_overlay.hpp"
+#include "anascan/processing/surface/fragment_model.hpp"
 #include "headless_imgui.hpp"
 
 namespace anascan::gui {
@@ -350,6 +352,74 @@ TEST(DisagreeBanner, ScansThatContradictTheirGroupAreNamedNotShownOk) {
     state.scans.pop_back();
     state.scans[2].state = ScanRowState::kExcluded;
     EXPECT_FALSE(session_banner(state).has_value());
+}
+
+TEST(MeshView, MakeTheMeshIsOfferedAndTheViewShowsAMeshOnlyOnceOneIsReady) {
+    HeadlessImGui ui;
+    FieldViewState state = four_registered_scans();
+    const float x = kLayout.width_px - kLayout.device_width_px + 40.0f;
+    auto clicked = [&](UiActionKind kind) {
+        UiActions warmup;
+        ui.frame([&] { draw_field_panels(state, kLayout, warmup); });
+        const UiActions actions = sweep_clicks(ui, state, x, 0.0f, kLayout.height_px);
+        return std::count_if(actions.begin(), actions.end(),
+                             [&](const UiAction& a) { return a.kind == kind; });
+    };
+    EXPECT_GT(clicked(UiActionKind::kMakeMesh), 0);
+    // No mesh yet: the view stays on the points whatever is asked.
+    EXPECT_TRUE(apply_view_action(
+        state, {.kind = UiActionKind::kSetViewMode, .view_mode = ViewMode::kMesh}));
+    EXPECT_EQ(state.view_mode, ViewMode::kPoints);
+    // While a mesh is being made, the button is disabled (no second one).
+    state.mesh.status = MeshViewState::Status::kMaking;
+    EXPECT_EQ(clicked(UiActionKind::kMakeMesh), 0);
+    state.mesh = {.status = MeshViewState::Status::kReady, .scans = 4, .triangles = 812'000};
+    // The points / mesh choice appears, on one line right of "Show".
+    UiActions choice;
+    for (float cx = x; cx < kLayout.width_px; cx += 25.0f) {
+        const UiActions a = sweep_clicks(ui, state, cx, 0.0f, kLayout.height_px);
+        choice.insert(choice.end(), a.begin(), a.end());
+    }
+    EXPECT_GT(std::count_if(choice.begin(), choice.end(),
+                            [](const UiAction& a) {
+                                return a.kind == UiActionKind::kSetViewMode &&
+                                       a.view_mode == ViewMode::kMesh;
+                            }),
+              0);
+    EXPECT_TRUE(apply_view_action(
+        state, {.kind = UiActionKind::kSetViewMode, .view_mode = ViewMode::kMesh}));
+    EXPECT_EQ(state.view_mode, ViewMode::kMesh);
+}
+
+TEST(MeshView, TheSummarySaysWhatTheMeshIsAndWhenItIsOutdated) {
+    MeshViewState mesh;
+    EXPECT_EQ(mesh_summary(mesh), "");
+    mesh = {.status = MeshViewState::Status::kMaking, .message = "normals on 181863 merged points"};
+    EXPECT_EQ(mesh_summary(mesh), "Making the mesh: normals on 181863 merged points");
+    mesh = {.status = MeshViewState::Status::kFailed, .message = "cannot mesh: no points"};
+    EXPECT_EQ(mesh_summary(mesh), "Mesh failed: cannot mesh: no points");
+    mesh = {.status = MeshViewState::Status::kReady,
+            .resolution_mm = 1.0,
+            .scans = 12,
+            .triangles = 1'234'567,
+            .area_m2 = 0.412,
+            .interpolated_share = 0.123,
+            .closed = true,
+            .seconds = 14.2,
+            .outdated = "3 newer scans"};
+    EXPECT_EQ(mesh_summary(mesh),
+              "Mesh: 1.2 M triangles, 0.412 m\u00b2, 12.3 % interpolated, closed; 12 scans, "
+              "1.0 mm, 14.2 s (outdated: 3 newer scans)");
+}
+
+TEST(MeshView, TheLegendNamesTheTwoSurfaceClassesInTheMeshFilesColours) {
+    FieldViewState state = four_registered_scans();
+    state.view_mode = ViewMode::kMesh;
+    const std::vector<LegendEntry> legend = color_legend(state);
+    ASSERT_EQ(legend.size(), 2u);
+    EXPECT_EQ(legend[0].color, surface_class_color(SurfaceClass::kMeasured));
+    EXPECT_EQ(legend[1].color, surface_class_color(SurfaceClass::kInterpolated));
+    EXPECT_NE(legend[1].label.find("interpolated"), std::string::npos);
 }
 
 }  // namespace

@@ -2,5 +2,6 @@
 list(APPEND ANASCAN_ACQUISITION_SOURCES
     src/assembly/assembly.cpp
     src/assembly/json.cpp
+    src/assembly/mesh_scans.cpp
     src/assembly/stone_frame.cpp
 )

@@ -107,6 +107,14 @@ std::vector<std::size_t> LiveRegistrar::State::members(int group) const {
     return out;
 }
 
+std::map<int, std::vector<std::size_t>> LiveRegistrar::State::group_members() const {
+    std::map<int, std::vector<std::size_t>> out;
+    for (std::size_t i = scans.size(); i-- > 0;) {
+        if (live::active(scans[i])) out[scans[i].group].push_back(i);
+    }
+    return out;
+}
+
 std::vector<int> LiveRegistrar::State::groups() const {
     std::set<int> ids;
     for (const ScanEntry& e : scans) {

@@ -6,6 +6,7 @@
 // top (the old bottom): measured on the demo session (docs/live-registration.md).
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "live/state.hpp"
 
@@ -24,11 +25,6 @@ std::optional<Eigen::Vector3d> LiveRegistrar::State::group_up(int group) const {
     // Views from all around cancel sideways; a few views from one direction do not.
     if (sum.norm() < 0.3 * static_cast<double>(ids.size())) return std::nullopt;
     return sum.normalized();
-}
-
-std::size_t LiveRegistrar::State::first_scan(int group) const {
-    const std::vector<std::size_t> ids = members(group);
-    return ids.empty() ? scans.size() : *std::min_element(ids.begin(), ids.end());
 }
 
 int LiveRegistrar::State::group_side(int group) const {
@@ -83,12 +79,17 @@ std::vector<PoseUpdate> LiveRegistrar::State::merge_whole_groups() {
     // Without the session's own noise level (enough links) a look-alike cannot be told from
     // the right pose by its RMS: wait.
     if (!config.merges.whole_groups || !std::isfinite(rms_gate())) return {};
-    const std::vector<int> ids = groups();
+    const std::map<int, std::vector<std::size_t>> in = group_members();
+    std::vector<int> ids;
+    for (const auto& [g, scans_of_g] : in) ids.push_back(g);
+    // Members are most recent first: the back is the group's first scan.
+    const auto size = [&](int g) { return in.at(g).size(); };
+    const auto first_scan = [&](int g) { return in.at(g).back(); };
     for (std::size_t b = 1; b < ids.size(); ++b) {
         for (std::size_t a = 0; a < b; ++a) {
             // Tried again only once one of the groups has grown by half (each try costs
             // seconds; doubling was too rare: a side of 12 scans last tried at 7 never was).
-            const std::size_t size_a = members(ids[a]).size(), size_b = members(ids[b]).size();
+            const std::size_t size_a = size(ids[a]), size_b = size(ids[b]);
             const std::size_t smaller = std::min(size_a, size_b), larger = std::max(size_a, size_b);
             const std::size_t first_a = first_scan(ids[a]), first_b = first_scan(ids[b]);
             auto [it, first] = whole_merge_tried.try_emplace(
@@ -100,7 +101,7 @@ std::vector<PoseUpdate> LiveRegistrar::State::merge_whole_groups() {
                 continue;
             it->second = {smaller, larger};
             // The smaller group is the source: verification asks for overlap of the source.
-            const bool a_smaller = members(ids[a]).size() < members(ids[b]).size();
+            const bool a_smaller = size_a < size_b;
             const int source_id = a_smaller ? ids[a] : ids[b];
             const int target_id = a_smaller ? ids[b] : ids[a];
             GlobalRegistrationConfig global = config.global.registration;

@@ -124,13 +124,14 @@ void LiveRegistrar::State::vote_scan_pair(std::size_t i, std::size_t j, live::Po
     }
 }
 
-std::optional<std::vector<PoseUpdate>> LiveRegistrar::State::merge_by_votes(int a, int b,
-                                                                            std::size_t& attempts) {
+std::optional<std::vector<PoseUpdate>> LiveRegistrar::State::merge_by_votes(
+    int a, int b, const std::vector<std::size_t>& in_a, const std::vector<std::size_t>& in_b,
+    std::size_t& attempts) {
     live::PoseVotes& box =
         merge_votes.try_emplace({a, b}, config.votes.rotation_deg, config.votes.displacement_m)
             .first->second;
-    for (std::size_t j : members(b)) {
-        for (std::size_t i : members(a)) {
+    for (std::size_t j : in_b) {
+        for (std::size_t i : in_a) {
             if (attempts >= config.merges.max_attempts) return std::vector<PoseUpdate>{};
             if (!merge_tried.insert({i, j}).second) continue;
             ++attempts;
@@ -143,7 +144,11 @@ std::optional<std::vector<PoseUpdate>> LiveRegistrar::State::merge_by_votes(int 
 }
 
 std::vector<PoseUpdate> LiveRegistrar::State::merge_groups() {
-    const std::vector<int> ids = groups();
+    const std::map<int, std::vector<std::size_t>> in = group_members();
+    std::vector<int> ids;
+    for (const auto& [g, scans_of_g] : in) ids.push_back(g);
+    // Members are most recent first: the front is the group's side.
+    const auto side = [&](int g) { return scans[in.at(g).front()].side; };
     std::size_t attempts = 0;
     for (std::size_t b = 1; b < ids.size(); ++b) {
         for (std::size_t a = 0; a < b; ++a) {
@@ -151,8 +156,9 @@ std::vector<PoseUpdate> LiveRegistrar::State::merge_groups() {
             // times worse than the right one: without the session's RMS gate (enough
             // links), their votes can carry a wrong merge (seen on the demo session when
             // the capture kept the background too busy for links). Wait for the gate.
-            if (group_side(ids[a]) != group_side(ids[b]) && !std::isfinite(rms_gate())) continue;
-            if (auto done = merge_by_votes(ids[a], ids[b], attempts)) return std::move(*done);
+            if (side(ids[a]) != side(ids[b]) && !std::isfinite(rms_gate())) continue;
+            if (auto done = merge_by_votes(ids[a], ids[b], in.at(ids[a]), in.at(ids[b]), attempts))
+                return std::move(*done);
         }
     }
     return {};

@@ -179,6 +179,9 @@ struct LiveRegistrar::State {
     std::vector<std::size_t> members(int group) const;
     /// Groups with a registered, not excluded scan, ascending.
     std::vector<int> groups() const;
+    /// Every group's members (as members()), in one pass over the scans: the merge loops
+    /// visit every pair of groups, and a pass per pair cost minutes on long sessions.
+    std::map<int, std::vector<std::size_t>> group_members() const;
     /// Features of entry i (computed at the session's radii and levels on first use).
     const ScanFeatures& features(std::size_t i);
 
@@ -270,7 +273,10 @@ struct LiveRegistrar::State {
     /// Votes for the transform between groups a and b from global registrations of their
     /// scan pairs not tried yet. The merge's updates once the votes decide; empty updates
     /// when the call's `attempts` budget ran out; none when the pairs are exhausted.
-    std::optional<std::vector<PoseUpdate>> merge_by_votes(int a, int b, std::size_t& attempts);
+    std::optional<std::vector<PoseUpdate>> merge_by_votes(int a, int b,
+                                                          const std::vector<std::size_t>& in_a,
+                                                          const std::vector<std::size_t>& in_b,
+                                                          std::size_t& attempts);
     /// Global registration of entry j against entry i, verified poses (group a <- group b)
     /// within the RMS gate added to `box`.
     void vote_scan_pair(std::size_t i, std::size_t j, live::PoseVotes& box);
@@ -307,8 +313,6 @@ struct LiveRegistrar::State {
     /// at once, again and again (random-block:1, guided: 354 splits in 24 scans).
     std::map<std::pair<std::size_t, std::size_t>, std::pair<std::size_t, std::size_t>>
         whole_merge_tried;
-    /// The group's first scan (lowest entry index): its name across splits and merges.
-    std::size_t first_scan(int group) const;
     /// The group's stone-only clouds in its frame, merged and voxel down-sampled.
     PointCloud group_cloud(int group) const;
     /// The voted transform between two groups refined by fine registration of the groups'

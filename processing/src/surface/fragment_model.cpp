@@ -50,14 +50,14 @@ std::vector<SurfaceClass> triangle_classes_from_vertices(
     return out;
 }
 
+Rgb8 surface_class_color(SurfaceClass c) {
+    return c == SurfaceClass::kMeasured ? Rgb8{178, 172, 160} : Rgb8{235, 120, 30};
+}
+
 void colour_by_class(FragmentModel& model) {
-    constexpr Rgb8 kMeasured{178, 172, 160};
-    constexpr Rgb8 kInterpolated{235, 120, 30};
     model.mesh.vertices.colors.resize(model.mesh.vertices.size());
-    for (std::size_t v = 0; v < model.vertex_class.size(); ++v) {
-        model.mesh.vertices.colors[v] =
-            model.vertex_class[v] == SurfaceClass::kMeasured ? kMeasured : kInterpolated;
-    }
+    for (std::size_t v = 0; v < model.vertex_class.size(); ++v)
+        model.mesh.vertices.colors[v] = surface_class_color(model.vertex_class[v]);
 }
 
 }  // namespace anascan

@@ -69,7 +69,8 @@ bool draw_failure_banner(const FieldViewState& state, const PanelLayout& layout,
                          UiActions& actions);
 
 /// Keyboard shortcuts (ignored while a text field has focus): Space = capture,
-/// X = exclude the newest scan, T = turned over, F = fit view, C = cycle colour mode.
+/// X = exclude the newest scan, T = turned over, F = fit view, C = cycle colour mode,
+/// M = make the mesh, V = switch between points and mesh.
 void handle_shortcuts(const FieldViewState& state, UiActions& actions);
 
 /// Key indices of the shortcuts in ImGuiIO::KeysDown (GLFW key codes, which are ASCII for
@@ -79,6 +80,8 @@ inline constexpr int kKeyExcludeLast = 'X';
 inline constexpr int kKeyTurnedOver = 'T';
 inline constexpr int kKeyFitView = 'F';
 inline constexpr int kKeyColorMode = 'C';
+inline constexpr int kKeyMakeMesh = 'M';
+inline constexpr int kKeyViewMode = 'V';
 
 /// Draws every panel (banner, scan list, device panel, status bar) and the shortcuts.
 void draw_field_panels(const FieldViewState& state, const PanelLayout& layout, UiActions& actions);

@@ -25,6 +25,8 @@ enum class UiActionKind {
     kEditSetting,     ///< setting_index, value: the operator typed a setting (view only).
     kApplySettings,   ///< Apply the edited settings to the device.
     kRevertSettings,  ///< Forget the edits: back to the settings in effect (view only).
+    kMakeMesh,        ///< Make the fragment model of the view's group (in the background).
+    kSetViewMode,     ///< view_mode: points or mesh (view only; mesh once one is ready).
 };
 
 /// One operator request.
@@ -33,6 +35,7 @@ struct UiAction {
     std::int64_t seq = -1;                      ///< For the scan actions.
     int device_index = -1;                      ///< For kConnectDevice.
     ColorMode color_mode = ColorMode::kByScan;  ///< For kSetColorMode.
+    ViewMode view_mode = ViewMode::kPoints;     ///< For kSetViewMode.
     int setting_index = -1;                     ///< For kEditSetting: into the form.
     double value = 0.0;                         ///< For kEditSetting: number, or choice index.
     friend bool operator==(const UiAction&, const UiAction&) = default;

@@ -49,7 +49,8 @@ struct LegendEntry {
 /// The legend of the view's colour mode: by scan, the scans in the view (newest last, at
 /// most `max_scans`, with "…" first when there are more); by quality, the classes of
 /// quality_color; by coverage, the hole markers in the colour `anascan coverage --ply`
-/// gives unobserved samples.
+/// gives unobserved samples. The mesh view's legend is its two surface classes, in the
+/// colours of the mesh files.
 std::vector<LegendEntry> color_legend(const FieldViewState& state, std::size_t max_scans = 8);
 
 /// The legend's title ("Colour by scan", ...).

@@ -43,6 +43,9 @@ FragmentModel select_triangles(const FragmentModel& model, const std::vector<boo
 std::vector<SurfaceClass> triangle_classes_from_vertices(
     const Mesh& mesh, std::span<const SurfaceClass> vertex_class);
 
+/// A class's colour (measured: stone grey, interpolated: orange), in files and on screen.
+Rgb8 surface_class_color(SurfaceClass c);
+
 /// Colours each vertex by its class (measured: stone grey, interpolated: orange), so that
 /// any viewer shows what was filled in.
 void colour_by_class(FragmentModel& model);
