@@ -57,7 +57,9 @@ Expected<std::unique_ptr<CaptureSession>> CaptureSession::start(std::unique_ptr<
     if (!store) return fail(ErrorCode::kInvalidArgument, "capture session: no session store");
     auto impl = std::make_unique<Impl>(std::move(store), std::move(config), std::move(sink));
     Impl& self = *impl;
-    self.requeue_session_scans();
+    // The registrar's state is rebuilt by registering the session's scans again; a capture
+    // that only saves (register later) needs none of it, however many scans there are.
+    if (self.config.register_live) self.requeue_session_scans();
     self.save_thread = std::jthread([&self] { self.save_loop(); });
     self.registration_thread = std::jthread([&self] { self.registration_loop(); });
     return std::unique_ptr<CaptureSession>(new CaptureSession(std::move(impl)));

@@ -97,6 +97,22 @@ TEST_F(OperatorCapture, AnotherStoneIsNotMixedInWithoutAskingTheSameTurnedOverIs
     EXPECT_EQ(excluded_scans(session()), 1u) << "only the refused scan is out of the model";
 }
 
+// A capture that only saves adds to a registered session without registering its scans
+// again (that rebuilds the live registrar, seconds per scan) and leaves their results alone.
+TEST_F(OperatorCapture, ResumingWithoutRegistrationRegistersNothingAgain) {
+    ASSERT_NE(run_cli(registered_capture(session(), "small-block", "--views 3")).exit_code, 1);
+    const auto saved_only = run_cli(capture("small-block", "--views 4 --flip-after 0"));
+    EXPECT_EQ(saved_only.exit_code, 0) << saved_only.output;
+    EXPECT_TRUE(contains(saved_only.output, "saved scan 4")) << saved_only.output;
+    EXPECT_FALSE(contains(saved_only.output, "registered again")) << saved_only.output;
+    const auto info = testing_util::run_cli_stdout("session info " + session().string() + " --json");
+    const auto j = nlohmann::json::parse(info.output, nullptr, false);
+    ASSERT_TRUE(j.is_object()) << info.output;
+    ASSERT_EQ(j["scans"].size(), 4u);
+    for (int k = 0; k < 3; ++k) EXPECT_NE(j["scans"][k]["state"], "queued") << info.output;
+    EXPECT_EQ(j["scans"][3]["state"], "queued") << "saved only, to register later";
+}
+
 TEST_F(OperatorCapture, CtrlCStopsAfterTheScanInFlightAndSaysHowToResume) {
     const fs::path log = dir_ / "log";
     // The simulated operator walks 30 s between views: SIGINT comes during the walk.
