@@ -14,12 +14,12 @@ namespace {
 
 constexpr int kTurnedSideWalk = 6;  // Fixed views around the turned side until it joins.
 
+using Scans = std::vector<acquisition::ScanRecord>;
+
 // Whether the model (the largest group) holds a scan taken after scan `last_before_turn`.
-bool turned_side_joined(const acquisition::SessionStore& store, std::int64_t last_before_turn) {
-    auto scans = store.scans();
-    if (!scans) return false;
-    const int group = acquisition::largest_group(*scans);
-    for (const acquisition::ScanRecord& s : *scans)
+bool turned_side_joined(const Scans& scans, std::int64_t last_before_turn) {
+    const int group = acquisition::largest_group(scans);
+    for (const acquisition::ScanRecord& s : scans)
         if (s.seq > last_before_turn && acquisition::counts_in_group(s) && s.group == group)
             return true;
     return false;
@@ -31,21 +31,14 @@ std::int64_t last_seq(const std::vector<acquisition::ScanRecord>& scans) {
     return last;
 }
 
-std::int64_t scan_count(const acquisition::SessionStore& store) {
-    auto scans = store.scans();
-    return scans ? static_cast<std::int64_t>(scans->size()) : 0;
-}
-
 }  // namespace
 
-void GuidedOperator::note_whether_the_asked_view_joined(const acquisition::SessionStore& store) {
+void GuidedOperator::note_whether_the_asked_view_joined(const Scans& scans) {
     if (!asked_) return;
     const AskedView asked = *asked_;
     asked_.reset();
-    auto scans = store.scans();
-    if (!scans) return;
-    const int group = acquisition::largest_group(*scans);
-    for (const acquisition::ScanRecord& s : *scans) {
+    const int group = acquisition::largest_group(scans);
+    for (const acquisition::ScanRecord& s : scans) {
         if (s.seq != asked.seq) continue;
         if (acquisition::counts_in_group(s) && s.group == group) return;
         failed_.push_back(asked);
@@ -57,12 +50,9 @@ void GuidedOperator::note_whether_the_asked_view_joined(const acquisition::Sessi
     }
 }
 
-std::vector<Eigen::Vector3d> GuidedOperator::failed_views(
-    const acquisition::SessionStore& store) const {
-    auto scans = store.scans();
-    if (!scans) return {};
+std::vector<Eigen::Vector3d> GuidedOperator::failed_views(const Scans& scans) const {
     // Positions are in the frame of the group that was the model when they were asked for.
-    const int group = acquisition::largest_group(*scans);
+    const int group = acquisition::largest_group(scans);
     std::vector<Eigen::Vector3d> out;
     for (const AskedView& v : failed_)
         if (v.group == group) out.push_back(v.sensor_model_m);
@@ -78,9 +68,12 @@ std::optional<acquisition::CaptureRequest> GuidedOperator::next(
     acquisition::CaptureSession& session, int index) {
     if (index == 0) return scanner_sources::tour_request(tour_, 0);
     session.wait_until_idle();
-    note_whether_the_asked_view_joined(session.store());
+    // The scans as the plan sees them, read once (the session is idle until the next view).
+    auto read = session.store().scans();
+    const Scans scans = read ? std::move(*read) : Scans{};
+    note_whether_the_asked_view_joined(scans);
     NextViewConfig config;
-    config.failed_sensor_positions_world = failed_views(session.store());
+    config.failed_sensor_positions_world = failed_views(scans);
     auto plan = acquisition::session_next_view(session.store(), {}, config);
     if (!plan) {
         spdlog::warn("guided tour: no plan ({}); walking on", plan.error().message);
@@ -90,17 +83,14 @@ std::optional<acquisition::CaptureRequest> GuidedOperator::next(
     std::printf("coverage %.1f %%; next: %s\n", 100.0 * plan->coverage.fraction,
                 plan->view.hint.c_str());
     if (plan->coverage.fraction >= target_fraction_) return std::nullopt;
-    const bool plan_fits_the_stone =
-        !turned_ || turned_side_joined(session.store(), last_before_turn_);
+    const bool plan_fits_the_stone = !turned_ || turned_side_joined(scans, last_before_turn_);
     if (plan->view.advice == NextViewAdvice::kScan && plan_fits_the_stone) {
         auto to_truth = acquisition::group_to_truth(session.store());
         if (to_truth && *to_truth) {
             const Pose& T = **to_truth;
-            auto scans = session.store().scans();
-            if (scans)
-                asked_ = AskedView{.sensor_model_m = plan->view.sensor_world_m,
-                                   .group = acquisition::largest_group(*scans),
-                                   .seq = last_seq(*scans) + 1};
+            asked_ = AskedView{.sensor_model_m = plan->view.sensor_world_m,
+                               .group = acquisition::largest_group(scans),
+                               .seq = last_seq(scans) + 1};
             return scanner_sources::guided_request(tour_,
                                                    {.sensor_m = T * plan->view.sensor_world_m,
                                                     .aim_m = T * plan->view.aim_world_m,
@@ -110,7 +100,7 @@ std::optional<acquisition::CaptureRequest> GuidedOperator::next(
     }
     if (plan->view.advice == NextViewAdvice::kTurnOver && !turned_) {
         turned_ = true;
-        last_before_turn_ = scan_count(session.store());
+        last_before_turn_ = static_cast<std::int64_t>(scans.size());
         std::printf("the stone is turned over before view %d\n", index + 1);
         return after_turn();
     }

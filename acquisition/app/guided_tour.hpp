@@ -38,9 +38,10 @@ private:
 
     std::optional<acquisition::CaptureRequest> after_turn();
     /// Records the last asked view as failed when its scan is not in the model.
-    void note_whether_the_asked_view_joined(const acquisition::SessionStore& store);
+    void note_whether_the_asked_view_joined(const std::vector<acquisition::ScanRecord>& scans);
     /// The failed views in the frame of the model as it is now.
-    std::vector<Eigen::Vector3d> failed_views(const acquisition::SessionStore& store) const;
+    std::vector<Eigen::Vector3d> failed_views(
+        const std::vector<acquisition::ScanRecord>& scans) const;
 
     scanner_sources::SimulatedTour tour_;
     double target_fraction_;
