@@ -1,7 +1,12 @@
 // `anascan capture` as an operator meets it: a device or scene that does not open fails
 // before anything is written or asked; another stone is not mixed in without asking;
-// Ctrl-C stops cleanly and says how to resume.
+// a guided view that gave no model scan is not asked for again; a capture that only saves
+// registers nothing again; Ctrl-C stops cleanly and says how to resume.
 #include <nlohmann/json.hpp>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
 
 #include "cli_runner.hpp"
 #include "text_match.hpp"
@@ -105,12 +110,50 @@ TEST_F(OperatorCapture, ResumingWithoutRegistrationRegistersNothingAgain) {
     EXPECT_EQ(saved_only.exit_code, 0) << saved_only.output;
     EXPECT_TRUE(contains(saved_only.output, "saved scan 4")) << saved_only.output;
     EXPECT_FALSE(contains(saved_only.output, "registered again")) << saved_only.output;
-    const auto info = testing_util::run_cli_stdout("session info " + session().string() + " --json");
+    const auto info =
+        testing_util::run_cli_stdout("session info " + session().string() + " --json");
     const auto j = nlohmann::json::parse(info.output, nullptr, false);
     ASSERT_TRUE(j.is_object()) << info.output;
     ASSERT_EQ(j["scans"].size(), 4u);
     for (int k = 0; k < 3; ++k) EXPECT_NE(j["scans"][k]["state"], "queued") << info.output;
     EXPECT_EQ(j["scans"][3]["state"], "queued") << "saved only, to register later";
+}
+
+/// The hints of a guided tour's output ("next: ..." lines), in order, and for each the scan
+/// its view gave: the tour's first view is no hint, so hint k gives scan k + 2.
+std::vector<std::string> hints(const std::string& output) {
+    std::vector<std::string> out;
+    std::istringstream lines(output);
+    for (std::string line; std::getline(lines, line);) {
+        const std::size_t at = line.find("; next: ");
+        if (at != std::string::npos) out.push_back(line.substr(at + 8));
+    }
+    return out;
+}
+
+// The guided operator walks where the next-best-view says; a view whose scan did not join
+// the model is named, and the next hint asks for another view.
+TEST_F(OperatorCapture, AGuidedViewWhoseScanDidNotJoinIsNotAskedForAgain) {
+    const auto run = run_cli(
+        "--accept-poor capture --device sim:structured-light --scene "
+        "small-block --session " +
+        session().string() + " --tour guided --views 6 </dev/null");
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    const std::vector<std::string> asked = hints(run.output);
+    ASSERT_GE(asked.size(), 2u) << run.output;
+    const std::regex failed(
+        R"(guided tour: scan (\d+), from the view asked for, is not in the model)");
+    int failures = 0;
+    for (std::sregex_iterator m(run.output.begin(), run.output.end(), failed), end; m != end; ++m) {
+        const std::size_t scan = std::stoul((*m)[1]);
+        const std::size_t k = scan - 2;       // The hint that gave it.
+        if (k + 1 >= asked.size()) continue;  // The tour ended after it.
+        ++failures;
+        EXPECT_NE(asked[k + 1], asked[k]) << "scan " << scan << "'s view asked for again";
+    }
+    // On this block the guided views (1.4 m from the aim) often do not join: the test needs
+    // one. If they all join one day, this fails and the test needs another scene.
+    EXPECT_GT(failures, 0) << run.output;
 }
 
 TEST_F(OperatorCapture, CtrlCStopsAfterTheScanInFlightAndSaysHowToResume) {
