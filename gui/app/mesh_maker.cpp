@@ -45,13 +45,13 @@ void MeshMaker::start(const acquisition::SessionStore* store, gui::MeshViewState
                 .message = "no scans yet: capture first"};
         return;
     }
-    auto scans = acquisition::session_mesh_scans(*store);
-    if (!scans) {
-        view = {.status = gui::MeshViewState::Status::kFailed, .message = scans.error().message};
+    auto session = acquisition::session_mesh_scans(*store);
+    if (!session) {
+        view = {.status = gui::MeshViewState::Status::kFailed, .message = session.error().message};
         return;
     }
-    auto records = store->scan(scans->front().seq);
-    group_ = records ? records->group : -1;
+    group_ = session->group;
+    auto* scans = &session->scans;
     scans_.clear();
     for (const acquisition::MeshScan& s : *scans) scans_.insert(s.seq);
     view = {.status = gui::MeshViewState::Status::kMaking,

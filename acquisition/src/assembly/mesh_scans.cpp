@@ -71,7 +71,7 @@ Expected<MeshedScans> mesh_scans(std::span<const MeshScan> scans, const SurfaceC
     return out;
 }
 
-Expected<std::vector<MeshScan>> session_mesh_scans(const SessionStore& store, int group) {
+Expected<SessionMeshScans> session_mesh_scans(const SessionStore& store, int group) {
     auto records = store.scans();
     if (!records) return fail(records.error());
     if (group < 0) group = largest_group(*records);
@@ -84,7 +84,7 @@ Expected<std::vector<MeshScan>> session_mesh_scans(const SessionStore& store, in
         return fail(ErrorCode::kEmpty,
                     store.dir().string() + ": no registered scan to mesh" +
                         (group >= 0 ? " in group " + std::to_string(group) : ""));
-    return out;
+    return SessionMeshScans{.group = group, .scans = std::move(out)};
 }
 
 }  // namespace anascan::acquisition

@@ -41,8 +41,14 @@ struct MeshedScans {
 Expected<MeshedScans> mesh_scans(std::span<const MeshScan> scans, const SurfaceConfig& config,
                                  const ProgressFn& progress = {});
 
+/// A session group's scans to mesh.
+struct SessionMeshScans {
+    int group = -1;
+    std::vector<MeshScan> scans;
+};
+
 /// The scans of `group` that are registered, not excluded and placed (-1: the model group,
 /// the largest), in the session's frame, with their recorded sensor origins.
-Expected<std::vector<MeshScan>> session_mesh_scans(const SessionStore& store, int group = -1);
+Expected<SessionMeshScans> session_mesh_scans(const SessionStore& store, int group = -1);
 
 }  // namespace anascan::acquisition
