@@ -63,8 +63,10 @@ def main():
         wrong += off
         if members is main_group:
             worst = (max(r for r, _ in e), max(t for _, t in e))
-    cov = d.get("coverage") or {}
-    percent = cov.get("covered_fraction", float("nan")) * 100.0 if cov else float("nan")
+    cov = d.get("coverage")  # The covered fraction (older sessions: an object holding it).
+    if isinstance(cov, dict):
+        cov = cov.get("covered_fraction")
+    percent = float(cov) * 100.0 if cov is not None else float("nan")
     lat = sorted(s["latency_s"] for s in scans if s.get("latency_s") is not None)
     med = lat[len(lat) // 2] if lat else float("nan")
     p95 = lat[min(len(lat) - 1, int(0.95 * (len(lat) - 1) + 0.5))] if lat else float("nan")

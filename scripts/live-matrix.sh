@@ -7,7 +7,8 @@
 # median / p95 (s).
 # Usage: scripts/live-matrix.sh [ANASCAN] [OUT_DIR] [RANDOM_BLOCKS] [VIEWS]
 #   MATRIX_SCENES / MATRIX_DEVICES (space separated) override the lists; MATRIX_SEED the tour
-#   seed (1). Runs under `nice -n 10`.
+#   seed (1); MATRIX_TOUR=footprint walks each block's outline with as many views as it needs
+#   (VIEWS is then ignored; default: the fixed circle of VIEWS views). Runs under `nice -n 10`.
 set -uo pipefail
 ANASCAN=${1:-build/acquisition/anascan}
 OUT=${2:-/tmp/live-matrix}
@@ -26,8 +27,13 @@ for device in $DEVICES; do
     for scene in $SCENES; do
         name="${device#sim:}-${scene/:/-}"
         rm -rf "${OUT:?}/$name"
+        if [ "${MATRIX_TOUR:-fixed}" = footprint ]; then
+            tour=(--tour footprint)
+        else
+            tour=(--views "$VIEWS" --flip-after $((VIEWS / 2)))
+        fi
         nice -n 10 "$ANASCAN" --accept-poor capture --device "$device" --scene "$scene" \
-            --session "$OUT/$name" --views "$VIEWS" --flip-after $((VIEWS / 2)) \
+            --session "$OUT/$name" "${tour[@]}" \
             --tour-seed "${MATRIX_SEED:-1}" >"$OUT/$name.log" 2>&1
         "$ANASCAN" session info "$OUT/$name" --json >"$OUT/$name.json" 2>>"$OUT/$name.log" &&
             /usr/bin/python3 "$HERE/live-matrix-score.py" "$OUT/$name" "$scene" "$device" \

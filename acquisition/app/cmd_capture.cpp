@@ -33,7 +33,7 @@ struct CaptureOptions {
     std::string device;
     std::string session;
     std::string scene;
-    int views = 24;
+    int views = -1;       ///< -1: as the tour needs (resolve_tour).
     int flip_after = -1;  ///< -1: half the views.
     std::uint64_t tour_seed = 1;
     double distance_m = 1.1;
@@ -44,7 +44,8 @@ struct CaptureOptions {
     scanner_sources::ScannerSettings settings;  ///< Only the fields given on the command line.
     double reconnect_timeout_s = 10.0;
     double operator_pause_s = 0.0;  ///< Simulated operator's walk between views.
-    std::string tour = "fixed";     ///< Simulated operator: "fixed" walk or "guided" by hints.
+    /// Simulated operator: "fixed" circle, "footprint" walk or "guided" by hints.
+    std::string tour = "fixed";
     double target_coverage_percent = 99.0;  ///< A guided tour stops here.
 };
 
@@ -239,7 +240,27 @@ scanner_sources::SimulatedTour simulated_tour(const CaptureOptions& o) {
     return {.views = o.views,
             .flip_after = o.flip_after < 0 ? o.views / 2 : o.flip_after,
             .distance_m = o.distance_m,
-            .seed = o.tour_seed};
+            .seed = o.tour_seed,
+            .follow_footprint = o.tour == "footprint"};
+}
+
+/// The number of views when the command line leaves it open: the footprint walk of a
+/// simulated device takes as many as the block's outline needs (both sides, or one with
+/// --flip-after 0); the other tours and a real scanner's operator take 24.
+CaptureOptions resolve_tour(CaptureOptions o, const std::string& uri) {
+    if (o.views > 0) return o;
+    o.views = 24;
+    if (o.tour != "footprint" || !scanner_sources::is_simulated(uri)) return o;
+    auto per_side = scanner_sources::footprint_views_per_side(uri, simulated_tour(o));
+    if (!per_side) fail_command(per_side.error());
+    const bool turned_over = o.flip_after != 0;
+    if (o.flip_after < 0) o.flip_after = *per_side;
+    o.views = turned_over ? o.flip_after + *per_side : *per_side;
+    std::printf("the simulated operator walks the block's footprint: %d views%s\n", o.views,
+                turned_over
+                    ? (", the stone turned over after " + std::to_string(o.flip_after)).c_str()
+                    : "");
+    return o;
 }
 
 [[noreturn]] void throw_interrupted(const acquisition::SessionStore& store,
@@ -304,8 +325,9 @@ std::optional<Error> capture_all_views(CaptureSession& session, const CaptureOpt
     return stopped;
 }
 
-void run_capture(const CaptureOptions& o) {
-    const std::string uri = device_uri(o);
+void run_capture(const CaptureOptions& given) {
+    const std::string uri = device_uri(given);
+    const CaptureOptions o = resolve_tour(given, uri);
     const scanner_sources::ScannerSource source{
         .uri = uri, .settings = o.settings, .sim_unplug_after = o.sim_unplug_after};
     auto opener = open_now(uri, scanner_sources::make_scanner_opener(source));
@@ -349,11 +371,13 @@ void add_simulated_operator_options(CLI::App& cmd, CaptureOptions& opts) {
         ->check(CLI::Range(0.5, 3.0));
     cmd.add_option("--tour-seed", opts.tour_seed, "Seed of the simulated operator's jitter");
     cmd.add_option("--tour", opts.tour,
-                   "Simulated operator: 'fixed' walks around the block (--views, "
-                   "--flip-after); 'guided' follows the next-best-view hints after each scan, "
-                   "turns the stone over when they say so, and stops at --target-coverage or "
-                   "after --views")
-        ->check(CLI::IsMember({"fixed", "guided"}));
+                   "Simulated operator: 'fixed' (the default) circles the block's centre "
+                   "(--views, --flip-after); 'footprint' walks along the block's outline at "
+                   "--distance-m from the stone, with as many views as the outline needs "
+                   "unless --views is given; 'guided' follows the next-best-view hints after "
+                   "each scan, turns the stone over when they say so, and stops at "
+                   "--target-coverage or after --views")
+        ->check(CLI::IsMember({"footprint", "fixed", "guided"}));
     cmd.add_option("--target-coverage", opts.target_coverage_percent,
                    "Guided tour: stop once the coverage reaches this, percent (default 99)")
         ->check(CLI::Range(1.0, 100.0));
@@ -375,7 +399,9 @@ void add_capture_command(CLI::App& app) {
     cmd->add_option("--session", opts->session, "Session folder (created, or resumed)")->required();
     cmd->add_option("--scene", opts->scene,
                     "Scene of a simulated device (anascan sim list-scenes)");
-    cmd->add_option("--views", opts->views, "Views in the whole session (default 24)")
+    cmd->add_option("--views", opts->views,
+                    "Views in the whole session (default 24; the footprint walk: as many "
+                    "as the block's outline needs)")
         ->check(CLI::Range(1, 10000));
     add_simulated_operator_options(*cmd, *opts);
     cmd->add_option("--exposure-us", opts->settings.exposure_us, "Device exposure, microseconds");

@@ -24,6 +24,7 @@ sim::ScanningTourConfig tour_config(const SimulatedTour& tour) {
     return {.views = tour.views,
             .flip_after = tour.flip_after,
             .distance_m = tour.distance_m,
+            .follow_footprint = tour.follow_footprint,
             .seed = tour.seed};
 }
 
@@ -65,6 +66,13 @@ std::vector<ScannerListing> list_scanners() {
 }
 
 bool is_simulated(const std::string& uri) { return uri.rfind("sim:", 0) == 0; }
+
+Expected<int> footprint_views_per_side(const std::string& uri, const SimulatedTour& tour) {
+    auto target = sim::sim_device_target(uri);
+    if (!target) return fail(target.error());
+    return sim::footprint_views_per_side(tour_config(tour), target->scene.placement,
+                                         target->scene.block.size_m, target->terrestrial);
+}
 
 CaptureRequest tour_request(const SimulatedTour& tour, int index) {
     const sim::ScanningTourConfig config = tour_config(tour);

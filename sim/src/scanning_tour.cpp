@@ -4,6 +4,7 @@
 #include <cmath>
 #include <random>
 
+#include "anascan/sim/footprint_walk.hpp"
 #include "anascan/sim/sim_structured_light_scanner.hpp"
 #include "anascan/sim/sim_tof_scanner.hpp"
 
@@ -40,6 +41,8 @@ void add_side(const ScanningTourConfig& config, int count, bool turned, std::mt1
         step.turn_now = turned && i == 0;
         step.view.distance_m = config.distance_m;
         step.view.azimuth_deg = config.start_azimuth_deg + i * step_deg + jitter(rng);
+        if (config.follow_footprint)
+            step.walk_fraction = (i + 0.5) / std::max(count, 1) + jitter(rng) / 360.0;
         step.view.elevation_deg =
             (i % 2 == 0 ? config.elevation_low_deg : config.elevation_high_deg) + jitter(rng);
         steps.push_back(step);
@@ -47,6 +50,14 @@ void add_side(const ScanningTourConfig& config, int count, bool turned, std::mt1
 }
 
 }  // namespace
+
+int footprint_views_per_side(const ScanningTourConfig& config, const BlockPlacement& placement,
+                             const Eigen::Vector3d& size_m, bool terrestrial) {
+    if (terrestrial) return std::max(1, config.terrestrial_views_per_side);
+    return walk_views(block_footprint(placement, size_m),
+                      walk_spacing(config.distance_m, config.field_width_deg, config.field_overlap,
+                                   config.corner_step_deg));
+}
 
 std::vector<TourStep> plan_scanning_tour(const ScanningTourConfig& config) {
     std::vector<TourStep> steps;
@@ -94,12 +105,40 @@ PlacedStep place_for_step(drivers::Scanner& scanner, const ScanningTourConfig& c
             block_pose(now, size).translation()};
 }
 
+constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
+
+/// The footprint walk's view: the head aims at the outline point at three quarters of the
+/// block's height from outside; a terrestrial station stands out from the block there.
+void walk_to(SimScanner& sim, const ScanningTourConfig& config, const TourStep& step) {
+    const Footprint footprint =
+        block_footprint(sim.scene_config().placement, sim.scene_config().block.size_m);
+    const WalkSpacing spacing = walk_spacing(config.distance_m, config.field_width_deg,
+                                             config.field_overlap, config.corner_step_deg);
+    const OutlinePoint at = outline_point(footprint, spacing, *step.walk_fraction);
+    const double azimuth_deg = std::atan2(at.outward.y(), at.outward.x()) * kRadToDeg;
+    if (auto* sl = dynamic_cast<SimStructuredLightScanner*>(&sim)) {
+        const double aim_z = footprint.bottom_m + 0.75 * (footprint.top_m - footprint.bottom_m);
+        sl->aim_at(Eigen::Vector3d(at.point_m.x(), at.point_m.y(), aim_z));
+        sl->move_to({.azimuth_deg = azimuth_deg,
+                     .elevation_deg = step.view.elevation_deg,
+                     .distance_m = step.view.distance_m});
+    }
+    if (auto* tof = dynamic_cast<SimTofScanner*>(&sim))
+        tof->move_to({.azimuth_deg = azimuth_deg,
+                      .distance_m = config.tripod_distance_m,
+                      .height_m = config.tripod_height_m});
+}
+
 }  // namespace
 
 std::optional<Pose> apply_tour_step(drivers::Scanner& scanner, const ScanningTourConfig& config,
                                     const TourStep& step) {
     const PlacedStep placed = place_for_step(scanner, config, step);
     if (placed.sim == nullptr) return std::nullopt;
+    if (step.walk_fraction) {
+        walk_to(*placed.sim, config, step);
+        return placed.T_truth_world;
+    }
     if (auto* sl = dynamic_cast<SimStructuredLightScanner*>(placed.sim)) {
         sl->aim_at(std::nullopt);
         sl->move_to(step.view);
@@ -120,7 +159,6 @@ std::optional<Pose> apply_guided_view(drivers::Scanner& scanner, const ScanningT
     const Pose T_world_truth = placed.T_truth_world.inverse();
     const Eigen::Vector3d sensor = T_world_truth * view.sensor_m, aim = T_world_truth * view.aim_m;
     const Eigen::Vector3d offset = sensor - aim;
-    constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
     if (auto* sl = dynamic_cast<SimStructuredLightScanner*>(placed.sim)) {
         sl->aim_at(aim);
         sl->move_to({.azimuth_deg = std::atan2(offset.y(), offset.x()) * kRadToDeg,

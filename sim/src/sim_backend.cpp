@@ -19,6 +19,20 @@ SimTarget split_target(const std::string& target) {
 
 }  // namespace
 
+Expected<SimDeviceTarget> sim_device_target(const std::string& uri) {
+    auto parsed = drivers::parse_device_uri(uri);
+    if (!parsed) return fail(parsed.error());
+    if (parsed->scheme != "sim")
+        return fail(ErrorCode::kInvalidArgument, uri + ": not a simulated device (sim:...)");
+    const SimTarget target = split_target(parsed->target);
+    if (target.model != "tof" && target.model != "structured-light")
+        return fail(ErrorCode::kUnsupported,
+                    uri + ": no such simulated device (known: sim:tof, sim:structured-light)");
+    auto scene = named_scene(target.scene);
+    if (!scene) return fail(scene.error().code, uri + ": " + scene.error().message);
+    return SimDeviceTarget{.terrestrial = target.model == "tof", .scene = *scene};
+}
+
 Expected<std::unique_ptr<drivers::Device>> open_sim_device(
     const drivers::DeviceUri& uri, const std::shared_ptr<SimWorldCache>& worlds) {
     const std::string text = drivers::to_string(uri);

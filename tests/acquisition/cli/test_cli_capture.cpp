@@ -3,6 +3,7 @@
 // cannot be written, a disk that is full. Nothing acknowledged is lost.
 #include <unistd.h>
 
+#include <Eigen/Core>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <regex>
@@ -56,6 +57,29 @@ TEST_F(CliCapture, DeviceThatComesBackLetsTheSessionGoOn) {
     const auto j = info(session);
     ASSERT_TRUE(j.is_object());
     EXPECT_EQ(j["scans"].size(), 3u);
+}
+
+// --tour footprint without --views: the simulated operator takes as many views as the
+// block's outline needs; the terrestrial scanner's stations stand around it, one per part of
+// the walk.
+TEST_F(CliCapture, TheFootprintWalkTakesTheViewsTheOutlineNeeds) {
+    const std::string session = (dir_ / "s").string();
+    const auto run = run_cli(capture(session, "--tour footprint --no-register"));
+    EXPECT_EQ(run.exit_code, 0) << run.output;
+    EXPECT_NE(run.output.find("walks the block's footprint: 4 views"), std::string::npos)
+        << run.output;
+    const auto j = info(session);
+    ASSERT_TRUE(j.is_object());
+    ASSERT_EQ(j["scans"].size(), 4u);
+    std::vector<Eigen::Vector3d> stations;
+    for (const auto& scan : j["scans"]) {
+        const auto T = scan["true_pose"].get<std::vector<double>>();
+        ASSERT_EQ(T.size(), 16u);
+        stations.emplace_back(T[3], T[7], T[11]);
+    }
+    for (std::size_t a = 0; a < stations.size(); ++a)
+        for (std::size_t b = a + 1; b < stations.size(); ++b)
+            EXPECT_GT((stations[a] - stations[b]).norm(), 1.0) << a << " " << b;
 }
 
 // A session in which no two scans joined is no model: exit code 3 (docs/exit-codes.md).

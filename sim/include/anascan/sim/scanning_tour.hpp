@@ -15,14 +15,27 @@
 
 namespace anascan::sim {
 
-/// A walk around the block: the views of each side spread evenly in azimuth with
-/// alternating elevation and a little jitter (a person, not a turntable).
+/// A walk around the block with alternating elevation and a little jitter (a person, not a
+/// turntable): either on a circle around the block's centre, the views of each side spread
+/// evenly in azimuth, or along its footprint (`follow_footprint`), the head at a fixed
+/// distance from the nearest part of the stone and the views spread evenly in walk steps
+/// (footprint_walk.hpp).
 struct ScanningTourConfig {
-    int views = 24;                    ///< Captures in the whole tour.
-    int flip_after = 12;               ///< Turned over after this many views; 0: never.
-    double distance_m = 1.1;           ///< Structured-light head to the block's upper half.
-    double elevation_low_deg = 30.0;   ///< Even views.
-    double elevation_high_deg = 50.0;  ///< Odd views.
+    int views = 24;       ///< Captures in the whole tour.
+    int flip_after = 12;  ///< Turned over after this many views; 0: never.
+    /// Circle: structured-light head to the middle of the block's upper half. Footprint
+    /// walk: head to the aim, on the outline at three quarters of the block's height.
+    double distance_m = 1.1;
+    bool follow_footprint = false;
+    /// Footprint walk: the head's horizontal field (the simulated head: 640 px at f 1080 px,
+    /// 33°), the share of it consecutive views along a face have in common, and the largest
+    /// turn between views at a corner.
+    double field_width_deg = 33.0;
+    double field_overlap = 0.5;
+    double corner_step_deg = 30.0;
+    int terrestrial_views_per_side = 4;  ///< sim:tof stations per side (a panorama each).
+    double elevation_low_deg = 30.0;     ///< Even views.
+    double elevation_high_deg = 50.0;    ///< Odd views.
     double start_azimuth_deg = 15.0;
     double jitter_deg = 3.0;  ///< Uniform ± on azimuth and elevation.
     /// Terrestrial scanner stations (sim:tof): tripod distance and height.
@@ -42,7 +55,16 @@ struct TourStep {
     Viewpoint view;         ///< Structured-light head around the target (world azimuth).
     bool turned = false;    ///< The block lies turned over for this view.
     bool turn_now = false;  ///< First view after turning over: the operator marks it.
+    /// Footprint walk: where along the walk the view stands (0-1, footprint_walk.hpp);
+    /// `view` then holds the elevation and the distance.
+    std::optional<double> walk_fraction;
 };
+
+/// Views per side of the footprint walk around a block of `size_m` lying as `placement`:
+/// along its outline in face and corner steps (structured light), or
+/// `terrestrial_views_per_side` stations (a terrestrial scanner sees a whole side at once).
+int footprint_views_per_side(const ScanningTourConfig& config, const BlockPlacement& placement,
+                             const Eigen::Vector3d& size_m, bool terrestrial);
 
 /// The views of a tour; deterministic for a config.
 std::vector<TourStep> plan_scanning_tour(const ScanningTourConfig& config);

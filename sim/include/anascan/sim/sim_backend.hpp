@@ -9,6 +9,7 @@
 #include <string_view>
 
 #include "anascan/drivers/device_registry.hpp"
+#include "anascan/sim/scene.hpp"
 #include "anascan/sim/sim_world.hpp"
 
 namespace anascan::sim {
@@ -20,6 +21,16 @@ inline constexpr std::string_view kDefaultSimScene = "octagon-block";
 /// model, kInvalidArgument for an unknown scene. Scenes come from `worlds` (shared).
 Expected<std::unique_ptr<drivers::Device>> open_sim_device(
     const drivers::DeviceUri& uri, const std::shared_ptr<SimWorldCache>& worlds);
+
+/// What a `sim:` URI names, without opening it (to plan a tour before the capture).
+struct SimDeviceTarget {
+    bool terrestrial = false;  ///< sim:tof; else sim:structured-light.
+    SceneConfig scene;
+};
+
+/// kInvalidArgument for a URI that is not `sim:...`, kUnsupported for another model, and
+/// an unknown scene's error.
+Expected<SimDeviceTarget> sim_device_target(const std::string& uri);
 
 /// Backend{.scheme = "sim"}: enumerate lists sim:tof and sim:structured-light (always
 /// present); open builds the scene on first use and shares it between devices.

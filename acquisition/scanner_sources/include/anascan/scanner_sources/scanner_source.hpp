@@ -50,13 +50,19 @@ std::vector<ScannerListing> list_scanners();
 /// True for `sim:` URIs.
 bool is_simulated(const std::string& uri);
 
-/// The simulated operator: a walk around the block, the stone turned over half way.
+/// The simulated operator: a walk around the block, the stone turned over half way; on a
+/// circle around its centre, or along its footprint (sim/scanning_tour.hpp).
 struct SimulatedTour {
     int views = 24;
     int flip_after = 12;  ///< 0: never turned over.
     double distance_m = 1.1;
     std::uint64_t seed = 1;
+    bool follow_footprint = false;
 };
+
+/// Views per side of the footprint walk the tour would take around the stone a simulated
+/// device (`sim:...`) looks at: as many as the block's outline needs for its distance.
+Expected<int> footprint_views_per_side(const std::string& uri, const SimulatedTour& tour);
 
 /// The request of view `index` (0-based) of the tour: a simulated scanner is moved to the
 /// view (and the stone turned over when the tour says) right before the capture, and the
