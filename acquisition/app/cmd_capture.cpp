@@ -38,6 +38,7 @@ struct CaptureOptions {
     std::uint64_t tour_seed = 1;
     double distance_m = 1.1;
     bool no_register = false;
+    bool lengths_from_device = false;  ///< LiveRegistrationConfig::lengths_from_device.
     bool no_coverage = false;
     bool mix_stones = false;  ///< Add to a session of another stone without asking.
     int sim_unplug_after = -1;
@@ -340,6 +341,7 @@ void run_capture(const CaptureOptions& given) {
 
     acquisition::CaptureSessionConfig config{.register_live = !o.no_register,
                                              .coverage_live = !o.no_coverage};
+    config.registration.lengths_from_device = o.lengths_from_device;
     auto session = CaptureSession::start(std::move(*store), config, printing_sink());
     if (!session) fail_command(session.error());
     if (auto ok = (*session)->attach_scanner(uri, std::move(opener)); !ok) fail_command(ok.error());
@@ -409,6 +411,9 @@ void add_capture_command(CLI::App& app) {
                     "Terrestrial scanner angular step, degrees");
     cmd->add_option("--max-range-m", opts->settings.max_range_m, "Farthest depth kept, m");
     cmd->add_flag("--no-register", opts->no_register, "Only capture and save (register later)");
+    cmd->add_flag("--lengths-from-device", opts->lengths_from_device,
+                  "Experimental: raise the live registration's lengths (voxel, gates, overlap "
+                  "distances) to the noise measured on the first scan (docs/live-registration.md)");
     cmd->add_flag("--no-coverage", opts->no_coverage, "No live coverage");
     cmd->add_flag("--mix-stones", opts->mix_stones,
                   "Add to an existing session without checking that its first new scan "

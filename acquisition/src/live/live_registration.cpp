@@ -110,6 +110,7 @@ LiveDecision LiveRegistrar::State::place(LiveScanInput scan, bool newest, std::o
     const Clock::time_point start = Clock::now();
     LiveDecision decision{.seq = scan.seq};
     const bool turned = scan.turned_over_before;
+    const std::string scale_note = adopt_device_scale(scan.cloud);
     live::Prepared prepared = live::prepare_scan(std::move(scan), config);
     decision.reduced_points = prepared.entry.cloud.size();
     if (!prepared.problem.empty()) {
@@ -134,8 +135,27 @@ LiveDecision LiveRegistrar::State::place(LiveScanInput scan, bool newest, std::o
     record(index, accepted, group, first, decision);
     if (newest) awaiting_turn = false;
     decision.time_s = seconds_since(start);
-    decision.message = summary(decision);
+    decision.message = summary(decision) + scale_note;
     return decision;
+}
+
+std::string LiveRegistrar::State::adopt_device_scale(const PointCloud& cloud) {
+    if (!config.lengths_from_device || device_scale) return {};
+    const DeviceScale scale = measure_device_scale(cloud);
+    if (scale.samples == 0) return {};
+    device_scale = scale;
+    const double voxel_before_m = config.prepare.voxel_size_m;
+    config = lengths_for_device(config, scale);
+    char note[200];
+    std::snprintf(note, sizeof(note), "; device: spacing %.3f mm, noise %.3f mm%s",
+                  scale.spacing_m * 1e3, scale.noise_m * 1e3,
+                  config.prepare.voxel_size_m > voxel_before_m ? ", lengths raised to it" : "");
+    std::string out = note;
+    if (config.prepare.voxel_size_m > voxel_before_m) {
+        std::snprintf(note, sizeof(note), " (voxel %.1f mm)", config.prepare.voxel_size_m * 1e3);
+        out += note;
+    }
+    return out;
 }
 
 std::optional<live::Verified> LiveRegistrar::State::hypothesise(std::size_t index,

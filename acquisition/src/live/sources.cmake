@@ -2,6 +2,7 @@
 list(APPEND ANASCAN_ACQUISITION_SOURCES
     src/live/consistency.cpp
     src/live/consistency_split.cpp
+    src/live/device_scale.cpp
     src/live/hypotheses.cpp
     src/live/json.cpp
     src/live/links.cpp

@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "anascan/acquisition/live/device_scale.hpp"
 #include "anascan/acquisition/live/live_registration.hpp"
 #include "anascan/processing/core/stopwatch.hpp"
 #include "anascan/processing/spatial/kdtree.hpp"
@@ -136,6 +137,8 @@ Eigen::Vector3d cloud_centroid(const PointCloud& cloud);
 
 struct LiveRegistrar::State {
     LiveRegistrationConfig config;
+    /// Measured on the first usable scan; `config`'s lengths follow it (lengths_for_device).
+    std::optional<DeviceScale> device_scale;
     std::vector<live::ScanEntry> scans;  ///< In add order (usable scans only).
     std::map<std::int64_t, std::size_t> index_of_seq;
     std::vector<live::Link> links;
@@ -157,6 +160,9 @@ struct LiveRegistrar::State {
     std::vector<double> link_rms_m;      ///< RMS of every multi-view link (the session's noise).
     std::vector<double> accepted_rms_m;  ///< Of every accepted add() decision.
     std::vector<double> accepted_normal_deviation;  ///< Degrees, same.
+    /// On the first usable scan: measures the device's scale and raises config's lengths to
+    /// it; a note for the decision's message (empty when nothing was measured).
+    std::string adopt_device_scale(const PointCloud& cloud);
     /// Prepares and places a scan (add: `newest`; reregister: not, so no operator priors).
     LiveDecision place(LiveScanInput scan, bool newest, std::optional<int> side = std::nullopt);
     /// The cheap hypotheses, then global registration, for the new entry `index`; sets

@@ -254,6 +254,12 @@ struct LiveRegistrationConfig {
     LiveConsistencyConfig consistency{};
     /// Scans whose features (for a later global registration) refine() computes per call.
     std::size_t max_features_per_refine = 2;
+    /// Lengths raised to what the device's noise needs, measured on the session's first
+    /// usable scan (voxel, ground band, gates, overlap distances, vote tolerances;
+    /// docs/live-registration.md "Lengths from the device"). Off by default: with them a
+    /// terrestrial scanner's stations join, but in the simulated tent 180° off (the room's
+    /// symmetry), which no check sees while the reduced copies keep the tent.
+    bool lengths_from_device = false;
 };
 
 /// One scan handed to the registrar.
