@@ -15,6 +15,7 @@
 #include <mutex>
 #include <thread>
 
+#include "anascan/acquisition/assembly/group_pulls.hpp"
 #include "anascan/acquisition/capture/capture_session.hpp"
 #include "anascan/acquisition/capture/stone_check.hpp"
 #include "anascan/acquisition/coverage/session_coverage.hpp"
@@ -208,6 +209,22 @@ std::string scan_list(const std::vector<std::int64_t>& seqs) {
 /// How much of the session the model (its largest group) holds: exit code 3 for no model
 /// or an unconfirmed pair (seen on a 0.8 m block: scans 2 and 4 joined 103 mm apart at
 /// 0.005°), a warning for a partial one.
+/// Each scan of each group against the rest of its group at once: one that slid along a
+/// face is flagged (out of the model) before the coverage and the summary.
+void flag_pulled_scans(acquisition::SessionStore& store) {
+    auto pulls = acquisition::group_pulls(store, {}, [](int group, std::size_t scans) {
+        spdlog::info("checking each scan of group {} against its other {} scans", group, scans - 1);
+    });
+    if (!pulls) {
+        spdlog::warn("the final check of the groups did not run: {}", pulls.error().message);
+        return;
+    }
+    for (const acquisition::GroupPull& p : *pulls)
+        if (p.pull.pulled) spdlog::error("{}", p.message());
+    if (auto flagged = acquisition::flag_pulled(store, *pulls); !flagged)
+        spdlog::warn("the flags of the final check were not saved: {}", flagged.error().message);
+}
+
 void check_model(const acquisition::SessionStore& store) {
     auto scans = store.scans();
     if (!scans || scans->size() < 2) return;
@@ -353,6 +370,7 @@ void run_capture(const CaptureOptions& given) {
     const std::optional<Error> stopped = capture_all_views(**session, o, uri, already, stone_note);
     spdlog::info("capture done; waiting for registration to catch up");
     (*session)->wait_until_idle();
+    if (!o.no_register) flag_pulled_scans((*session)->store());
     if (!o.no_register && !o.no_coverage) store_final_coverage((*session)->store());
     print_capture_summary((*session)->store());
     if (!stone_note.empty()) std::printf("stone check: %s\n", stone_note.c_str());

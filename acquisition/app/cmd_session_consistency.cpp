@@ -2,6 +2,7 @@
 // in their stored poses (the check the live registrar runs after each refinement).
 #include <cstdio>
 
+#include "anascan/acquisition/assembly/group_pulls.hpp"
 #include "anascan/acquisition/store/groups.hpp"
 #include "commands.hpp"
 #include "register_consistency.hpp"
@@ -52,6 +53,24 @@ void run_consistency(const ConsistencyOptions& o) {
         std::printf("take out %s: %s\n", names[i].c_str(),
                     worst ? describe(result.pairs[*worst], names).c_str() : "?");
     }
+    auto pulls = acquisition::group_pulls(*store);
+    if (!pulls) fail_command(pulls.error());
+    std::size_t pulled = 0;
+    for (const acquisition::GroupPull& g : *pulls) {
+        const ScanPull& p = g.pull;
+        pulled += p.pulled;
+        if (o.pairs || p.pulled)
+            std::printf(
+                "scan %lld of group %d %s by its other %zu scans: %.3f mm, %.4f deg "
+                "(rms %.3f -> %.3f mm, overlap %.0f %%, %d rounds)\n",
+                static_cast<long long>(g.seq), g.group, p.pulled ? "PULLED" : "held",
+                g.group_scans - 1, p.moved_m * 1e3, p.rotation_deg, p.rms_before_m * 1e3,
+                p.rms_m * 1e3, 100.0 * p.overlap_fraction, p.rounds);
+    }
+    std::printf(
+        "each scan against the rest of its group (groups of 3 or more): %zu pulled "
+        "away%s\n",
+        pulled, pulled ? ": slid along a face (anascan session register DIR --scan N)" : "");
 }
 
 }  // namespace
@@ -61,7 +80,9 @@ void add_session_consistency_command(CLI::App& session) {
     auto* cmd = session.add_subcommand(
         "consistency",
         "Check the scans of the session's model against each other in their stored poses "
-        "(crossing normals, free space, overlap angle) and name those that contradict it");
+        "(crossing normals, free space, overlap angle) and name those that contradict it; "
+        "then each scan of every group against the rest of its group at once (a scan slid "
+        "along a face moves back)");
     cmd->add_option("dir", o->dir, "Session folder")->required();
     cmd->add_flag("--pairs", o->pairs, "Print every overlapping pair's figures");
     cmd->callback([o] { run_consistency(*o); });

@@ -7,4 +7,5 @@ list(APPEND ANASCAN_PROCESSING_SOURCES
     src/evaluation/pose_sampling.cpp
     src/evaluation/scan_agreement.cpp
     src/evaluation/stone_identity.cpp
+    src/evaluation/union_pull.cpp
 )
