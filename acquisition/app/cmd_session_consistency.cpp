@@ -16,6 +16,29 @@ struct ConsistencyOptions {
     bool pairs = false;
 };
 
+/// Each scan of every group against the rest of its group at once: the pulled ones (all
+/// with `all`).
+void print_group_pulls(const acquisition::SessionStore& store, bool all) {
+    auto pulls = acquisition::group_pulls(store);
+    if (!pulls) fail_command(pulls.error());
+    std::size_t pulled = 0;
+    for (const acquisition::GroupPull& g : *pulls) {
+        const ScanPull& p = g.pull;
+        pulled += p.pulled;
+        if (all || p.pulled)
+            std::printf(
+                "scan %lld of group %d %s by its other %zu scans: %.3f mm, %.4f deg "
+                "(rms %.3f -> %.3f mm, overlap %.0f %%, %d rounds)\n",
+                static_cast<long long>(g.seq), g.group, p.pulled ? "PULLED" : "held",
+                g.group_scans - 1, p.moved_m * 1e3, p.rotation_deg, p.rms_before_m * 1e3,
+                p.rms_m * 1e3, 100.0 * p.overlap_fraction, p.rounds);
+    }
+    std::printf(
+        "each scan against the rest of its group (groups of 3 or more): %zu pulled "
+        "away%s\n",
+        pulled, pulled ? ": slid along a face (anascan session register DIR --scan N)" : "");
+}
+
 void run_consistency(const ConsistencyOptions& o) {
     auto store = open_session(o.dir, acquisition::SessionOpenMode::kReadOnly);
     auto records = store->scans();
@@ -53,24 +76,7 @@ void run_consistency(const ConsistencyOptions& o) {
         std::printf("take out %s: %s\n", names[i].c_str(),
                     worst ? describe(result.pairs[*worst], names).c_str() : "?");
     }
-    auto pulls = acquisition::group_pulls(*store);
-    if (!pulls) fail_command(pulls.error());
-    std::size_t pulled = 0;
-    for (const acquisition::GroupPull& g : *pulls) {
-        const ScanPull& p = g.pull;
-        pulled += p.pulled;
-        if (o.pairs || p.pulled)
-            std::printf(
-                "scan %lld of group %d %s by its other %zu scans: %.3f mm, %.4f deg "
-                "(rms %.3f -> %.3f mm, overlap %.0f %%, %d rounds)\n",
-                static_cast<long long>(g.seq), g.group, p.pulled ? "PULLED" : "held",
-                g.group_scans - 1, p.moved_m * 1e3, p.rotation_deg, p.rms_before_m * 1e3,
-                p.rms_m * 1e3, 100.0 * p.overlap_fraction, p.rounds);
-    }
-    std::printf(
-        "each scan against the rest of its group (groups of 3 or more): %zu pulled "
-        "away%s\n",
-        pulled, pulled ? ": slid along a face (anascan session register DIR --scan N)" : "");
+    print_group_pulls(*store, o.pairs);
 }
 
 }  // namespace
