@@ -42,6 +42,13 @@ void add_mesh_options(CLI::App* cmd, MeshOptions& o) {
     cmd->add_option("--max-memory-mb", o.max_memory_mb,
                     "Memory budget of the Poisson step, MB (the octree is coarsened to fit)")
         ->check(CLI::PositiveNumber);
+    cmd->add_flag("--poisson-vertices", o.poisson_vertices,
+                  "Leave the vertices where Poisson's octree put them, for comparison "
+                  "(default: measured vertices are moved onto the points' local surface)");
+    cmd->add_option("--octree-cell-factor", o.octree_cell_factor,
+                    "Poisson's finest cell may be up to this many times --resolution-mm; the "
+                    "mesh is then subdivided and fitted to the points (1: Poisson's own detail)")
+        ->check(CLI::Range(1.0, 16.0));
 }
 
 void add_mesh_command(CLI::App& app) {

@@ -63,6 +63,9 @@ nlohmann::json report_json(const ModelReport& r, const SurfaceResult& s, const M
         {"poisson_memory_estimate_mb", double(d.estimated_memory_bytes) / 1048576.0},
         {"components_removed", d.components_removed},
         {"triangles_removed", d.triangles_removed},
+        {"subdivisions", d.subdivisions},
+        {"vertices_fitted", d.vertices_fitted},
+        {"median_fit_shift_mm", 1e3 * d.median_fit_shift_m},
         {"seconds",
          {{"merge", d.seconds_merge},
           {"normals", d.seconds_normals},
@@ -108,7 +111,9 @@ void run_mesh(const std::vector<MeshScanEntry>& entries, const MeshOptions& o) {
     Stopwatch watch;
     const SurfaceConfig config{.resolution_m = o.resolution_mm * 1e-3,
                                .mode = parse_mode(o.surface),
-                               .max_memory_bytes = std::size_t(o.max_memory_mb * 1048576.0)};
+                               .max_memory_bytes = std::size_t(o.max_memory_mb * 1048576.0),
+                               .fit_to_points = !o.poisson_vertices,
+                               .octree_cell_factor = o.octree_cell_factor};
     auto meshed =
         acquisition::mesh_scans(entries, config, [](std::string_view m) { spdlog::info("{}", m); });
     if (!meshed) fail_command(meshed.error());

@@ -18,12 +18,15 @@ struct MeshOptions {
     std::string surface = "closed";  ///< closed | measured
     bool ascii = false;              ///< ASCII PLY
     double max_memory_mb = 1536.0;
+    bool poisson_vertices = false;  ///< Keep Poisson's vertices (no fit to the points).
+    double octree_cell_factor = SurfaceConfig{}.octree_cell_factor;
 };
 
 /// Runs the whole job; throws CommandFailed with a message naming the file on bad input.
 void run_mesh(const std::vector<MeshScanEntry>& entries, const MeshOptions& options);
 
-/// Adds --resolution-mm, --surface, --report, --ascii and --max-memory-mb to `cmd`.
+/// Adds --resolution-mm, --surface, --report, --ascii, --max-memory-mb and
+/// --poisson-vertices, --octree-cell-factor to `cmd`.
 void add_mesh_options(CLI::App* cmd, MeshOptions& options);
 
 /// Processor time of this process so far (all threads, user + system), seconds.

@@ -3,7 +3,8 @@
 //   anascan_bench_surface POSES.conf REFERENCE.ply [--resolution-mm R] [--sensor X Y Z]
 //                         [--reference-samples] [--skip-open3d] [--poisson-sample-cells C]
 //                         [--poisson-scale S] [--poisson-threads N] [--linear-fit]
-//                         [--max-memory-mb M]
+//                         [--max-memory-mb M] [--no-fit-to-points]
+//                         [--octree-cell-factor F]
 // Open3D's path: normals from 20 nearest neighbours per scan oriented toward the scanner,
 // screened Poisson at depth 10, the 1% lowest-density vertices trimmed.
 // Accuracy: mesh-surface samples within 1 mm of a scan point, distance to the reference.
@@ -175,6 +176,10 @@ Args parse(int argc, char** argv) {
             a.config.poisson_threads = std::atoi(argv[++i]);
         } else if (s == "--max-memory-mb" && i + 1 < argc) {
             a.config.max_memory_bytes = std::size_t(std::atof(argv[++i]) * 1048576.0);
+        } else if (s == "--octree-cell-factor" && i + 1 < argc) {
+            a.config.octree_cell_factor = std::atof(argv[++i]);
+        } else if (s == "--no-fit-to-points") {
+            a.config.fit_to_points = false;
         } else if (s == "--linear-fit") {
             a.config.poisson_linear_fit = true;
         } else if (s == "--reference-samples") {

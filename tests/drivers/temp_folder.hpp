@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <string>
 
@@ -13,9 +14,12 @@ class TempFolder {
 public:
     TempFolder() {
         const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        path_ = std::filesystem::temp_directory_path() /
-                ("anascan-" + std::to_string(::getpid()) + "-" + info->test_suite_name() + "-" +
-                 info->name());
+        // Parameterised tests are named "Backends/Conformance" and "Case/0": flattened, so
+        // that removing the folder removes all of it.
+        std::string name = "anascan-" + std::to_string(::getpid()) + "-" + info->test_suite_name() +
+                           "-" + info->name();
+        std::replace(name.begin(), name.end(), '/', '_');
+        path_ = std::filesystem::temp_directory_path() / name;
         std::filesystem::remove_all(path_);
         std::filesystem::create_directories(path_);
     }

@@ -43,6 +43,13 @@ constexpr std::chrono::milliseconds kParseTimeLimit{500};
 const fs::path& calibration_file() {
     static const fs::path file = fs::temp_directory_path() /
                                  ("anascan-fuzz-calibration-" + std::to_string(getpid()) + ".yml");
+    // Registered after `file` is made, so it runs before `file` is destroyed.
+    static const bool removed_at_exit = (std::atexit([] {
+                                             std::error_code ec;
+                                             fs::remove(calibration_file(), ec);
+                                         }),
+                                         true);
+    (void)removed_at_exit;
     return file;
 }
 

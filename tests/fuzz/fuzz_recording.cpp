@@ -37,6 +37,13 @@ const fs::path& work_dir() {
         fs::create_directories(d);
         return d;
     }();
+    // Registered after `dir` is made, so it runs before `dir` is destroyed.
+    static const bool removed_at_exit = (std::atexit([] {
+                                             std::error_code ec;
+                                             fs::remove_all(work_dir(), ec);
+                                         }),
+                                         true);
+    (void)removed_at_exit;
     return dir;
 }
 

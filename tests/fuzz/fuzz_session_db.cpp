@@ -106,6 +106,13 @@ const Workspace& workspace() {
         made.work = made.root / "work";
         return made;
     }();
+    // Registered after `w` is made, so it runs before `w` is destroyed.
+    static const bool removed_at_exit = (std::atexit([] {
+                                             std::error_code ec;
+                                             fs::remove_all(workspace().root, ec);
+                                         }),
+                                         true);
+    (void)removed_at_exit;
     return w;
 }
 

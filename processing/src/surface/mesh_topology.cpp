@@ -1,6 +1,7 @@
 #include "anascan/processing/surface/mesh_topology.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <numeric>
 #include <unordered_map>
 
@@ -9,6 +10,7 @@ namespace {
 
 struct HalfEdge {
     int from = 0, to = 0, triangle = 0;
+    std::uint64_t edge = 0;  ///< The undirected edge: (min vertex) << 32 | (max vertex).
 };
 
 // Half-edges sorted by their undirected edge, so that each edge's uses are adjacent.
@@ -17,13 +19,15 @@ std::vector<HalfEdge> sorted_half_edges(const Mesh& mesh) {
     h.reserve(mesh.triangles.size() * 3);
     for (int t = 0; t < static_cast<int>(mesh.triangles.size()); ++t) {
         const Eigen::Vector3i& tri = mesh.triangles[t];
-        for (int k = 0; k < 3; ++k) h.push_back({tri[k], tri[(k + 1) % 3], t});
+        for (int k = 0; k < 3; ++k) {
+            const int a = tri[k], b = tri[(k + 1) % 3];
+            const auto lo = std::uint64_t(std::uint32_t(std::min(a, b)));
+            const auto hi = std::uint64_t(std::uint32_t(std::max(a, b)));
+            h.push_back({a, b, t, lo << 32 | hi});
+        }
     }
-    const auto key = [](const HalfEdge& e) {
-        return std::pair(std::min(e.from, e.to), std::max(e.from, e.to));
-    };
-    std::sort(h.begin(), h.end(), [&](const HalfEdge& a, const HalfEdge& b) {
-        return std::tuple(key(a), a.triangle) < std::tuple(key(b), b.triangle);
+    std::sort(h.begin(), h.end(), [](const HalfEdge& a, const HalfEdge& b) {
+        return a.edge != b.edge ? a.edge < b.edge : a.triangle < b.triangle;
     });
     return h;
 }
@@ -107,10 +111,9 @@ MeshTopology analyse_topology(const Mesh& mesh) {
     std::vector<HalfEdge> boundary;
     for (std::size_t i = 0; i < h.size();) {
         const HalfEdge& first = h[i];
-        const auto edge = std::minmax(first.from, first.to);
         std::size_t uses = 1;
         bool same_direction = false;
-        for (++i; i < h.size() && std::minmax(h[i].from, h[i].to) == edge; ++i, ++uses) {
+        for (++i; i < h.size() && h[i].edge == first.edge; ++i, ++uses) {
             same_direction = same_direction || h[i].from == first.from;
             parent[find_root(parent, h[i].triangle)] = find_root(parent, first.triangle);
         }

@@ -8,6 +8,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <cmath>
 #include <functional>
 
 #include "anascan/processing/surface/model_report.hpp"
@@ -16,7 +17,11 @@ namespace anascan {
 namespace {
 
 using Kernel = CGAL::Simple_cartesian<double>;
-constexpr std::size_t kMaxBoxPoints = 20000;
+// The box of a set is the box of its convex hull, so CGAL's optimisation needs only hull
+// points: the extreme points along these many directions (a Fibonacci half-sphere, both
+// ends of each) are hull vertices, a few hundred instead of the mesh's 10^5-10^6 vertices.
+// CGAL's own hull would need an exact-predicates kernel (GMP and -frounding-math).
+constexpr int kHullDirections = 512;
 
 Eigen::Vector3d box_extent_m(const std::vector<Eigen::Vector3f>& points,
                              const Eigen::Matrix3d& axes) {
@@ -50,12 +55,34 @@ Eigen::Matrix3d principal_axes(const Mesh& mesh) {
     return eig.eigenvectors();
 }
 
+std::vector<std::size_t> extreme_points(const std::vector<Eigen::Vector3f>& p) {
+    std::vector<Eigen::Vector3f> directions;
+    const float golden = 3.14159265f * (3.0f - std::sqrt(5.0f));
+    for (int k = 0; k < kHullDirections; ++k) {
+        const float z = (k + 0.5f) / kHullDirections;  // upper half: -d gives the other end
+        const float r = std::sqrt(1.0f - z * z);
+        directions.emplace_back(r * std::cos(golden * k), r * std::sin(golden * k), z);
+    }
+    std::vector<std::size_t> lo(directions.size(), 0), hi(directions.size(), 0);
+    std::vector<float> lo_v(directions.size(), 1e30f), hi_v(directions.size(), -1e30f);
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        for (std::size_t d = 0; d < directions.size(); ++d) {
+            const float s = directions[d].dot(p[i]);
+            if (s < lo_v[d]) lo_v[d] = s, lo[d] = i;
+            if (s > hi_v[d]) hi_v[d] = s, hi[d] = i;
+        }
+    }
+    std::vector<std::size_t> out(lo);
+    out.insert(out.end(), hi.begin(), hi.end());
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+}
+
 // The rotation of CGAL's optimal box (columns: the box axes), seeded so it repeats.
 Eigen::Matrix3d optimal_axes(const std::vector<Eigen::Vector3f>& p) {
-    const std::size_t step = std::max<std::size_t>(1, p.size() / kMaxBoxPoints);
     std::vector<Kernel::Point_3> points;
-    for (std::size_t i = 0; i < p.size(); i += step)
-        points.emplace_back(p[i].x(), p[i].y(), p[i].z());
+    for (const std::size_t i : extreme_points(p)) points.emplace_back(p[i].x(), p[i].y(), p[i].z());
     Kernel::Aff_transformation_3 T;
     CGAL::oriented_bounding_box(points, T, CGAL::parameters::use_convex_hull(false).random_seed(1));
     Eigen::Matrix3d R;  // T maps the points into the box's axis-aligned frame: rows are axes.

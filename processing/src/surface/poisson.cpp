@@ -18,10 +18,10 @@ constexpr int kMinDepth = 5, kMaxDepth = 12;
 
 }  // namespace
 
-PoissonDepth choose_depth(double box_m, double resolution_m, std::size_t points,
-                          std::size_t max_memory_bytes) {
+PoissonDepth choose_depth(double box_m, double finest_cell_m, double resolution_m,
+                          std::size_t points, std::size_t max_memory_bytes) {
     PoissonDepth d;
-    d.depth = std::clamp(static_cast<int>(std::ceil(std::log2(box_m / resolution_m))), kMinDepth,
+    d.depth = std::clamp(static_cast<int>(std::ceil(std::log2(box_m / finest_cell_m))), kMinDepth,
                          kMaxDepth);
     for (;; --d.depth) {
         d.cell_m = box_m / std::ldexp(1.0, d.depth);

@@ -13,10 +13,10 @@ struct PoissonDepth {
     std::size_t estimated_memory_bytes = 0;
 };
 
-/// The depth whose finest cell is at most `resolution_m`, coarsened until Poisson's memory
-/// estimate for `points` samples fits `max_memory_bytes`.
-PoissonDepth choose_depth(double box_m, double resolution_m, std::size_t points,
-                          std::size_t max_memory_bytes);
+/// The depth whose finest cell is at most `finest_cell_m`, coarsened until Poisson's memory
+/// estimate for `points` samples `resolution_m` apart fits `max_memory_bytes`.
+PoissonDepth choose_depth(double box_m, double finest_cell_m, double resolution_m,
+                          std::size_t points, std::size_t max_memory_bytes);
 
 struct PoissonParams {
     int depth = 8;

@@ -1,14 +1,18 @@
 #include "anascan/processing/surface/reconstruction.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <string>
 
 #include "anascan/processing/core/stopwatch.hpp"
+#include "anascan/processing/spatial/kdtree.hpp"
 #include "anascan/processing/spatial/voxel_grid.hpp"
 #include "anascan/processing/surface/mesh_topology.hpp"
+#include "fit_to_points.hpp"
 #include "merge.hpp"
 #include "poisson.hpp"
+#include "subdivide.hpp"
 #include "support.hpp"
 
 namespace anascan {
@@ -90,6 +94,13 @@ Mesh poisson_on_samples(const PointCloud& merged, const surface_detail::PoissonD
     return surface_detail::poisson_surface(thinned, params);
 }
 
+// Each split halves the edges: the mesh is split while its cells are still at least twice
+// the requested resolution, and fitting the new vertices to the points then recovers what
+// the coarse cells rounded off (arrises, chips).
+int subdivisions_for(double cell_m, double resolution_m) {
+    return std::max(0, static_cast<int>(std::floor(std::log2(cell_m / resolution_m))));
+}
+
 }  // namespace
 
 SurfaceResult reconstruct_surface(std::span<const PlacedScan> scans, const SurfaceConfig& config,
@@ -100,8 +111,9 @@ SurfaceResult reconstruct_surface(std::span<const PlacedScan> scans, const Surfa
     result.status = merge_and_orient(scans, config, merged, result, progress);
     if (result.status != SurfaceStatus::kOk) return result;
     const double box_m = bounding_cube_m(merged.cloud) * config.poisson_scale;
+    const double finest_cell_m = config.resolution_m * config.octree_cell_factor;
     const surface_detail::PoissonDepth depth = surface_detail::choose_depth(
-        box_m, config.resolution_m, d.merged_points, config.max_memory_bytes);
+        box_m, finest_cell_m, config.resolution_m, d.merged_points, config.max_memory_bytes);
     d.poisson_depth = depth.depth;
     d.cell_m = depth.cell_m;
     d.estimated_memory_bytes = depth.estimated_memory_bytes;
@@ -120,8 +132,18 @@ SurfaceResult reconstruct_surface(std::span<const PlacedScan> scans, const Surfa
     say(progress, "support of " + std::to_string(result.model.mesh.vertices.size()) + " vertices");
     watch.restart();
     const double spacing = std::max(d.spacing_m, config.resolution_m * 0.5);
-    surface_detail::classify_support(result.model, merged,
-                                     config.measured_spacing_factor * spacing);
+    const double support_m = config.measured_spacing_factor * spacing;
+    const KdTree tree(merged.cloud.positions);
+    if (config.fit_to_points) {
+        d.subdivisions = subdivisions_for(d.cell_m, config.resolution_m);
+        for (int k = 0; k < d.subdivisions; ++k)
+            result.model.mesh = surface_detail::subdivide_midpoints(result.model.mesh);
+        const auto fit = surface_detail::fit_vertices_to_points(result.model.mesh, merged.cloud,
+                                                                tree, support_m, 0.5 * support_m);
+        d.vertices_fitted = fit.moved;
+        d.median_fit_shift_m = fit.median_shift_m;
+    }
+    surface_detail::classify_support(result.model, merged, tree, support_m);
     if (config.mode == SurfaceMode::kClosed) {
         d.components_removed = keep_largest_component(result.model);
     } else {

@@ -6,18 +6,16 @@
 #include <cmath>
 #include <limits>
 
-#include "anascan/processing/spatial/kdtree.hpp"
-
 namespace anascan::surface_detail {
 
-void classify_support(FragmentModel& model, const MergedCloud& merged, double threshold_m) {
+void classify_support(FragmentModel& model, const MergedCloud& merged, const KdTree& tree,
+                      double threshold_m) {
     const PointCloud& v = model.mesh.vertices;
     const std::size_t n = v.size();
     model.support_threshold_m = threshold_m;
     model.support_distance_m.assign(n, std::numeric_limits<float>::infinity());
     model.support_scans.assign(n, 0);
     model.vertex_class.assign(n, SurfaceClass::kInterpolated);
-    const KdTree tree(merged.cloud.positions);
     const Eigen::Vector3f shift = (v.origin_m - merged.cloud.origin_m).cast<float>();
     const float radius = static_cast<float>(threshold_m);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024), [&](const auto& range) {

@@ -113,10 +113,11 @@ TEST(SurfaceReconstruction, BadInputGivesAStatus) {
 
 TEST(SurfaceReconstruction, MemoryBudgetCoarsensTheOctree) {
     const test::SphereScans scans = test::scan_sphere(test::all_round(), 2e-3, 1e-4, 7);
-    const SurfaceResult fine = reconstruct_surface(scans.placed(), {.resolution_m = 2e-3});
-    const SurfaceResult coarse = reconstruct_surface(
-        scans.placed(),
-        {.resolution_m = 2e-3, .max_memory_bytes = fine.diagnostics.estimated_memory_bytes / 3});
+    const SurfaceConfig config{.resolution_m = 2e-3, .octree_cell_factor = 1.0};
+    const SurfaceResult fine = reconstruct_surface(scans.placed(), config);
+    SurfaceConfig budget = config;
+    budget.max_memory_bytes = fine.diagnostics.estimated_memory_bytes / 3;
+    const SurfaceResult coarse = reconstruct_surface(scans.placed(), budget);
     ASSERT_EQ(coarse.status, SurfaceStatus::kOk);
     EXPECT_LT(coarse.diagnostics.poisson_depth, fine.diagnostics.poisson_depth);
     EXPECT_LE(coarse.diagnostics.estimated_memory_bytes,

@@ -55,6 +55,14 @@ struct SurfaceConfig {
     /// Open3D's linear_fit: iso-vertices placed by linear interpolation of the implicit
     /// function instead of at the cell edges' midpoints.
     bool poisson_linear_fit = false;
+    /// Moves the vertices near measured points onto the points' local surface (one face's
+    /// points, Gaussian-weighted, within the support threshold): Poisson's octree rounds
+    /// arrises and offsets faces by up to a cell. When the memory budget made the octree
+    /// coarser than `resolution_m`, the mesh is first subdivided back to about it.
+    bool fit_to_points = true;
+    /// The octree's finest cell may be up to this many times `resolution_m`: the fit to the
+    /// points, not the octree, gives the surface its detail (1 for Poisson's own detail).
+    double octree_cell_factor = 2.0;
 };
 
 enum class SurfaceStatus {
@@ -80,6 +88,9 @@ struct SurfaceDiagnostics {
     std::size_t estimated_memory_bytes = 0;   ///< Poisson's estimate at that depth.
     std::size_t components_removed = 0;       ///< Small disconnected pieces dropped (closed mode).
     std::size_t triangles_removed = 0;        ///< Interpolated triangles dropped (measured mode).
+    int subdivisions = 0;  ///< Midpoint subdivisions before the fit (octree coarser than asked).
+    std::size_t vertices_fitted = 0;  ///< Vertices moved onto the points' surface.
+    double median_fit_shift_m = 0.0;  ///< Their median move, metres.
     double seconds_merge = 0, seconds_normals = 0, seconds_poisson = 0, seconds_support = 0;
 };
 
