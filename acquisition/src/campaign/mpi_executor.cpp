@@ -3,9 +3,12 @@
 // smallest tasks itself. Workers load only the files a task names and return its result.
 #include <mpi.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cstdlib>
 #include <cstring>
 #include <deque>
+#include <thread>
 
 #include "anascan/acquisition/campaign/campaign_job.hpp"
 
@@ -83,6 +86,20 @@ Bytes receive(const MPI_Status& probed) {
     return bytes;
 }
 
+// A blocking MPI_Probe spins in OpenMPI: a worker waiting for its next task (or rank 0 for
+// a result) would take a core from the rank that is computing. Polling with short sleeps
+// leaves it free; a task runs for tenths of a second, so the millisecond of latency is lost.
+void wait_for_message(int source, int tag, MPI_Status& status) {
+    auto pause = std::chrono::microseconds(50);
+    for (;;) {
+        int ready = 0;
+        MPI_Iprobe(source, tag, MPI_COMM_WORLD, &ready, &status);
+        if (ready) return;
+        std::this_thread::sleep_for(pause);
+        pause = std::min(pause * 2, std::chrono::microseconds(2000));
+    }
+}
+
 void send(const Bytes& bytes, int rank, int tag) {
     MPI_Send(bytes.data(), static_cast<int>(bytes.size()), MPI_CHAR, rank, tag, MPI_COMM_WORLD);
 }
@@ -136,7 +153,7 @@ private:
             if (poll_only || busy() == 0) {
                 MPI_Iprobe(MPI_ANY_SOURCE, kTagResult, MPI_COMM_WORLD, &ready, &status);
             } else {
-                MPI_Probe(MPI_ANY_SOURCE, kTagResult, MPI_COMM_WORLD, &status);
+                wait_for_message(MPI_ANY_SOURCE, kTagResult, status);
                 ready = 1;
             }
             if (!ready) return {};
@@ -181,7 +198,7 @@ std::unique_ptr<CampaignExecutor> make_mpi_executor(const CampaignConfig& config
 void serve_campaign_tasks(const CampaignConfig& config) {
     for (;;) {
         MPI_Status status;
-        MPI_Probe(0, MPI_ANY_TAG, MPI_COMM_WORLD, &status);
+        wait_for_message(0, MPI_ANY_TAG, status);
         const Bytes bytes = receive(status);
         if (status.MPI_TAG != kTagTask) break;
         send(pack(run_campaign_task(unpack_task(bytes), config)), 0, kTagResult);
