@@ -11,6 +11,8 @@ find_package(OpenCV 4.5 REQUIRED COMPONENTS core imgproc imgcodecs calib3d)
 find_package(Qhull REQUIRED)               # processing: convex hull of a stone (coverage)
 find_package(Open3D REQUIRED)              # processing/surface: screened Poisson (Kazhdan port)
 find_package(ZLIB REQUIRED)                 # drivers: CRC-32 of recorded frames
+find_package(JPEG REQUIRED)                 # drivers: grey images (libjpeg-turbo), not imgcodecs
+find_package(PNG REQUIRED)                  # drivers: grey images (libpng)
 find_package(EXPAT REQUIRED)                # processing: the XML section of E57 files
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(LIBUSB REQUIRED IMPORTED_TARGET GLOBAL libusb-1.0)  # drivers: USB backend

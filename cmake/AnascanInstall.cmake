@@ -6,6 +6,9 @@ install(TARGETS anascan_processing anascan_drivers anascan_sim anascan_acquisiti
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
         RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(TARGETS anascan RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+# The screened Poisson module, loaded on first use (processing/src/surface/poisson.cpp finds
+# it from the program's folder: BINDIR/../LIBDIR/anascan).
+install(TARGETS anascan_open3d_poisson LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}/anascan)
 foreach(module processing drivers sim acquisition gui)
     install(DIRECTORY ${PROJECT_SOURCE_DIR}/${module}/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 endforeach()

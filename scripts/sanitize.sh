@@ -24,7 +24,7 @@ asan_targets=(anascan_session_store_tests anascan anascan_cli_session_tests
     anascan_live_registration_quick_tests anascan_cli_tests anascan_cli_sl_tests
     fuzz_ply_replay fuzz_text_points_replay fuzz_ptx_replay fuzz_stanford_conf_replay
     fuzz_xf_replay fuzz_obj_replay fuzz_stl_replay fuzz_e57_replay fuzz_recording_replay
-    fuzz_calibration_replay fuzz_session_db_replay)
+    fuzz_calibration_replay fuzz_session_db_replay fuzz_grey_image_replay)
 # The CI set, ASan + UBSan: the processing library (every parser and every algorithm) with
 # its unit tests and the corpus replays of every processing parser's fuzz harness (the
 # recording, calibration and session-database harnesses need the driver and acquisition

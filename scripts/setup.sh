@@ -12,6 +12,7 @@ PACKAGES=(
     libcgal-dev                        # processing: efficient RANSAC planes of block features
     coinor-libclp-dev                  # peer of the block-assembly QP solver (test and benchmark only)
     libopencv-dev libopencv-contrib-dev
+    libjpeg-dev libpng-dev             # drivers: grey images read and written without imgcodecs
     libembree-dev                      # ray caster of the simulated scanners (sim/)
     libusb-1.0-0-dev libv4l-dev
     libglfw3-dev libimgui-dev libgl-dev libgl1-mesa-dri

@@ -223,9 +223,11 @@ void add_sl_command(CLI::App& app) {
         "cam1's frame, metres. See docs/structured-light.md.");
     cmd->add_option("--calibration", opts->calibration, "OpenCV FileStorage stereo calibration")
         ->required();
-    cmd->add_option("--cam1", opts->cam1_glob, "Shell glob of cam1's images (natural order)")
+    cmd->add_option("--cam1", opts->cam1_glob,
+                    "Shell glob of cam1's images, JPEG or PNG (natural order)")
         ->required();
-    cmd->add_option("--cam2", opts->cam2_glob, "Shell glob of cam2's images (natural order)")
+    cmd->add_option("--cam2", opts->cam2_glob,
+                    "Shell glob of cam2's images, JPEG or PNG (natural order)")
         ->required();
     cmd->add_option("--out", opts->output, "Output .ply")->required();
     cmd->add_flag("--swap-cameras", opts->swap_cameras,

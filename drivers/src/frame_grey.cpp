@@ -1,8 +1,9 @@
 #include "frame_grey.hpp"
 
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <string>
+
+#include "anascan/drivers/grey_image.hpp"
 
 namespace anascan::drivers {
 
@@ -19,10 +20,9 @@ Expected<cv::Mat> frame_to_grey(const Frame& frame, std::string_view source) {
             return grey;
         }
         case PixelFormat::kMjpeg: {
-            cv::Mat grey =
-                cv::imdecode(cv::Mat(1, static_cast<int>(frame.data.size()), CV_8UC1, data),
-                             cv::IMREAD_GRAYSCALE);
-            if (grey.empty() || grey.cols != frame.width || grey.rows != frame.height)
+            cv::Mat grey;
+            const bool decoded = bool(decode_grey_image(frame.data, source, grey));
+            if (!decoded || grey.cols != frame.width || grey.rows != frame.height)
                 return fail(ErrorCode::kFormat, std::string(source) + ": frame " +
                                                     std::to_string(frame.sequence) + " is not a " +
                                                     std::to_string(frame.width) + " x " +

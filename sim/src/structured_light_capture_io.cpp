@@ -1,6 +1,6 @@
 #include <cstdio>
-#include <opencv2/imgcodecs.hpp>
 
+#include "anascan/drivers/grey_image.hpp"
 #include "anascan/sim/structured_light_renderer.hpp"
 
 namespace anascan::sim {
@@ -13,14 +13,7 @@ Expected<void> write_images(const fs::path& dir, const char* camera,
     for (std::size_t i = 0; i < images.size(); ++i) {
         char name[64];
         std::snprintf(name, sizeof(name), "pattern_%s_im%02zu.png", camera, i + 1);
-        const fs::path path = dir / name;
-        bool written = false;
-        try {
-            written = cv::imwrite(path.string(), images[i]);
-        } catch (const cv::Exception& e) {
-            return fail(ErrorCode::kIo, path.string() + ": cannot write the image: " + e.what());
-        }
-        if (!written) return fail(ErrorCode::kIo, path.string() + ": cannot write the image");
+        if (auto ok = drivers::write_grey_png(dir / name, images[i]); !ok) return ok;
     }
     return {};
 }

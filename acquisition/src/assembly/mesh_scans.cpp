@@ -45,6 +45,7 @@ Expected<LoadedScans> load_placed(std::span<const MeshScan> scans, const Progres
 Error reconstruction_error(const SurfaceResult& r, const LoadedScans& s) {
     std::string message = "cannot mesh: " + std::string(to_string(r.status));
     for (const std::size_t i : r.diagnostics.isolated_scans) message += "; " + s.files[i];
+    if (!r.diagnostics.poisson_error.empty()) message += ": " + r.diagnostics.poisson_error;
     if (r.status == SurfaceStatus::kTooFewPoints) {
         message += " (" + std::to_string(r.diagnostics.merged_points) + " cells occupied)";
     }

@@ -1,12 +1,16 @@
 #include "anascan/drivers/structured_light/image_files.hpp"
 
 #include <glob.h>
+#include <sys/mman.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <atomic>
 #include <cctype>
-#include <opencv2/imgcodecs.hpp>
+#include <cstdint>
+#include <optional>
+
+#include "anascan/drivers/grey_image.hpp"
 
 namespace anascan::drivers::sl {
 namespace {
@@ -63,27 +67,50 @@ Expected<std::vector<std::filesystem::path>> glob_natural(const std::string& pat
     return files;
 }
 
+namespace {
+
+/// One uninitialised block for `count` grey images of `size`, rows of image i at
+/// [i * height, (i + 1) * height). The block is asked for huge pages: first touching
+/// 2.4 MB images in 4 KiB pages cost more kernel time than decoding the JPEGs did
+/// (docs/structured-light.md, "Speed").
+cv::Mat image_block(cv::Size size, std::size_t count) {
+    cv::Mat block(size.height * int(count), size.width, CV_8UC1);
+    constexpr std::uintptr_t kHuge = std::uintptr_t(2) << 20;
+    const auto begin = reinterpret_cast<std::uintptr_t>(block.data);
+    const std::uintptr_t end = begin + block.total();
+    const std::uintptr_t first = (begin + kHuge - 1) & ~(kHuge - 1);
+    const std::uintptr_t last = end & ~(kHuge - 1);
+    if (last > first) ::madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
+    return block;
+}
+
+}  // namespace
+
 Expected<std::vector<cv::Mat>> load_grey_images(
     std::span<const std::filesystem::path> files,
     const std::function<void(std::size_t done)>& on_loaded) {
     std::vector<cv::Mat> images(files.size());
-    std::atomic<std::size_t> done{0};
-    tbb::parallel_for(std::size_t(0), files.size(), [&](std::size_t i) {
-        try {
-            images[i] = cv::imread(files[i].string(), cv::IMREAD_GRAYSCALE);
-        } catch (const cv::Exception&) {
-            images[i].release();
-        }
+    if (files.empty()) return images;
+    if (auto ok = read_grey_image(files[0], images[0]); !ok) return fail(ok.error());
+    if (files.size() > 1) {
+        // Each image is decoded in place into its rows of one block (an image of another
+        // size gets a buffer of its own, and the decoder then refuses the sequence).
+        const cv::Mat first = images[0];
+        const cv::Mat block = image_block(first.size(), files.size());
+        for (std::size_t i = 0; i < files.size(); ++i)
+            images[i] = block.rowRange(int(i) * first.rows, int(i + 1) * first.rows);
+        first.copyTo(images[0]);
+    }
+    std::vector<std::optional<Error>> errors(files.size());
+    std::atomic<std::size_t> done{1};
+    if (on_loaded) on_loaded(1);
+    tbb::parallel_for(std::size_t(1), files.size(), [&](std::size_t i) {
+        if (auto ok = read_grey_image(files[i], images[i]); !ok) errors[i] = ok.error();
         const std::size_t n = ++done;
         if (on_loaded) on_loaded(n);
     });
-    for (std::size_t i = 0; i < files.size(); ++i) {
-        if (images[i].empty()) {
-            const std::string reason =
-                std::filesystem::exists(files[i]) ? "not a readable image" : "no such file";
-            return fail(ErrorCode::kFormat, files[i].string() + ": " + reason);
-        }
-    }
+    for (const std::optional<Error>& error : errors)
+        if (error) return fail(*error);
     return images;
 }
 

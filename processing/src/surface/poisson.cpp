@@ -1,10 +1,13 @@
 #include "poisson.hpp"
 
-#include <open3d/geometry/PointCloud.h>
-#include <open3d/geometry/TriangleMesh.h>
+#include <dlfcn.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+#include <vector>
 
 namespace anascan::surface_detail {
 namespace {
@@ -33,29 +36,52 @@ PoissonDepth choose_depth(double box_m, double finest_cell_m, double resolution_
     return d;
 }
 
-Mesh poisson_surface(const PointCloud& cloud, const PoissonParams& params) {
-    open3d::geometry::PointCloud pcd;
-    pcd.points_.reserve(cloud.size());
-    pcd.normals_.reserve(cloud.size());
-    for (std::size_t i = 0; i < cloud.size(); ++i) {
-        if (!(cloud.normals[i].squaredNorm() > 0.0f)) continue;  // no normal (or NaN): no sample
-        pcd.points_.push_back(cloud.positions[i].cast<double>());
-        pcd.normals_.push_back(cloud.normals[i].cast<double>());
+namespace {
+
+using PoissonEntry = void (*)(const PointCloud&, const PoissonParams&, Mesh&);
+
+/// Where the module is: $ANASCAN_POISSON_MODULE, else beside the running program or where
+/// an installation puts it relative to the program (BINDIR/../LIBDIR/anascan), else where
+/// this build put it.
+std::vector<std::string> module_candidates() {
+    if (const char* given = std::getenv("ANASCAN_POISSON_MODULE"); given && *given) return {given};
+    std::vector<std::string> paths;
+    std::error_code ec;
+    const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
+    if (!ec) {
+        paths.push_back((self.parent_path() / kModuleName).string());
+        paths.push_back(
+            (self.parent_path() / ANASCAN_POISSON_MODULE_FROM_BIN / kModuleName).string());
     }
+    paths.push_back(ANASCAN_POISSON_MODULE_BUILT);
+    return paths;
+}
+
+Expected<PoissonEntry> load_module() {
+    std::string errors;
+    for (const std::string& path : module_candidates()) {
+        // Never closed: the solver stays loaded for the process's life.
+        void* module = ::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+        if (module == nullptr) {
+            errors += std::string(errors.empty() ? "" : "; ") + ::dlerror();
+            continue;
+        }
+        if (void* entry = ::dlsym(module, "anascan_poisson_surface_v1"))
+            return reinterpret_cast<PoissonEntry>(entry);
+        errors += (errors.empty() ? "" : "; ") + path + ": no anascan_poisson_surface_v1";
+    }
+    return fail(ErrorCode::kIo, std::string("cannot load the screened Poisson module ") +
+                                    kModuleName +
+                                    " (set ANASCAN_POISSON_MODULE to its path): " + errors);
+}
+
+}  // namespace
+
+Expected<Mesh> poisson_surface(const PointCloud& cloud, const PoissonParams& params) {
+    static const Expected<PoissonEntry> entry = load_module();
+    if (!entry) return fail(entry.error());
     Mesh mesh;
-    mesh.vertices.origin_m = cloud.origin_m;
-    if (pcd.points_.size() < 4) return mesh;
-    auto [o3d, densities] = open3d::geometry::TriangleMesh::CreateFromPointCloudPoisson(
-        pcd, static_cast<std::size_t>(params.depth), 0.0f, static_cast<float>(params.scale),
-        params.linear_fit, params.threads);
-    if (!o3d || o3d->triangles_.empty()) return mesh;
-    o3d->ComputeVertexNormals();
-    mesh.vertices.positions.reserve(o3d->vertices_.size());
-    for (const Eigen::Vector3d& v : o3d->vertices_)
-        mesh.vertices.positions.push_back(v.cast<float>());
-    for (const Eigen::Vector3d& n : o3d->vertex_normals_)
-        mesh.vertices.normals.push_back(n.cast<float>());
-    mesh.triangles.assign(o3d->triangles_.begin(), o3d->triangles_.end());
+    (*entry)(cloud, params, mesh);
     return mesh;
 }
 

@@ -1,8 +1,9 @@
 #pragma once
 // Screened Poisson surface reconstruction through Open3D 0.16 (a port of Kazhdan's
-// PoissonRecon); the only file that includes Open3D.
+// PoissonRecon), in a module loaded on first use (open3d_poisson_module.cpp).
 #include <cstddef>
 
+#include "anascan/processing/core/expected.hpp"
 #include "anascan/processing/core/mesh.hpp"
 
 namespace anascan::surface_detail {
@@ -25,8 +26,13 @@ struct PoissonParams {
     bool linear_fit = false;
 };
 
+/// The module's file name; it is looked for in $ANASCAN_POISSON_MODULE, beside the running
+/// program, then where the build put it.
+inline constexpr const char* kModuleName = "libanascan_open3d_poisson.so";
+
 /// Runs screened Poisson on `cloud` (positions and unit normals). Returns the mesh in the
-/// cloud's frame (same origin) with vertex normals; empty on failure.
-Mesh poisson_surface(const PointCloud& cloud, const PoissonParams& params);
+/// cloud's frame (same origin) with vertex normals, empty when the solver made no surface;
+/// kIo error naming the module when it cannot be loaded.
+Expected<Mesh> poisson_surface(const PointCloud& cloud, const PoissonParams& params);
 
 }  // namespace anascan::surface_detail

@@ -78,8 +78,9 @@ SurfaceStatus merge_and_orient(std::span<const PlacedScan> scans, const SurfaceC
 }
 
 // Poisson on the merged points, or on a thinned copy (poisson_sample_cells).
-Mesh poisson_on_samples(const PointCloud& merged, const surface_detail::PoissonDepth& depth,
-                        const SurfaceConfig& config, SurfaceDiagnostics& d) {
+Expected<Mesh> poisson_on_samples(const PointCloud& merged,
+                                  const surface_detail::PoissonDepth& depth,
+                                  const SurfaceConfig& config, SurfaceDiagnostics& d) {
     const surface_detail::PoissonParams params{.depth = depth.depth,
                                                .scale = config.poisson_scale,
                                                .threads = config.poisson_threads,
@@ -123,8 +124,10 @@ SurfaceResult reconstruct_surface(std::span<const PlacedScan> scans, const Surfa
                   double(depth.estimated_memory_bytes) / 1048576.0);
     say(progress, line);
     Stopwatch watch;
-    result.model.mesh = poisson_on_samples(merged.cloud, depth, config, d);
+    auto poisson = poisson_on_samples(merged.cloud, depth, config, d);
     d.seconds_poisson = watch.seconds();
+    if (!poisson) d.poisson_error = poisson.error().message;
+    if (poisson) result.model.mesh = std::move(*poisson);
     if (result.model.mesh.triangles.empty()) {
         result.status = SurfaceStatus::kPoissonFailed;
         return result;

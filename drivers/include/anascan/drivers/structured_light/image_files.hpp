@@ -21,9 +21,10 @@ bool natural_less(std::string_view a, std::string_view b);
 /// kIo error naming the pattern when nothing matches.
 Expected<std::vector<std::filesystem::path>> glob_natural(const std::string& pattern);
 
-/// Reads every file as 8-bit grey (cv::IMREAD_GRAYSCALE: JPEG decodes only the luma),
-/// in parallel with TBB. `on_loaded(done)` runs after each file, from worker threads.
-/// kFormat error naming the first unreadable file.
+/// Reads every file as 8-bit grey (`decode_grey_image`: JPEG or PNG; JPEG decodes only the
+/// luma), in parallel with TBB, into one block of memory. `on_loaded(done)` runs after each
+/// file, from worker threads. The error names the first file that cannot be read (kIo) or
+/// decoded (kFormat).
 Expected<std::vector<cv::Mat>> load_grey_images(
     std::span<const std::filesystem::path> files,
     const std::function<void(std::size_t done)>& on_loaded = {});

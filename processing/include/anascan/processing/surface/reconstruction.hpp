@@ -16,6 +16,7 @@
 #include <functional>
 #include <optional>
 #include <span>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -79,6 +80,7 @@ struct SurfaceDiagnostics {
     std::size_t input_points = 0;     ///< Finite points over all scans.
     std::size_t merged_points = 0;    ///< After merging on the grid.
     std::size_t poisson_samples = 0;  ///< Merged points Poisson was given.
+    std::string poisson_error;        ///< Why the solver could not run (its module missing).
     std::size_t scans_with_sensor = 0;
     std::vector<std::size_t> isolated_scans;  ///< Indices of scans sharing no cell with others.
     std::size_t normals_unoriented = 0;       ///< Merged points whose normal could not be fitted.
