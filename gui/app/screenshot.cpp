@@ -1,10 +1,9 @@
 #include "screenshot.hpp"
 
 #include <GL/gl.h>
+#include <png.h>
 
-#include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
+#include <vector>
 
 namespace anascan::field {
 
@@ -12,21 +11,20 @@ Expected<void> write_screenshot(const std::filesystem::path& path, int width_px,
     if (width_px <= 0 || height_px <= 0) {
         return fail(ErrorCode::kInvalidArgument, path.string() + ": empty frame buffer");
     }
-    cv::Mat rgb(height_px, width_px, CV_8UC3);
+    std::vector<unsigned char> rgb(std::size_t(width_px) * std::size_t(height_px) * 3);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
     glReadBuffer(GL_BACK);
-    glReadPixels(0, 0, width_px, height_px, GL_RGB, GL_UNSIGNED_BYTE, rgb.data);
-    cv::Mat bgr;
-    cv::cvtColor(rgb, bgr, cv::COLOR_RGB2BGR);
-    cv::flip(bgr, bgr, 0);  // OpenGL's row 0 is the bottom
-    bool written = false;
-    try {
-        written = cv::imwrite(path.string(), bgr);
-    } catch (const cv::Exception& e) {
-        return fail(ErrorCode::kIo, path.string() + ": cannot write the screenshot: " + e.what());
-    }
-    if (!written) {
-        return fail(ErrorCode::kIo, path.string() + ": cannot write the screenshot");
+    glReadPixels(0, 0, width_px, height_px, GL_RGB, GL_UNSIGNED_BYTE, rgb.data());
+    png_image png{};
+    png.version = PNG_IMAGE_VERSION;
+    png.width = png_uint_32(width_px);
+    png.height = png_uint_32(height_px);
+    png.format = PNG_FORMAT_RGB;
+    // OpenGL's row 0 is the bottom: a negative stride hands libpng the rows top first.
+    const png_int_32 stride = -png_int_32(width_px) * 3;
+    if (png_image_write_to_file(&png, path.c_str(), 0, rgb.data(), stride, nullptr) == 0) {
+        return fail(ErrorCode::kIo,
+                    path.string() + ": cannot write the screenshot: " + png.message);
     }
     return {};
 }

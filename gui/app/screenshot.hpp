@@ -9,8 +9,10 @@
 
 namespace anascan::field {
 
-/// Reads width × height pixels of the back buffer and writes them as an RGB PNG (OpenCV
-/// imgcodecs); the error names the file.
+/// Reads width × height pixels of the back buffer and writes them as an RGB PNG (libpng,
+/// not OpenCV's imgcodecs: under ThreadSanitizer, imgcodecs' GDAL plugin reported a lock
+/// order inversion inside GDAL, and it brings 84 libraries to the start of the app); the
+/// error names the file.
 Expected<void> write_screenshot(const std::filesystem::path& path, int width_px, int height_px);
 
 }  // namespace anascan::field

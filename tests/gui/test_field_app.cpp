@@ -9,12 +9,15 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <opencv2/imgcodecs.hpp>
+#include <opencv2/core/mat.hpp>
 #include <random>
 #include <string>
 
 #include "anascan/processing/io/ply.hpp"
 #include "field_app_run.hpp"
+#include "screenshot_png.hpp"
+
+using anascan::field::test::read_screenshot;
 
 namespace fs = std::filesystem;
 
@@ -74,7 +77,7 @@ TEST_F(FieldApp, ScreenshotShowsThePointsAndThePanels) {
                             " --frames 5 --width 1280 --height 800 --font-scale 1.5");
     ASSERT_EQ(r.exit_code, 0) << r.output;
     EXPECT_NE(r.output.find("frame time median"), std::string::npos) << r.output;
-    const cv::Mat image = cv::imread(png.string(), cv::IMREAD_COLOR);
+    const cv::Mat image = read_screenshot(png);
     ASSERT_FALSE(image.empty()) << png;
     ASSERT_EQ(image.cols, 1280);
     ASSERT_EQ(image.rows, 800);
@@ -103,7 +106,7 @@ TEST_F(FieldApp, TheWindowTakesTheScreensSizeUnlessGivenOne) {
         std::string(ANASCAN_XVFB_RUN_PROGRAM) + " -a -s '-screen 0 1600x1000x24' " + ANASCAN_FIELD +
         " --cloud " + ply.string() + " --screenshot " + png.string());
     ASSERT_EQ(r.exit_code, 0) << r.output;
-    const cv::Mat image = cv::imread(png.string(), cv::IMREAD_COLOR);
+    const cv::Mat image = read_screenshot(png);
     ASSERT_FALSE(image.empty()) << png;
     EXPECT_EQ(image.cols, 1600);
     EXPECT_EQ(image.rows, 1000);
@@ -120,7 +123,7 @@ TEST_F(FieldApp, ASmallPointBudgetStillShowsTheStoneAndRefinesIt) {
         const RunResult r = run("--cloud " + ply.string() + " --screenshot " + png.string() +
                                 " --frames " + std::to_string(frames) + " --point-budget 2000");
         ASSERT_EQ(r.exit_code, 0) << r.output;
-        const cv::Mat image = cv::imread(png.string(), cv::IMREAD_COLOR);
+        const cv::Mat image = read_screenshot(png);
         ASSERT_FALSE(image.empty()) << png;
         covered[frames == 2 ? 0 : 1] = fraction_not(image, view_centre, kClearRgb);
     }

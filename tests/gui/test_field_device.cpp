@@ -8,11 +8,14 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <opencv2/imgcodecs.hpp>
+#include <opencv2/core/mat.hpp>
 #include <set>
 #include <string>
 
 #include "field_app_run.hpp"
+#include "screenshot_png.hpp"
+
+using anascan::field::test::read_screenshot;
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -75,7 +78,7 @@ TEST_F(FieldDevice, ConnectShowsBothCamerasAndAppliesTypedSettings) {
     ASSERT_EQ(preview["images"].size(), 2u) << preview.dump(2);
     EXPECT_NE(preview["caption"].get<std::string>().find("cam1 | cam2"), std::string::npos);
     ASSERT_TRUE(preview["rect"].is_array()) << "the preview was not drawn: " << preview.dump(2);
-    const cv::Mat image = cv::imread(png.string(), cv::IMREAD_COLOR);
+    const cv::Mat image = read_screenshot(png);
     ASSERT_FALSE(image.empty()) << png;
     const auto rect = preview["rect"].get<std::vector<float>>();
     const cv::Rect area(static_cast<int>(rect[0]) + 2, static_cast<int>(rect[1]) + 2,

@@ -12,10 +12,13 @@
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
-#include <opencv2/imgcodecs.hpp>
+#include <opencv2/core/mat.hpp>
 #include <string>
 
 #include "field_app_run.hpp"
+#include "screenshot_png.hpp"
+
+using anascan::field::test::read_screenshot;
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -89,7 +92,7 @@ protected:
     }
 
     void expect_model_drawn(const fs::path& png) {
-        const cv::Mat image = cv::imread(png.string(), cv::IMREAD_COLOR);
+        const cv::Mat image = read_screenshot(png);
         ASSERT_FALSE(image.empty()) << png;
         // The view lies between the scan list (450 px) and the device panel (360 px); a banner
         // (this 2-view session may be split) covers up to about 260 px of its top.
@@ -183,7 +186,7 @@ TEST_F(FieldSession, TheMeshOfTheSessionIsMadeOnRequestAndShownWithItsInterpolat
     EXPECT_LT(mesh["interpolated_share"].get<double>(), 0.95);
     EXPECT_EQ(mesh["outdated"], "");
     EXPECT_NE(mesh["summary"].get<std::string>().find("interpolated"), std::string::npos);
-    const cv::Mat image = cv::imread(png.string());
+    const cv::Mat image = read_screenshot(png);
     ASSERT_FALSE(image.empty());
     // The view lies between the scan list (300 px x font scale 1.5) and the device panel.
     const cv::Rect view(460, 60, image.cols - 460 - 370, image.rows - 200);
@@ -297,7 +300,7 @@ TEST_F(FieldSession, AFullDiskIsReportedInTheBannerAndTheAppGoesOn) {
     EXPECT_EQ(state["banner_kind"], "capture-failed") << state.dump(2);
     EXPECT_TRUE(state["scans"].empty()) << "nothing half-recorded: " << state.dump(2);
     // The red banner over the top of the view (the view starts at 450 px).
-    const cv::Mat image = cv::imread(png.string(), cv::IMREAD_COLOR);
+    const cv::Mat image = read_screenshot(png);
     ASSERT_FALSE(image.empty()) << png;
     const cv::Vec3b banner_red{191, 13, 13};  // ImVec4(0.75, 0.05, 0.05)
     EXPECT_LT(fraction_not(image, cv::Rect(460, 5, 300, 60), banner_red), 0.5)
@@ -350,7 +353,7 @@ TEST_F(FieldSession, AScanThatContradictsItsGroupIsFlaggedAndTheBannerSaysSo) {
     ASSERT_GE(flagged, 1) << state.dump(2) << captured.output;
     EXPECT_EQ(state["banner_kind"], "disagree") << state.dump(2);
     EXPECT_NE(state["banner"].get<std::string>().find("contradict"), std::string::npos);
-    const cv::Mat image = cv::imread(png.string(), cv::IMREAD_COLOR);
+    const cv::Mat image = read_screenshot(png);
     ASSERT_FALSE(image.empty()) << png;
     const cv::Vec3b banner_red{191, 13, 13};  // ImVec4(0.75, 0.05, 0.05), as the failure's
     EXPECT_LT(fraction_not(image, cv::Rect(460, 5, 300, 60), banner_red), 0.5)

@@ -282,7 +282,8 @@ TEST(SimStructuredLightDevice, CancelDuringThePatternsStopsAndTheDeviceStaysUsab
 TEST(SimStructuredLightDevice, ASilentCameraIsATimeoutNamingIt) {
     auto device = SimStructuredLightScanner::open(small_sl_config());
     device->part_faults(SlPart::kCam2)->stalled = true;
-    auto none = device->capture_scan({.timeout = std::chrono::milliseconds(300)});
+    // Long enough for cam1's frame under ThreadSanitizer too (it took more than 300 ms).
+    auto none = device->capture_scan({.timeout = std::chrono::seconds(3)});
     ASSERT_FALSE(none);
     EXPECT_EQ(none.error().code, ErrorCode::kTimeout);
     EXPECT_NE(none.error().message.find("sim:structured-light/small-block#cam2"), std::string::npos)
