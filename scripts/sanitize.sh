@@ -27,8 +27,8 @@ asan_targets=(anascan_session_store_tests anascan anascan_cli_session_tests
     fuzz_calibration_replay fuzz_session_db_replay fuzz_grey_image_replay)
 # The CI set, ASan + UBSan: the processing library (every parser and every algorithm) with
 # its unit tests and the corpus replays of every processing parser's fuzz harness (the
-# recording, calibration and session-database harnesses need the driver and acquisition
-# libraries: full `asan` set). Projected to fit CI's budget
+# recording, calibration, session-database and grey-image harnesses need the driver and
+# acquisition libraries: full `asan` set). Projected to fit CI's budget
 # (about 25 minutes on 2 cores, build included; docs/reliability.md); the acquisition,
 # driver and command-line tests need three more libraries built: full `asan` set only.
 ci_targets=(anascan_processing_tests fuzz_ply_replay fuzz_text_points_replay fuzz_ptx_replay
@@ -118,10 +118,11 @@ status=0
 if [ "$which" = ci ]; then
     part "asan (CI set) build" configure_and_build build-asan "address;undefined" \
         "${ci_targets[@]}"
-    # The replays of the recording, calibration and session-database harnesses need the
-    # driver and acquisition libraries, which this set does not build.
+    # The replays of the recording, calibration, session-database and grey-image harnesses
+    # need the driver and acquisition libraries, which this set does not build.
     part "asan (CI set) tests" run_tests build-asan \
-        -E "$common_exclude|^fuzz_(recording|calibration|session_db)_replay\$" || status=1
+        -E "$common_exclude|^fuzz_(recording|calibration|session_db|grey_image)_replay\$" ||
+        status=1
 fi
 if [ "$which" = asan ] || [ "$which" = all ]; then
     part "asan build" configure_and_build build-asan "address;undefined" "${asan_targets[@]}"
