@@ -147,12 +147,41 @@ bool operator_accepts_other_stone(const std::string& what) {
     return std::getline(std::cin, answer) && (answer == "y" || answer == "yes");
 }
 
+/// Another stone: the operator's answer (at a terminal), or --mix-stones. Refused, the
+/// scans this capture added outside the model (`model_group`) are excluded (kept on disk)
+/// and the capture ends.
+void decide_on_other_stone(CaptureSession& session, const CaptureOptions& o,
+                           const acquisition::StoneCheck& check, int already) {
+    const std::string what = o.session + ": another stone? " + check.message;
+    if (o.mix_stones || operator_accepts_other_stone(what)) {
+        std::printf("%s; added anyway%s\n", what.c_str(), o.mix_stones ? " (--mix-stones)" : "");
+        return;
+    }
+    std::vector<std::int64_t> out{check.seq};
+    if (auto scans = session.store().scans())
+        for (const acquisition::ScanRecord& s : *scans)
+            if (s.seq > already && s.seq != check.seq && !s.excluded &&
+                !(acquisition::counts_in_group(s) && s.group == check.model_group))
+                out.push_back(s.seq);
+    for (const std::int64_t seq : out) (void)session.exclude(seq, true);
+    session.wait_until_idle();
+    const std::string kept = out.size() == 1
+                                 ? "Scan " + std::to_string(check.seq) + " is"
+                                 : std::to_string(out.size()) + " scans of this capture are";
+    throw CommandFailed(what + ". " + kept +
+                        " kept on disk but excluded, nothing was mixed into the model. "
+                        "Use a new --session for a new stone, or --mix-stones to add these "
+                        "scans anyway");
+}
+
 /// The first scan added to a session with a model, once registered: a scan that joined
 /// no part of the stone and shows another object is asked about (refused without a
 /// terminal, unless --mix-stones); a refused scan is excluded (kept on disk) and the
-/// capture ends. Returns the line for the summary when the scan did not join.
+/// capture ends. Returns the line for the summary when the scan did not join; while the
+/// stone is not confirmed, `model_seq` is a scan of the model (0 otherwise).
 std::string confirm_same_stone(CaptureSession& session, const CaptureOptions& o,
-                               const std::string& uri) {
+                               const std::string& uri, int already, std::int64_t& model_seq) {
+    model_seq = 0;
     auto scans = session.store().scans();
     if (!scans || scans->empty()) return {};
     const std::int64_t seq = scans->back().seq;
@@ -169,19 +198,34 @@ std::string confirm_same_stone(CaptureSession& session, const CaptureOptions& o,
                                     std::string(to_string(check->outcome)) + ": " + check->message);
     if (check->outcome != StoneCheckOutcome::kOtherStone) {
         std::printf("%s\n", check->message.c_str());
+        for (const acquisition::ScanRecord& s : *scans)
+            if (s.seq != seq && acquisition::counts_in_group(s) && s.group == check->model_group)
+                model_seq = s.seq;
         return check->message;
     }
-    const std::string what = o.session + ": another stone? " + check->message;
-    if (o.mix_stones || operator_accepts_other_stone(what)) {
-        std::printf("%s; added anyway%s\n", what.c_str(), o.mix_stones ? " (--mix-stones)" : "");
-        return what;
+    decide_on_other_stone(session, o, *check, already);
+    return o.session + ": another stone? " + check->message + "; added anyway";
+}
+
+/// A later scan of a capture whose first scan joined no part of the stone, once registered:
+/// true when it joined the model (the stone is confirmed, nothing more to check). A scan the
+/// registrar fitted onto the model and then took out as contradicting it is asked about as
+/// the first scan is.
+bool later_scan_joins_stone(CaptureSession& session, const CaptureOptions& o,
+                            const std::string& uri, int already, std::int64_t model_seq) {
+    auto scans = session.store().scans();
+    if (!scans || scans->empty()) return false;
+    auto check = acquisition::check_later_scan(session.store(), scans->back().seq, model_seq);
+    if (!check) {
+        spdlog::warn("could not compare scan {} with the stone: {}", scans->back().seq,
+                     check.error().message);
+        return false;
     }
-    (void)session.exclude(seq, true);
-    session.wait_until_idle();
-    throw CommandFailed(what + ". Scan " + std::to_string(seq) +
-                        " is kept on disk but excluded, nothing was mixed into the model. "
-                        "Use a new --session for a new stone, or --mix-stones to add these "
-                        "scans anyway");
+    if (check->outcome == acquisition::StoneCheckOutcome::kJoined) return true;
+    if (check->outcome != acquisition::StoneCheckOutcome::kOtherStone) return false;
+    (void)session.store().add_event("stone-check", uri, "other-stone: " + check->message);
+    decide_on_other_stone(session, o, *check, already);
+    return true;
 }
 
 /// The simulated operator walks on for the pause, unless Ctrl-C comes first.
@@ -322,9 +366,16 @@ std::optional<Error> capture_views(CaptureSession& session, const CaptureOptions
     return stopped;
 }
 
+std::size_t scan_count(CaptureSession& session) {
+    auto scans = session.store().scans();
+    return scans ? scans->size() : 0;
+}
+
 /// All views from `already` on; the first one added to a session that has scans is
 /// registered and checked against the stone before the others (see confirm_same_stone),
-/// unless --mix-stones says the answer beforehand (then nothing waits for the check).
+/// unless --mix-stones says the answer beforehand (then nothing waits for the check). When
+/// it joined no part of the stone, each later view is registered before the next is taken,
+/// until one joins the model (later_scan_joins_stone).
 std::optional<Error> capture_all_views(CaptureSession& session, const CaptureOptions& o,
                                        const std::string& uri, int already,
                                        std::string& stone_note) {
@@ -334,8 +385,19 @@ std::optional<Error> capture_all_views(CaptureSession& session, const CaptureOpt
         const auto stopped = capture_views(session, o, uri, guide, already, already + 1);
         if (stopped || g_interrupted) return stopped;
         session.wait_until_idle();
-        stone_note = confirm_same_stone(session, o, uri);
-        from = already + 1;
+        std::int64_t model_seq = 0;
+        stone_note = confirm_same_stone(session, o, uri, already, model_seq);
+        for (from = already + 1; model_seq > 0 && from < o.views; ++from) {
+            const std::size_t saved = scan_count(session);
+            const auto later = capture_views(session, o, uri, guide, from, from + 1);
+            if (later || g_interrupted) return later;
+            if (scan_count(session) == saved) {  // The operator stopped, or the guide did.
+                from = o.views;
+                break;
+            }
+            session.wait_until_idle();
+            if (later_scan_joins_stone(session, o, uri, already, model_seq)) model_seq = 0;
+        }
     }
     const auto stopped = capture_views(session, o, uri, guide, from, o.views);
     if (scanner_sources::is_simulated(uri) && o.tour == "guided")
@@ -434,10 +496,11 @@ void add_capture_command(CLI::App& app) {
                   "distances) to the noise measured on the first scan (docs/live-registration.md)");
     cmd->add_flag("--no-coverage", opts->no_coverage, "No live coverage");
     cmd->add_flag("--mix-stones", opts->mix_stones,
-                  "Add to an existing session without checking that its first new scan "
-                  "shows the same stone (default: register it first and, when it joins no "
-                  "part of the stone and its size or surface shows another object, ask, "
-                  "or refuse without a terminal)");
+                  "Add to an existing session without checking that its new scans show "
+                  "the same stone (default: register the first one before the next view and, "
+                  "when it joins no part of the stone and its size or surface shows another "
+                  "object, or the stone's model contradicts it, ask, or refuse without a "
+                  "terminal; until a new scan joins the model, each is checked so)");
     cmd->add_option("--reconnect-timeout-s", opts->reconnect_timeout_s,
                     "How long to wait for a device that went away, s (default 10)")
         ->check(CLI::Range(0.0, 3600.0));

@@ -1,6 +1,7 @@
 #include "anascan/acquisition/capture/stone_check.hpp"
 
 #include <algorithm>
+#include <nlohmann/json.hpp>
 #include <vector>
 
 #include "anascan/acquisition/store/groups.hpp"
@@ -46,6 +47,23 @@ Expected<PointCloud> stone_cloud(const SessionStore& store, const ScanRecord& re
                            config.registration);
 }
 
+/// Why the registrar took `record` out of its group, when it did because the fit grossly
+/// contradicts the scans it was fitted onto: its points in space their sensors saw empty,
+/// or its surface crossing theirs (the phrases of processing's `describe(PairConsistency)`).
+/// A surface a fraction of a millimetre off theirs ("its surface lies ... from the
+/// other's") is a fit of the stone that slid, not evidence of another object: the same
+/// stone seen again was taken out so on both tour seeds measured. Empty otherwise.
+std::string contradiction_of(const ScanRecord& record) {
+    if (record.state != ScanState::kFlagged || record.excluded) return {};
+    const nlohmann::json quality = nlohmann::json::parse(record.quality_json, nullptr, false);
+    if (!quality.is_object() || !quality.contains("reason") || !quality["reason"].is_string())
+        return {};
+    std::string reason = quality["reason"].get<std::string>();
+    const bool gross = reason.find("saw empty") != std::string::npos ||
+                       reason.find("normals cross") != std::string::npos;
+    return gross ? reason : std::string();
+}
+
 std::string outcome_message(const StoneCheck& check) {
     const std::string scan = "scan " + std::to_string(check.seq);
     switch (check.outcome) {
@@ -65,6 +83,14 @@ std::string outcome_message(const StoneCheck& check) {
                    "its own group (" +
                    check.evidence.reason + ")";
         case StoneCheckOutcome::kOtherStone:
+            if (!check.contradiction.empty())
+                return scan +
+                       " joined no part of the stone's model: the registrar fitted it onto the "
+                       "stone, and the fit contradicts the stone (" +
+                       check.contradiction +
+                       "); another object, or a view of the stone it "
+                       "could not place (" +
+                       check.evidence.reason + ")";
             return scan + " joined no part of the stone's model and shows another object: " +
                    check.evidence.reason;
     }
@@ -127,9 +153,36 @@ Expected<StoneCheck> check_stone_of_scan(const SessionStore& store, std::int64_t
             check.evidence.reason = "no stone points to compare: " + mine.error().message;
         }
         check.outcome = outcome_of(check.evidence.verdict);
+        check.contradiction = contradiction_of(*record);
+        if (!check.contradiction.empty()) check.outcome = StoneCheckOutcome::kOtherStone;
     }
     check.message = outcome_message(check);
     return check;
+}
+
+Expected<StoneCheck> check_later_scan(const SessionStore& store, std::int64_t seq,
+                                      std::int64_t model_seq, const StoneCheckConfig& config) {
+    auto model = store.scan(model_seq);
+    if (!model) return fail(model.error());
+    auto record = store.scan(seq);
+    if (!record) return fail(record.error());
+    StoneCheck check;  // Members set one by one: GCC 12 warns on skipped designators here.
+    check.seq = seq;
+    check.model_group = counts_in_group(*model) ? model->group : -1;
+    const std::string scan = "scan " + std::to_string(seq);
+    if (counts_in_group(*record) && record->group == check.model_group) {
+        check.outcome = StoneCheckOutcome::kJoined;
+        check.message = scan + " joined the stone's model";
+        return check;
+    }
+    if (contradiction_of(*record).empty()) {
+        check.outcome = StoneCheckOutcome::kUndecided;
+        check.message = scan + " joined no part of the stone's model yet";
+        return check;
+    }
+    auto full = check_stone_of_scan(store, seq, config);
+    if (full) full->model_group = check.model_group;
+    return full;
 }
 
 }  // namespace anascan::acquisition

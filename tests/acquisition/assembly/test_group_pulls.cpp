@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <filesystem>
 
-#include "../../processing/test_bumpy_surface.hpp"
 #include "../session_test_support.hpp"
+#include "../strip_session.hpp"
 #include "anascan/acquisition/assembly/group_pulls.hpp"
 
 namespace anascan::acquisition {
@@ -14,45 +14,18 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class GroupPulls : public ::testing::Test {
+class GroupPulls : public testing_util::SessionFolder {
 protected:
-    void SetUp() override {
-        dir_ = fs::temp_directory_path() /
-               ("anascan-group-pulls-" + std::to_string(::getpid()) + "-" +
-                ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-
-    /// Four overlapping strips (8 cm long, 4 cm apart) of one relief on a curved base, all in
-    /// group 0 at their true poses except `slid_seq`, moved 8 mm along the surface.
+    /// The four strips all in group 0 at their true poses, except `slid_seq`, moved 8 mm
+    /// along the surface.
     std::unique_ptr<SessionStore> session_with_strips(std::int64_t slid_seq) {
-        auto store = SessionStore::open(dir_, SessionOpenMode::kCreateOrOpen);
-        EXPECT_TRUE(store.has_value());
-        const auto bumps = testing_util::random_bumps(11, 40);
-        for (int k = 0; k < 4; ++k) {
-            const double x0 = -0.1 + 0.04 * k;
-            Scan scan;
-            scan.meta.device_id = "sim:test#0";
-            scan.meta.sensor_origin_scan_m = Eigen::Vector3d(x0 + 0.04, 0.0, 0.5);
-            scan.cloud = testing_util::bumpy_surface(bumps, x0, x0 + 0.08, 0.001, 0.0003 * k);
-            for (Eigen::Vector3f& p : scan.cloud.positions)  // Not a plane: not the ground.
-                p.z() += 10.0f * (p.x() * p.x() + p.y() * p.y());
-            auto saved = (*store)->save_scan(scan, std::nullopt);
-            EXPECT_TRUE(saved.has_value());
+        return testing_util::session_of_strips(dir_, [&](int k) {
             Pose T = Pose::Identity();
-            if (saved->seq == slid_seq) T.translation() = Eigen::Vector3d(0.0, 0.008, 0.0);
-            EXPECT_TRUE((*store)
-                            ->record_registration(saved->seq, {.state = ScanState::kRegistered,
-                                                               .group = 0,
-                                                               .pose = T,
-                                                               .quality_json = "{}"})
-                            .has_value());
-        }
-        return std::move(*store);
+            if (k + 1 == slid_seq) T.translation() = Eigen::Vector3d(0.0, 0.008, 0.0);
+            return RegistrationUpdate{
+                .state = ScanState::kRegistered, .group = 0, .pose = T, .quality_json = "{}"};
+        });
     }
-
-    fs::path dir_;
 };
 
 TEST_F(GroupPulls, TheSlidScanIsPulledFlaggedAndLeavesTheGroup) {
