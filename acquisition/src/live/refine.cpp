@@ -133,6 +133,9 @@ std::optional<std::vector<PoseUpdate>> LiveRegistrar::State::merge_by_votes(
     for (std::size_t j : in_b) {
         for (std::size_t i : in_a) {
             if (attempts >= config.merges.max_attempts) return std::vector<PoseUpdate>{};
+            // Each try is a global registration (0.1-0.3 s): a waiting scan comes first,
+            // the pairs not tried yet (not marked) are the next call's.
+            if (interrupted()) return std::vector<PoseUpdate>{};
             if (!merge_tried.insert({i, j}).second) continue;
             ++attempts;
             vote_scan_pair(i, j, box);
