@@ -30,7 +30,13 @@ bunny=/work/shared/data/stanford-bunny-range-scans/data/bun000.ply
 stones=${STONES:-"small-block octagon-block large-block"}  # the bases
 others=${OTHERS:-$stones}  # the other stones tried on each base
 add=${ADD:-1}
-turned_of() { case $1 in large-block) echo large-block-on-side ;; *) echo "$1-turned" ;; esac; }
+turned_of() {
+    case $1 in
+        large-block) echo large-block-on-side ;;
+        *-turned) echo "${1%-turned}" ;;  # A base lying turned over, turned back.
+        *) echo "$1-turned" ;;
+    esac
+}
 
 # The scans after the first VIEWS that ended in the session's largest group.
 in_model() {

@@ -157,12 +157,11 @@ void decide_on_other_stone(CaptureSession& session, const CaptureOptions& o,
         std::printf("%s; added anyway%s\n", what.c_str(), o.mix_stones ? " (--mix-stones)" : "");
         return;
     }
-    std::vector<std::int64_t> out{check.seq};
-    if (auto scans = session.store().scans())
-        for (const acquisition::ScanRecord& s : *scans)
-            if (s.seq > already && s.seq != check.seq && !s.excluded &&
-                !(acquisition::counts_in_group(s) && s.group == check.model_group))
-                out.push_back(s.seq);
+    const auto scans = session.store().scans();
+    std::vector<std::int64_t> out =
+        scans ? acquisition::scans_outside_model(*scans, already, check.model_group)
+              : std::vector<std::int64_t>{};
+    if (out.empty()) out.push_back(check.seq);
     for (const std::int64_t seq : out) (void)session.exclude(seq, true);
     session.wait_until_idle();
     const std::string kept = out.size() == 1
@@ -198,9 +197,7 @@ std::string confirm_same_stone(CaptureSession& session, const CaptureOptions& o,
                                     std::string(to_string(check->outcome)) + ": " + check->message);
     if (check->outcome != StoneCheckOutcome::kOtherStone) {
         std::printf("%s\n", check->message.c_str());
-        for (const acquisition::ScanRecord& s : *scans)
-            if (s.seq != seq && acquisition::counts_in_group(s) && s.group == check->model_group)
-                model_seq = s.seq;
+        model_seq = check->model_scan;
         return check->message;
     }
     decide_on_other_stone(session, o, *check, already);

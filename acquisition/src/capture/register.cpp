@@ -224,7 +224,7 @@ void CaptureSession::Impl::record_taken_out(const std::vector<LiveTakenOut>& tak
                                     ": " + t.reason +
                                     "; scan that part again, or register it again";
         if (auto ok = store->record_registration(
-                t.seq, {.state = ScanState::kFlagged, .quality_json = reason_json(message)});
+                t.seq, {.state = ScanState::kFlagged, .quality_json = taken_out_json(t, message)});
             !ok)
             emit({.kind = SessionEventKind::kSaveFailed,
                   .seq = t.seq,

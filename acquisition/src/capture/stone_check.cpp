@@ -49,19 +49,24 @@ Expected<PointCloud> stone_cloud(const SessionStore& store, const ScanRecord& re
 
 /// Why the registrar took `record` out of its group, when it did because the fit grossly
 /// contradicts the scans it was fitted onto: its points in space their sensors saw empty,
-/// or its surface crossing theirs (the phrases of processing's `describe(PairConsistency)`).
-/// A surface a fraction of a millimetre off theirs ("its surface lies ... from the
-/// other's") is a fit of the stone that slid, not evidence of another object: the same
-/// stone seen again was taken out so on both tour seeds measured. Empty otherwise.
+/// its surface crossing theirs or meeting it at a large angle (the pair test it failed,
+/// stored as "disagreement"). A surface a fraction of a millimetre off theirs ("surfaces
+/// apart") is a fit of the stone that slid, not evidence of another object: the same stone
+/// seen again was taken out so on both tour seeds measured. Empty otherwise, also for
+/// scans flagged by other checks (the union pull) or before the test was stored.
 std::string contradiction_of(const ScanRecord& record) {
     if (record.state != ScanState::kFlagged || record.excluded) return {};
     const nlohmann::json quality = nlohmann::json::parse(record.quality_json, nullptr, false);
-    if (!quality.is_object() || !quality.contains("reason") || !quality["reason"].is_string())
+    const auto text = [&](const char* key) {
+        return quality.is_object() && quality.contains(key) && quality[key].is_string()
+                   ? quality[key].get<std::string>()
+                   : std::string();
+    };
+    const std::string disagreement = text("disagreement");
+    if (disagreement != "free space" && disagreement != "normals cross" && disagreement != "angle")
         return {};
-    std::string reason = quality["reason"].get<std::string>();
-    const bool gross = reason.find("saw empty") != std::string::npos ||
-                       reason.find("normals cross") != std::string::npos;
-    return gross ? reason : std::string();
+    const std::string reason = text("reason");
+    return reason.empty() ? disagreement : reason;
 }
 
 std::string outcome_message(const StoneCheck& check) {
@@ -136,6 +141,7 @@ Expected<StoneCheck> check_stone_of_scan(const SessionStore& store, std::int64_t
     StoneCheck check{.seq = seq};
     const std::vector<ScanRecord> members =
         model_scans(*scans, seq, config.max_model_scans, check.model_group);
+    if (!members.empty()) check.model_scan = members.back().seq;
     if (members.empty()) {
         check.outcome = StoneCheckOutcome::kNoModel;
     } else if (joined_earlier_scans(*scans, *record)) {
@@ -160,6 +166,15 @@ Expected<StoneCheck> check_stone_of_scan(const SessionStore& store, std::int64_t
     return check;
 }
 
+std::vector<std::int64_t> scans_outside_model(const std::vector<ScanRecord>& scans,
+                                              std::int64_t after_seq, int model_group) {
+    std::vector<std::int64_t> out;
+    for (const ScanRecord& s : scans)
+        if (s.seq > after_seq && !s.excluded && !(counts_in_group(s) && s.group == model_group))
+            out.push_back(s.seq);
+    return out;
+}
+
 Expected<StoneCheck> check_later_scan(const SessionStore& store, std::int64_t seq,
                                       std::int64_t model_seq, const StoneCheckConfig& config) {
     auto model = store.scan(model_seq);
@@ -169,6 +184,7 @@ Expected<StoneCheck> check_later_scan(const SessionStore& store, std::int64_t se
     StoneCheck check;  // Members set one by one: GCC 12 warns on skipped designators here.
     check.seq = seq;
     check.model_group = counts_in_group(*model) ? model->group : -1;
+    check.model_scan = model_seq;
     const std::string scan = "scan " + std::to_string(seq);
     if (counts_in_group(*record) && record->group == check.model_group) {
         check.outcome = StoneCheckOutcome::kJoined;

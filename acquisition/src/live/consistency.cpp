@@ -48,6 +48,7 @@ void take_out_one_by_one(const GroupConsistency& result, const std::vector<std::
     choose_take_out(kept);
     for (const std::size_t k : kept.take_out) {
         const std::optional<std::size_t> worst = kept.scans[k].worst_pair;
+        v.disagreements[k] = worst ? kept.pairs[*worst].reason : std::string();
         reasons[k] = "contradicts its group (disagrees with " +
                      std::to_string(kept.scans[k].disagreeing) + " of " +
                      std::to_string(kept.scans[k].overlapping) + " overlapping scans): " +
@@ -103,7 +104,7 @@ void LiveRegistrar::State::take_out_merged_parts(int g, const std::vector<std::s
         for (std::size_t k = 0; k < ids.size(); ++k) {
             if (!in.contains(ids[k]) || !here(k)) continue;
             if (inside)
-                v.reasons[k] = reason;
+                v.reasons[k] = reason, v.disagreements[k] = inside->reason;
             else
                 v.unit[k] = static_cast<int>(m) + 1, v.moved[k] = reason;
         }
@@ -138,6 +139,7 @@ void LiveRegistrar::State::check_group(int g, std::vector<PoseUpdate>& regrouped
     // The evidence is against the newest decisions first: a merge that a disagreement touches
     // leaves whole; what still disagrees then leaves one scan at a time.
     live::Verdicts verdicts{.reasons = std::vector<std::string>(ids.size()),
+                            .disagreements = std::vector<std::string>(ids.size()),
                             .unit = std::vector<int>(ids.size(), 0),
                             .moved = std::vector<std::string>(ids.size())};
     take_out_merged_parts(g, ids, result, names, verdicts);
@@ -146,7 +148,10 @@ void LiveRegistrar::State::check_group(int g, std::vector<PoseUpdate>& regrouped
         if (verdicts.reasons[k].empty()) continue;
         live::ScanEntry& e = scans[ids[k]];
         e.flagged = verdicts.reasons[k];
-        report.taken_out.push_back({.seq = e.seq, .group = g, .reason = e.flagged});
+        report.taken_out.push_back({.seq = e.seq,
+                                    .group = g,
+                                    .reason = e.flagged,
+                                    .disagreement = verdicts.disagreements[k]});
         e.group = -1;
     }
     split_unsupported(g, ids, result, verdicts, regrouped);

@@ -32,4 +32,9 @@ std::string reason_json(std::string_view reason) {
     return nlohmann::json{{"reason", std::string(reason)}}.dump();
 }
 
+std::string taken_out_json(const LiveTakenOut& taken_out, std::string_view reason) {
+    return nlohmann::json{{"reason", std::string(reason)}, {"disagreement", taken_out.disagreement}}
+        .dump();
+}
+
 }  // namespace anascan::acquisition

@@ -16,4 +16,7 @@ std::string decision_json(const LiveDecision& decision);
 /// {"reason": text}, for a scan that could not even be handed to the registrar.
 std::string reason_json(std::string_view reason);
 
+/// {"reason": text, "disagreement": the pair test failed}, for a scan taken out of its group.
+std::string taken_out_json(const LiveTakenOut& taken_out, std::string_view reason);
+
 }  // namespace anascan::acquisition

@@ -60,7 +60,8 @@ struct MergedPart {
 
 /// What a failed check decided for each scan of a group (by position in the group's list).
 struct Verdicts {
-    std::vector<std::string> reasons;  ///< Why it is taken out and flagged; empty: kept.
+    std::vector<std::string> reasons;        ///< Why it is taken out and flagged; empty: kept.
+    std::vector<std::string> disagreements;  ///< The failed pair test of each reason.
     /// 0: stays in the group; m + 1: leaves with merged part m as a group of its own.
     std::vector<int> unit;
     std::vector<std::string> moved;  ///< Why it leaves with its part (unit > 0).

@@ -54,13 +54,17 @@ TEST_F(StoneCheckOfScan, AFitTheRegistrarTookBackAsContradictingTheStoneIsAnothe
     const std::string reason =
         "scan 4 FLAGGED and taken out of group 0: contradicts its group (disagrees with 3 of 3 "
         "overlapping scans): 38 % of its points lie in the space scan 1's sensor saw empty";
-    auto store = session_with_last({.state = ScanState::kFlagged,
-                                    .group = 0,
-                                    .pose = Pose::Identity(),
-                                    .quality_json = R"({"reason":")" + reason + "\"}"});
+    auto store = session_with_last(
+        {.state = ScanState::kFlagged,
+         .group = 0,
+         .pose = Pose::Identity(),
+         .quality_json = R"({"disagreement":"free space","reason":")" + reason + "\"}"});
     auto check = check_stone_of_scan(*store, 4);
     ASSERT_TRUE(check.has_value()) << check.error().message;
     EXPECT_EQ(check->outcome, StoneCheckOutcome::kOtherStone) << check->message;
+    EXPECT_EQ(check->model_group, 0);
+    EXPECT_GE(check->model_scan, 1);
+    EXPECT_LE(check->model_scan, 3) << "a scan of the model";
     EXPECT_EQ(check->contradiction, reason);
     EXPECT_NE(check->message.find("contradicts the stone"), std::string::npos) << check->message;
     EXPECT_NE(check->message.find("38 %"), std::string::npos) << "the evidence: " << check->message;
@@ -75,7 +79,8 @@ TEST_F(StoneCheckOfScan, AFitTakenBackForASmallOffsetIsNotCalledAnotherObject) {
         {.state = ScanState::kFlagged,
          .group = 0,
          .pose = Pose::Identity(),
-         .quality_json = R"j({"reason":"contradicts its group (disagrees with 5 of 12 )j"
+         .quality_json = R"j({"disagreement":"surfaces apart",)j"
+                         R"j("reason":"contradicts its group (disagrees with 5 of 12 )j"
                          R"j(overlapping scans): scan 4 disagrees with scan 2: its surface lies )j"
                          R"j(0.17 mm (median of 2978 near points) from the other's"})j"});
     auto check = check_stone_of_scan(*store, 4);
@@ -112,7 +117,8 @@ TEST_F(StoneCheckOfScan, ALaterScanIsTheStoneOnceItJoinsTheModelAndAnotherObject
         {.state = ScanState::kFlagged,
          .group = 0,
          .pose = Pose::Identity(),
-         .quality_json = R"j({"reason":"disagrees with 3 of 3: normals cross on 40 %"})j"});
+         .quality_json = R"j({"disagreement":"normals cross",)j"
+                         R"j("reason":"disagrees with 3 of 3: normals cross on 40 %"})j"});
     check = check_later_scan(*taken_back, 4, 1);
     ASSERT_TRUE(check.has_value()) << check.error().message;
     EXPECT_EQ(check->outcome, StoneCheckOutcome::kOtherStone) << check->message;
@@ -120,6 +126,29 @@ TEST_F(StoneCheckOfScan, ALaterScanIsTheStoneOnceItJoinsTheModelAndAnotherObject
     EXPECT_EQ(check->model_group, 0);
 
     EXPECT_FALSE(check_later_scan(*taken_back, 4, 99).has_value()) << "no such model scan";
+}
+
+// What a refused capture sets aside: its scans outside the model, whatever their state,
+// but not the session's earlier scans, the capture's scans that joined the model, or scans
+// excluded already.
+TEST(ScansOutsideModel, AreTheCapturesScansNotInTheModel) {
+    const auto scan = [](std::int64_t seq, ScanState state, int group, bool excluded = false) {
+        ScanRecord r;
+        r.seq = seq;
+        r.state = state;
+        r.group = group;
+        r.excluded = excluded;
+        if (state == ScanState::kRegistered) r.pose = Pose::Identity();
+        return r;
+    };
+    const std::vector<ScanRecord> scans{
+        scan(1, ScanState::kRegistered, 0),       scan(2, ScanState::kFailed, 1),
+        scan(3, ScanState::kRegistered, 2),       scan(4, ScanState::kFlagged, 0),
+        scan(5, ScanState::kRegistered, 0),       scan(6, ScanState::kRegistered, 3),
+        scan(7, ScanState::kRegistered, 3, true), scan(8, ScanState::kQueued, -1)};
+    EXPECT_EQ(scans_outside_model(scans, 2, 0), (std::vector<std::int64_t>{3, 4, 6, 8}));
+    EXPECT_EQ(scans_outside_model(scans, 8, 0), (std::vector<std::int64_t>{}));
+    EXPECT_EQ(scans_outside_model(scans, 0, 3), (std::vector<std::int64_t>{1, 2, 3, 4, 5, 8}));
 }
 
 }  // namespace

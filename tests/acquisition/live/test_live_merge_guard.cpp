@@ -80,6 +80,12 @@ TEST(LiveMergeGuard, AGroupPlacedWithoutRefinementThatContradictsItsMergeNeverSt
         const std::size_t changed = r.refine().size();
         const LiveRefineReport& report = r.last_refine_report();
         taken_out += static_cast<int>(report.taken_out.size());
+        for (const LiveTakenOut& t : report.taken_out) {  // The failed test, as data.
+            const std::string& d = t.disagreement;
+            EXPECT_TRUE(d == "free space" || d == "angle" || d == "normals cross" ||
+                        d == "surfaces apart")
+                << "scan " << t.seq << ": '" << d << "' for " << t.reason;
+        }
         char when[64];
         std::snprintf(when, sizeof(when), "refine %d", rounds + 1);
         EXPECT_EQ(wrong_in_groups(r, truth, when), 0) << when;

@@ -14,6 +14,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "anascan/acquisition/live/live_registration.hpp"
 #include "anascan/acquisition/store/session_store.hpp"
@@ -43,6 +44,7 @@ struct StoneCheck {
     StoneCheckOutcome outcome = StoneCheckOutcome::kNoModel;
     std::int64_t seq = 0;
     int model_group = -1;
+    std::int64_t model_scan = 0;     ///< A scan of the model (0: none): it keeps its group.
     StoneIdentityEvidence evidence;  ///< Filled when the scan was not joined.
     /// Why the registrar took the scan out of the group it had fitted it into, if it did.
     std::string contradiction;
@@ -53,6 +55,11 @@ struct StoneCheck {
 /// the model is the largest group of the other scans.
 Expected<StoneCheck> check_stone_of_scan(const SessionStore& store, std::int64_t seq,
                                          const StoneCheckConfig& config = {});
+
+/// The scans after `after_seq` that are not in `model_group`, nor excluded already: what a
+/// capture of another stone added, to be set aside when the operator refuses it.
+std::vector<std::int64_t> scans_outside_model(const std::vector<ScanRecord>& scans,
+                                              std::int64_t after_seq, int model_group);
 
 /// A later scan of a capture whose first scan joined no part of the stone: kJoined once it
 /// is in the group of the model's scan `model_seq` (the stone is confirmed); kOtherStone, with

@@ -336,6 +336,9 @@ struct LiveTakenOut {
     std::int64_t seq = 0;
     int group = -1;      ///< The group it was taken out of.
     std::string reason;  ///< Its worst disagreement, with figures.
+    /// The pair test it failed there: "free space", "angle", "normals cross" or "surfaces
+    /// apart" (group_consistency.hpp's `PairConsistency::reason`).
+    std::string disagreement;
 };
 
 /// What `refine` did.
