@@ -3,10 +3,12 @@
 /// Face matching and neighbour proposals (method paper §5.2). Every pair of faces of
 /// different blocks is scored: each consistency check adds its score (0..1, times its
 /// weight) and no single failed check rejects a pair, because eroded features fail checks.
-/// The checks on the faces themselves (neighbour count, area, width and height, roughness)
-/// come first; then every cyclic correspondence of the two faces' neighbours is tried
-/// (mirrored, since the faces meet face to face) for neighbour roughness, shared-edge
-/// lengths and holes symmetric about the joint, and the best correspondence is kept.
+/// The checks on the faces themselves (area, roughness) come first; then the neighbours
+/// of the two faces are put in correspondence (mirrored, since the faces meet face to
+/// face; every turn tried, each neighbour paired by direction, extra faces left over), the
+/// placement whose neighbourhood agrees best decides which sides meet, and on it come the
+/// share of neighbours paired, their roughness, the shared-edge lengths, the sides along
+/// them and the holes symmetric about the joint. docs/reassembly.md has the why.
 ///
 /// Pure computation on BlockFeatures; deterministic; thread-compatible.
 
@@ -21,9 +23,9 @@
 namespace anascan::reassembly {
 
 enum class Check : int {
-    kNeighbourCount,      ///< |N(F)| = |N(F')|.
+    kNeighbourCount,      ///< |N(F)| = |N(F')|, read as the share of neighbours paired.
     kArea,                ///< w·h similar.
-    kSize,                ///< Width and height similar.
+    kSize,                ///< Sides along corresponding edges similar.
     kRoughness,           ///< ρ similar.
     kNeighbourRoughness,  ///< Corresponding neighbours' ρ similar.
     kEdgeLengths,         ///< Corresponding shared edges similarly long.
@@ -53,10 +55,12 @@ struct FacePairScore {
 struct MatchConfig {
     double area_tolerance = 0.15;           ///< Relative area difference scoring 0.
     double size_tolerance_m = 0.04;         ///< Width/height difference scoring 0.
-    double roughness_tolerance = 0.6;       ///< |ln(ρ/ρ')| scoring 0.
+    double roughness_tolerance = 1.4;       ///< |ln(ρ/ρ')| scoring 0: a finish 4x rougher.
     double edge_length_tolerance_m = 0.06;  ///< Shared-edge length difference scoring 0.
-    double hole_tolerance_m = 0.03;         ///< Hole position/size disagreement scoring 0.
+    double hole_tolerance_m = 0.015;        ///< Hole position/size disagreement scoring 0.
     double hole_edge_distance_m = 0.25;     ///< Neighbour holes nearer the edge count.
+    /// Neighbours pair when their directions about the joint face agree this well.
+    double neighbour_angle_tolerance_deg = 30.0;
     std::array<double, kCheckCount> weights{1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 3.0};
     std::array<bool, kCheckCount> enabled{true, true, true, true, true, true, true};
     int max_candidates = 50;  ///< Per face, best first.
