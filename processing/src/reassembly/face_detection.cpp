@@ -66,6 +66,61 @@ void fit_rectangle(const FeatureInput& in, FaceBuild& f) {
     face.area_m2 = r.long_m * r.short_m;
 }
 
+// Medians over the thirds of a face along one of its axes: the inliers' normal component
+// along the axis (first and last third) and their height above the plane (middle and
+// outer thirds).
+struct Thirds {
+    double normal_turn = 0.0;  ///< Last third minus first (a sine): > 0 convex.
+    double bulge_m = 0.0;      ///< Middle third minus the outer ones: > 0 convex.
+    bool hollow = false;       ///< Under 5 % of the inliers in the middle third.
+};
+
+double median_of(std::vector<double>& v) {
+    const auto mid = v.begin() + std::ptrdiff_t(v.size() / 2);
+    std::nth_element(v.begin(), mid, v.end());
+    return *mid;
+}
+
+Thirds thirds_along(const FeatureInput& in, const FaceBuild& f, const Eigen::Vector3d& axis,
+                    double half_extent_m) {
+    std::vector<double> first, last, middle, outer;
+    for (std::size_t i : f.inliers) {
+        const Eigen::Vector3d p = in.points[i].cast<double>();
+        const double t = (p - f.face.centre_m).dot(axis);
+        const double n = in.normals[i].cast<double>().dot(axis);
+        const double h = f.face.normal.dot(p) - f.face.offset_m;
+        if (t < -half_extent_m / 3.0) first.push_back(n);
+        if (t > half_extent_m / 3.0) last.push_back(n);
+        (std::abs(t) < half_extent_m / 3.0 ? middle : outer).push_back(h);
+    }
+    if (first.size() < 10 || last.size() < 10) return {};
+    if (20 * middle.size() < f.inliers.size()) return {.hollow = true};
+    return {median_of(last) - median_of(first), median_of(middle) - median_of(outer)};
+}
+
+// A strip of a curved surface (a column drum's mantle, a moulding's profile), or a plane
+// cutting one (inliers in two bands, none in the middle), not a face. A strip: along one
+// of its axes the normals turn steadily across it, and it bends as much as that turn
+// says. A surface of constant curvature κ over a width w turns by 2κw/3 between the
+// medians of its outer thirds and its middle third stands κw²·15/288 off the outer ones,
+// so a turn τ comes with a bulge of τ·w·45/576 (the same sign: convex or concave). A
+// 0.4 m drum's strips, 0.10-0.16 m wide, turn by 9-16 degrees and bulge 66-100 % of that;
+// the rough back of a simulated wall block turned its inliers' normals by 6 degrees (the
+// 4 mm band picks marks unevenly) with a bulge of -0.34 mm against 2.2 mm expected.
+bool is_curved_strip(const FeatureInput& in, const FaceBuild& f, const FaceDetectionConfig& c) {
+    const double min_turn = std::sin(c.strip_turn_deg * kDegToRad);
+    for (const auto& [axis, half] : {std::pair{f.face.width_axis, 0.5 * f.face.width_m},
+                                     std::pair{f.face.height_axis, 0.5 * f.face.height_m}}) {
+        const Thirds t = thirds_along(in, f, axis, half);
+        if (t.hollow) return true;
+        const double expected_bulge_m = t.normal_turn * 2.0 * half * 45.0 / 576.0;
+        if (std::abs(t.normal_turn) > min_turn &&
+            t.bulge_m / expected_bulge_m >= c.strip_bend_agreement)
+            return true;
+    }
+    return false;
+}
+
 // Assigns every input point to the plane it lies on best (distance and normal), so that
 // all points count, not only the RANSAC subsample.
 std::vector<FaceBuild> assign_points(const FeatureInput& in,
@@ -138,7 +193,8 @@ std::vector<FaceBuild> find_faces(const FeatureInput& in, const FaceDetectionCon
         if (f.inliers.size() < 3) continue;
         refit_plane(in, f, f.face.normal);
         fit_rectangle(in, f);
-        if (f.face.area_m2 >= c.min_face_area_m2) out.push_back(std::move(f));
+        if (f.face.area_m2 >= c.min_face_area_m2 && !is_curved_strip(in, f, c))
+            out.push_back(std::move(f));
     }
     for (std::size_t i = 0; i < out.size(); ++i) out[i].face.id = static_cast<int>(i);
     return out;

@@ -87,5 +87,40 @@ TEST(BlockFeatures, HeavyNoiseIsNotMatched) {
     EXPECT_FALSE(f.matchable()) << to_string(f.status) << ": " << f.message;
 }
 
+// A column drum: the mantle of a cylinder of radius 0.4 m and 0.8 m high about z, sampled
+// every 5 mm, outward normals; with its two flat beds when `beds`.
+PointCloud column_drum(bool beds) {
+    constexpr double kRadius = 0.4, kHalfHeight = 0.4, kStep = 0.005;
+    PointCloud cloud;
+    auto add = [&](const Eigen::Vector3d& p, const Eigen::Vector3d& n) {
+        cloud.positions.push_back(p.cast<float>());
+        cloud.normals.push_back(n.cast<float>());
+    };
+    const int around = int(std::round(2.0 * std::numbers::pi * kRadius / kStep));
+    for (int i = 0; i < around; ++i) {
+        const double a = 2.0 * std::numbers::pi * i / around;
+        const Eigen::Vector3d n(std::cos(a), std::sin(a), 0.0);
+        for (double z = -kHalfHeight; z <= kHalfHeight; z += kStep)
+            add(kRadius * n + Eigen::Vector3d(0, 0, z), n);
+    }
+    if (beds)
+        for (double x = -kRadius; x <= kRadius; x += kStep)
+            for (double y = -kRadius; y <= kRadius; y += kStep)
+                if (x * x + y * y < kRadius * kRadius)
+                    for (double sign : {1.0, -1.0}) add({x, y, sign * kHalfHeight}, {0, 0, sign});
+    return cloud;
+}
+
+TEST(BlockFeatures, AColumnDrumIsNotMatchedByItsMantle) {
+    // The mantle is no face: narrow strips of it fit a plane within the tolerance.
+    const BlockFeatures mantle = extract_block_features(column_drum(false), {});
+    EXPECT_EQ(mantle.status, BlockStatus::kNoPlanarFace) << mantle.message;
+    EXPECT_FALSE(mantle.matchable());
+    // With its beds: two parallel faces that never meet, nothing to match them by.
+    const BlockFeatures drum = extract_block_features(column_drum(true), {});
+    EXPECT_EQ(drum.status, BlockStatus::kTooFewFaces) << drum.message;
+    EXPECT_FALSE(drum.matchable());
+}
+
 }  // namespace
 }  // namespace anascan::reassembly

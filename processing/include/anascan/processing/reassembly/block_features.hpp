@@ -95,6 +95,12 @@ struct FaceDetectionConfig {
     double merge_angle_deg = 3.0;            ///< Parallel planes within this and merge_offset_m
     double merge_offset_m = 0.03;            ///< of each other are one face (recess, band).
     std::size_t max_ransac_points = 300000;  ///< Larger inputs are subsampled for RANSAC.
+    /// A face whose normals turn by more than strip_turn_deg between its first and last
+    /// thirds, and whose middle bends off its sides by at least strip_bend_agreement of
+    /// what a surface turning that much would, is a strip of a curved surface and is not
+    /// reported.
+    double strip_turn_deg = 5.0;
+    double strip_bend_agreement = 0.5;
     std::uint64_t seed = 1;
 };
 
