@@ -164,15 +164,33 @@ void run_match(const MatchOptions& o) {
                 decisions.size(), o.out.c_str());
 }
 
+bool block_has_face(const json& block, int face) {
+    for (const json& f : block.value("faces", json::array()))
+        if (f.value("id", -1) == face) return true;
+    return false;
+}
+
 void run_decide(const std::string& proposals, const std::string& a, const std::string& b,
                 bool accept) {
     auto p = read_json_file(proposals);
     if (!p) fail_command(p.error());
     const std::string dir = p->value("features_dir", std::string());
+    const json blocks = p->value("blocks", json::array());
     std::vector<std::string> ids;
-    for (const json& blk : p->value("blocks", json::array())) ids.push_back(blk.value("id", ""));
-    for (const std::string& ref : {a, b})
-        if (auto r = parse_face_ref(ids, ref); !r) fail_command(r.error());
+    for (const json& blk : blocks) ids.push_back(blk.value("id", ""));
+    std::vector<ra::FaceRef> refs;
+    for (const std::string& text : {a, b}) {
+        auto r = parse_face_ref(ids, text);
+        if (!r) fail_command(r.error());
+        if (!block_has_face(blocks[std::size_t(r->block)], r->face))
+            fail_command({ErrorCode::kInvalidArgument,
+                          proposals + ": block " + ids[std::size_t(r->block)] + " has no face " +
+                              std::to_string(r->face) + " ('" + text + "')"});
+        refs.push_back(*r);
+    }
+    if (refs[0].block == refs[1].block)
+        fail_command({ErrorCode::kInvalidArgument,
+                      "'" + a + "' and '" + b + "' are faces of one block, not neighbours"});
     json decisions = json{{"decisions", json::array()}};
     if (fs::exists(decisions_path(dir))) {
         auto d = read_json_file(decisions_path(dir));

@@ -10,7 +10,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "../cli_runner.hpp"
+#include "blocks_cli.hpp"
 
 namespace anascan {
 namespace {
@@ -19,41 +19,8 @@ using nlohmann::json;
 using testing_util::run_cli;
 using testing_util::run_cli_stdout;
 
-json read_json(const std::filesystem::path& p) {
-    std::ifstream in(p);
-    return json::parse(in);
-}
-
-class BlocksAssembleCli : public testing_util::Cli {
+class BlocksAssembleCli : public BlocksCli {
 protected:
-    // The face of block `id` whose normal is the block axis `axis` (a column of
-    // T_ground_block's rotation) times `sign`.
-    int face_along(const std::string& id, int axis, double sign) {
-        const json f = read_json(dir_ / "f" / (id + ".features.json"));
-        const json truth = read_json(dir_ / "m" / "truth.json");
-        for (const json& b : truth.at("blocks")) {
-            if (b.at("id") != id) continue;
-            for (const json& face : f.at("faces")) {
-                double dot = 0.0;
-                for (int r = 0; r < 3; ++r)
-                    dot += sign * b.at("T_ground_block").at(r).at(axis).get<double>() *
-                           face.at("normal").at(r).get<double>();
-                if (dot > 0.99) return face.at("id").get<int>();
-            }
-        }
-        ADD_FAILURE() << id << ": no face along axis " << axis << " sign " << sign;
-        return -1;
-    }
-    void export_two_blocks() {
-        ASSERT_EQ(run_cli("sim export-monument octagon-wall --step-mm 5 --blocks c0b0,c0b1 --out " +
-                          (dir_ / "m").string())
-                      .exit_code,
-                  0);
-        const auto r =
-            run_cli("blocks features " + (dir_ / "m/blocks/c0b0.ply").string() + " " +
-                    (dir_ / "m/blocks/c0b1.ply").string() + " --out " + (dir_ / "f").string());
-        ASSERT_EQ(r.exit_code, 0) << r.output;
-    }
     std::string pair(int axis_a, double sign_a, int axis_b, double sign_b) {
         return "c0b0:" + std::to_string(face_along("c0b0", axis_a, sign_a)) +
                "=c0b1:" + std::to_string(face_along("c0b1", axis_b, sign_b));
@@ -61,7 +28,7 @@ protected:
 };
 
 TEST_F(BlocksAssembleCli, TwoNeighboursAgainstTheTruthAndBadInputs) {
-    export_two_blocks();
+    export_blocks("c0b0,c0b1");
     const std::string f = (dir_ / "f").string(), out = (dir_ / "a").string();
     const std::string joint = pair(0, 1, 0, -1), facade = pair(1, 1, 1, 1), top = pair(2, 1, 2, 1);
     const auto r = run_cli("blocks assemble " + f + " --pair " + joint + " --coplanar " + facade +
