@@ -95,6 +95,13 @@ struct Correspondence {
     double neighbour_roughness = 0.0, edge_lengths = 0.0, holes = 0.0;
 };
 
+// A hole that runs out through the joint's edge (its near end within reach of the edge's
+// line, the arris eroded): half of something cut across the joint, a clamp. A hole that
+// stops short of the edge (a dowel of the bed joint above) is no feature of this joint.
+bool opens_at_edge(const JointHole& j, const MatchConfig& config) {
+    return j.from_edge_m - 0.5 * j.hole->length_m < config.hole_edge_reach_m;
+}
+
 // Holes of corresponding neighbours near the joint edge: symmetric about it means
 // along_a + along_b = 0 (the edge directions are opposite once the blocks meet).
 double neighbour_hole_score(const BlockFeatures& a, int fa, const BlockFeatures& b, int fb,
@@ -104,12 +111,10 @@ double neighbour_hole_score(const BlockFeatures& a, int fa, const BlockFeatures&
     for (std::size_t p = 0; p < c.edges.size(); ++p) {
         const FaceEdge &ea = *c.edges[p].first, &eb = *c.edges[p].second;
         for (const FaceHole& h : a.faces[ea.to].holes)
-            if (JointHole j = joint_hole(a.faces[fa], ea, h);
-                j.from_edge_m < config.hole_edge_distance_m)
+            if (JointHole j = joint_hole(a.faces[fa], ea, h); opens_at_edge(j, config))
                 ha.push_back(j), pair_a.push_back(int(p));
         for (const FaceHole& h : b.faces[eb.to].holes)
-            if (JointHole j = joint_hole(b.faces[fb], eb, h);
-                j.from_edge_m < config.hole_edge_distance_m)
+            if (JointHole j = joint_hole(b.faces[fb], eb, h); opens_at_edge(j, config))
                 hb.push_back(j), pair_b.push_back(int(p));
     }
     return hole_agreement(ha.size(), hb.size(), config.hole_tolerance_m,

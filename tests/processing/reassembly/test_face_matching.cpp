@@ -97,6 +97,18 @@ TEST(FaceMatching, ClampHalvesAtTheSamePlaceAlongTheJointAgree) {
     EXPECT_DOUBLE_EQ(check(score_face_pair(a, kPosX, c, kNegX, {}), Check::kHoles), 0.0);
 }
 
+TEST(FaceMatching, ADowelNearTheJointIsNoHalfOfIt) {
+    BlockFeatures a = box_features(kBlock, 0.0), b = box_features(kBlock, 0.0);
+    add_clamp_half(a, kPosX, 0.12, 0.04, 0.07, 0.0);
+    add_clamp_half(b, kNegX, 0.12, 0.04, 0.07, 0.0);
+    // A dowel of the bed joint above, 0.15 m in from b's joint edge: it stops short of
+    // the edge and has no partner across this joint.
+    FaceHole dowel{.kind = HoleKind::kDowel, .length_m = 0.03, .width_m = 0.03, .depth_m = 0.05};
+    dowel.centre_m = Eigen::Vector3d(-0.35, -0.05, 0.275);
+    b.faces[kTop].holes.push_back(dowel);
+    EXPECT_GT(check(score_face_pair(a, kPosX, b, kNegX, {}), Check::kHoles), 0.9);
+}
+
 TEST(FaceMatching, AChippedEdgeDoesNotMoveTheClampAlongTheJoint) {
     BlockFeatures a = box_features(kBlock, 0.0), b = box_features(kBlock, 0.0);
     add_clamp_half(a, kPosX, 0.12, 0.04, 0.07, 0.0);

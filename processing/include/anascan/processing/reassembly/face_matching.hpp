@@ -58,7 +58,7 @@ struct MatchConfig {
     double roughness_tolerance = 1.4;       ///< |ln(ρ/ρ')| scoring 0: a finish 4x rougher.
     double edge_length_tolerance_m = 0.06;  ///< Shared-edge length difference scoring 0.
     double hole_tolerance_m = 0.015;        ///< Hole position/size disagreement scoring 0.
-    double hole_edge_distance_m = 0.25;     ///< Neighbour holes nearer the edge count.
+    double hole_edge_reach_m = 0.025;  ///< A neighbour hole ending this near the edge opens on it.
     /// Neighbours pair when their directions about the joint face agree this well.
     double neighbour_angle_tolerance_deg = 30.0;
     std::array<double, kCheckCount> weights{1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 3.0};
