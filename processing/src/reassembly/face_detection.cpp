@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "anascan/processing/core/median.hpp"
 #include "cgal_geometry.hpp"
 #include "feature_steps.hpp"
 
@@ -75,12 +76,6 @@ struct Thirds {
     bool hollow = false;       ///< Under 5 % of the inliers in the middle third.
 };
 
-double median_of(std::vector<double>& v) {
-    const auto mid = v.begin() + std::ptrdiff_t(v.size() / 2);
-    std::nth_element(v.begin(), mid, v.end());
-    return *mid;
-}
-
 Thirds thirds_along(const FeatureInput& in, const FaceBuild& f, const Eigen::Vector3d& axis,
                     double half_extent_m) {
     std::vector<double> first, last, middle, outer;
@@ -95,7 +90,8 @@ Thirds thirds_along(const FeatureInput& in, const FaceBuild& f, const Eigen::Vec
     }
     if (first.size() < 10 || last.size() < 10) return {};
     if (20 * middle.size() < f.inliers.size()) return {.hollow = true};
-    return {median_of(last) - median_of(first), median_of(middle) - median_of(outer)};
+    return {upper_median(std::move(last)) - upper_median(std::move(first)),
+            upper_median(std::move(middle)) - upper_median(std::move(outer))};
 }
 
 // A strip of a curved surface (a column drum's mantle, a moulding's profile), or a plane

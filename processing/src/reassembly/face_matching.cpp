@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace anascan::reassembly {
 namespace {
@@ -35,11 +36,14 @@ std::vector<NeighbourAngle> neighbour_angles(const BlockFeatures& block, int fac
     return out;
 }
 
+constexpr double kPi = std::numbers::pi;
+constexpr double kDegToRad = kPi / 180.0;
+
 // |a - b| on the circle, for a - b within ±4π (angles from atan2 and their sums).
 double angle_between(double a, double b) {
     double d = std::abs(a - b);
-    while (d > 2.0 * M_PI) d -= 2.0 * M_PI;
-    return d > M_PI ? 2.0 * M_PI - d : d;
+    while (d > 2.0 * kPi) d -= 2.0 * kPi;
+    return d > kPi ? 2.0 * kPi - d : d;
 }
 
 // A hole seen from a joint face: its coordinate along a shared edge and its distance
@@ -244,7 +248,7 @@ std::vector<EdgePair> pairs_at_turn(const std::vector<NeighbourAngle>& na,
 Correspondence best_correspondence(const BlockFeatures& a, int fa, const BlockFeatures& b, int fb,
                                    const MatchConfig& config) {
     const std::vector<NeighbourAngle> na = neighbour_angles(a, fa), nb = neighbour_angles(b, fb);
-    const double tolerance = config.neighbour_angle_tolerance_deg * M_PI / 180.0;
+    const double tolerance = config.neighbour_angle_tolerance_deg * kDegToRad;
     const double count = double(std::max(na.size(), nb.size()));
     std::vector<Correspondence> best;  // Every placement of the best neighbourhood value.
     double best_value = -1.0;
@@ -254,7 +258,7 @@ Correspondence best_correspondence(const BlockFeatures& a, int fa, const BlockFe
         for (const NeighbourAngle& gb : nb) {
             const double turn = ga.angle + gb.angle;
             if (std::any_of(turns.begin(), turns.end(),
-                            [&](double t) { return angle_between(t, turn) < M_PI / 180.0; }))
+                            [&](double t) { return angle_between(t, turn) < kDegToRad; }))
                 continue;
             turns.push_back(turn);
             auto edges = pairs_at_turn(na, nb, turn, tolerance);

@@ -65,6 +65,7 @@ TEST_F(BlocksMatchCli, ProposalsDecisionsAndBadInputs) {
     const json after = match_and_eval();
     EXPECT_NE(rank_of(after, "c0b0", "+x"), 1);
     const std::vector<std::string> of_joint = candidates_of(joint_a);
+    ASSERT_FALSE(of_joint.empty());
     EXPECT_EQ(std::find(of_joint.begin(), of_joint.end(), joint_b), of_joint.end());
     const std::vector<std::string> of_facade = candidates_of(facade);
     ASSERT_FALSE(of_facade.empty());

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <numbers>
 
 #include "anascan/processing/reassembly/face_matching.hpp"
 
@@ -18,12 +19,15 @@ Eigen::Vector3d axis_normal(int face) {
     return n;
 }
 
+Eigen::Matrix3d yaw(double deg) {
+    return Eigen::AngleAxisd(deg * std::numbers::pi / 180.0, Eigen::Vector3d::UnitZ()).matrix();
+}
+
 // The features of a box of `size` (centred, block frame) turned by `yaw_deg` about z:
 // six faces with the finishes of a wall block (smooth façade, rough back, pointed beds
 // and joints) and the twelve adjacencies in both directions.
 BlockFeatures box_features(const Eigen::Vector3d& size, double yaw_deg) {
-    const Eigen::Matrix3d R =
-        Eigen::AngleAxisd(yaw_deg * M_PI / 180.0, Eigen::Vector3d::UnitZ()).matrix();
+    const Eigen::Matrix3d R = yaw(yaw_deg);
     const double roughness[6] = {20.0, 20.0, 1.0, 150.0, 20.0, 20.0};
     BlockFeatures b;
     for (int f = 0; f < 6; ++f) {
@@ -64,8 +68,7 @@ BlockFeatures box_features(const Eigen::Vector3d& size, double yaw_deg) {
 // `edge_face` (+x or -x), at y = y_m (block frame, before the yaw).
 void add_clamp_half(BlockFeatures& b, int edge_face, double y_m, double from_edge_m,
                     double half_length_m, double yaw_deg) {
-    const Eigen::Matrix3d R =
-        Eigen::AngleAxisd(yaw_deg * M_PI / 180.0, Eigen::Vector3d::UnitZ()).matrix();
+    const Eigen::Matrix3d R = yaw(yaw_deg);
     const PlanarFace& joint = b.faces[edge_face];
     const double x_edge = (R.transpose() * joint.centre_m).x();
     const double top_z = (R.transpose() * b.faces[kTop].centre_m).z();
@@ -132,10 +135,13 @@ TEST(FaceMatching, AFacadeDoesNotMeetABackForAClampThatWouldAgree) {
     add_clamp_half(c, kPosX, -0.12, 0.04, 0.07, 0.0);
     const FacePairScore wrong = score_face_pair(a, kPosX, c, kPosX, {});
     EXPECT_DOUBLE_EQ(check(wrong, Check::kHoles), 0.0);
+    int facade_pairs = 0;
     for (const auto& [fa, fc] : wrong.neighbour_pairs)
         if (fa == kFacade) {
             EXPECT_EQ(fc, kFacade);
+            ++facade_pairs;
         }
+    EXPECT_EQ(facade_pairs, 1);
     EXPECT_GT(score_face_pair(a, kPosX, b, kNegX, {}).score, wrong.score + 2.0);
 }
 
