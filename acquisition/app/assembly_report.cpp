@@ -1,4 +1,4 @@
-// assembly.json (status, poses, per-iteration residuals, the dense check) and the table.
+// The table of `blocks assemble`: status, residuals, the dense check.
 #include "assembly_report.hpp"
 
 #include <cstdio>
@@ -6,65 +6,6 @@
 namespace anascan::cli {
 
 namespace ra = anascan::reassembly;
-using nlohmann::json;
-
-namespace {
-
-json pose_rows(const Pose& T) {
-    json rows = json::array();
-    for (int r = 0; r < 4; ++r) rows.push_back({T(r, 0), T(r, 1), T(r, 2), T(r, 3)});
-    return rows;
-}
-
-json check_json(const ra::AssemblyCheck& c) {
-    json contacts = json::array(), coplanar = json::array(), colinear = json::array();
-    for (const auto& x : c.contacts)
-        contacts.push_back({{"pair", x.pair},
-                            {"points", x.points},
-                            {"gap_median_mm", 1e3 * x.gap_median_m},
-                            {"gap_p95_mm", 1e3 * x.gap_p95_m},
-                            {"gap_max_mm", 1e3 * x.gap_max_m},
-                            {"gap_min_mm", 1e3 * x.gap_min_m}});
-    for (const auto& x : c.coplanar)
-        coplanar.push_back(
-            {{"pair", x.pair}, {"angle_deg", x.angle_deg}, {"offset_mm", 1e3 * x.offset_m}});
-    for (const auto& x : c.colinear)
-        colinear.push_back(
-            {{"pair", x.pair}, {"angle_deg", x.angle_deg}, {"distance_mm", 1e3 * x.distance_m}});
-    return {{"penetration_max_mm", 1e3 * c.penetration_max_m},
-            {"penetration_mean_mm", 1e3 * c.penetration_mean_m},
-            {"penetrating_points", c.penetrating_points},
-            {"measured_points", c.measured_points},
-            {"contacts", contacts},
-            {"coplanar", coplanar},
-            {"colinear", colinear}};
-}
-
-}  // namespace
-
-json assembly_report_json(const ra::AssemblyProblem& p, const ra::AssemblyResult& r,
-                          const ra::AssemblyCheck& check, double seconds) {
-    json blocks = json::array(), history = json::array();
-    for (std::size_t b = 0; b < p.blocks.size(); ++b)
-        blocks.push_back({{"id", p.blocks[b].id},
-                          {"fixed", std::count(p.fixed.begin(), p.fixed.end(), int(b)) > 0 ||
-                                        (p.fixed.empty() && b == 0)},
-                          {"T_assembly_model", pose_rows(r.T_world_block[b])}});
-    for (const auto& h : r.history)
-        history.push_back({{"registration_rms_mm", 1e3 * h.registration_rms_m},
-                           {"coplanar_rms_mm", 1e3 * h.coplanar_rms_m},
-                           {"colinear_rms_mm", 1e3 * h.colinear_rms_m},
-                           {"constraint_samples", h.constraint_samples},
-                           {"active_constraints", h.active_constraints}});
-    return {{"status", ra::to_string(r.status)},
-            {"message", r.message},
-            {"offending", r.offending},
-            {"iterations", r.iterations},
-            {"seconds", seconds},
-            {"blocks", blocks},
-            {"history", history},
-            {"check", check_json(check)}};
-}
 
 void print_assembly_report(const ra::AssemblyProblem& p, const ra::AssemblyResult& r,
                            const ra::AssemblyCheck& c) {

@@ -161,20 +161,4 @@ std::string face_label(const std::vector<NamedBlockFeatures>& blocks, reassembly
     return blocks[ref.block].id + ":" + std::to_string(ref.face);
 }
 
-Expected<reassembly::FaceRef> parse_face_ref(const std::vector<std::string>& ids,
-                                             const std::string& text) {
-    const auto colon = text.rfind(':');
-    if (colon == std::string::npos)
-        return fail(ErrorCode::kInvalidArgument, "'" + text + "': expected BLOCK:FACE");
-    const auto it = std::find(ids.begin(), ids.end(), text.substr(0, colon));
-    if (it == ids.end())
-        return fail(ErrorCode::kInvalidArgument,
-                    "'" + text + "': no block " + text.substr(0, colon));
-    try {
-        return reassembly::FaceRef{int(it - ids.begin()), std::stoi(text.substr(colon + 1))};
-    } catch (const std::exception&) {
-        return fail(ErrorCode::kInvalidArgument, "'" + text + "': the face is not a number");
-    }
-}
-
 }  // namespace anascan::cli

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "anascan/acquisition/blocks/block_folder.hpp"
 #include "anascan/processing/core/expected.hpp"
 #include "anascan/processing/reassembly/block_features.hpp"
 #include "anascan/processing/reassembly/face_matching.hpp"
@@ -30,7 +31,6 @@ Expected<void> write_json_file(const std::filesystem::path& path, const nlohmann
 
 /// "c0b3:2" for face 2 of block c0b3; parse_face_ref reverses it against the block ids.
 std::string face_label(const std::vector<NamedBlockFeatures>& blocks, reassembly::FaceRef ref);
-Expected<reassembly::FaceRef> parse_face_ref(const std::vector<std::string>& ids,
-                                             const std::string& text);
+using acquisition::parse_face_ref;
 
 }  // namespace anascan::cli

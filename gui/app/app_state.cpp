@@ -19,8 +19,7 @@
 namespace anascan::field {
 namespace {
 
-/// The view's background (linear RGB, 0..1): dark blue-grey, the points stand out.
-const Eigen::Vector3f kBackground(0.16f, 0.18f, 0.22f);
+const Eigen::Vector3f& kBackground = kViewBackground;
 
 /// Chunk styles follow the view state: palette, quality, exclusion, highlight.
 void update_styles(AppState& app) {
@@ -32,28 +31,6 @@ void update_styles(AppState& app) {
                                           .visible = row.state != gui::ScanRowState::kExcluded,
                                           .highlighted = row.seq == highlight});
     }
-}
-
-gui::PanelLayout current_layout(float font_scale) {
-    const ImGuiIO& io = ImGui::GetIO();
-    const ImGuiStyle& style = ImGui::GetStyle();
-    return {.width_px = io.DisplaySize.x,
-            .height_px = io.DisplaySize.y,
-            .scan_list_width_px = 300.0f * font_scale,
-            .device_width_px = 240.0f * font_scale,
-            .status_height_px = ImGui::GetFrameHeight() + 2.0f * style.WindowPadding.y,
-            .banner_height_px = 90.0f * font_scale};
-}
-
-/// Mouse over the 3D view: left drag orbits, right or middle drag pans, the wheel zooms.
-void handle_camera_input(gui::OrbitCamera& camera, float view_height_px) {
-    const ImGuiIO& io = ImGui::GetIO();
-    if (io.WantCaptureMouse) return;
-    if (io.MouseDown[0]) camera.orbit(io.MouseDelta.x, io.MouseDelta.y);
-    if (io.MouseDown[1] || io.MouseDown[2]) {
-        camera.pan(io.MouseDelta.x, io.MouseDelta.y, view_height_px);
-    }
-    if (io.MouseWheel != 0.0f) camera.zoom(io.MouseWheel);
 }
 
 /// View actions change the state; session actions wait for the capture session.
@@ -72,16 +49,6 @@ void apply_actions(const gui::UiActions& actions, AppState& app, bool font_scale
                 "no capture session: start anascan-field with --session DIR to capture";
         }
     }
-}
-
-/// The 3D view's rectangle in frame-buffer pixels (bottom left origin), HiDPI-safe.
-std::array<int, 4> view_rect(const gui::PanelLayout& layout, int fb_w, int fb_h) {
-    const float sx = static_cast<float>(fb_w) / std::max(layout.width_px, 1.0f);
-    const float sy = static_cast<float>(fb_h) / std::max(layout.height_px, 1.0f);
-    return {static_cast<int>(layout.view_x_px() * sx),
-            static_cast<int>(layout.status_height_px * sy),
-            std::max(1, static_cast<int>(layout.view_width_px() * sx)),
-            std::max(1, static_cast<int>(layout.view_height_px() * sy))};
 }
 
 /// The mesh, drawn straight into the view's rectangle each frame (no progressive image: a
@@ -124,6 +91,36 @@ gui::DrawStats draw_scene(AppState& app, const gui::PanelLayout& layout, int fb_
 }
 
 }  // namespace
+
+gui::PanelLayout current_layout(float font_scale) {
+    const ImGuiIO& io = ImGui::GetIO();
+    const ImGuiStyle& style = ImGui::GetStyle();
+    return {.width_px = io.DisplaySize.x,
+            .height_px = io.DisplaySize.y,
+            .scan_list_width_px = 300.0f * font_scale,
+            .device_width_px = 240.0f * font_scale,
+            .status_height_px = ImGui::GetFrameHeight() + 2.0f * style.WindowPadding.y,
+            .banner_height_px = 90.0f * font_scale};
+}
+
+void handle_camera_input(gui::OrbitCamera& camera, float view_height_px) {
+    const ImGuiIO& io = ImGui::GetIO();
+    if (io.WantCaptureMouse) return;
+    if (io.MouseDown[0]) camera.orbit(io.MouseDelta.x, io.MouseDelta.y);
+    if (io.MouseDown[1] || io.MouseDown[2]) {
+        camera.pan(io.MouseDelta.x, io.MouseDelta.y, view_height_px);
+    }
+    if (io.MouseWheel != 0.0f) camera.zoom(io.MouseWheel);
+}
+
+std::array<int, 4> view_rect(const gui::PanelLayout& layout, int fb_w, int fb_h) {
+    const float sx = static_cast<float>(fb_w) / std::max(layout.width_px, 1.0f);
+    const float sy = static_cast<float>(fb_h) / std::max(layout.height_px, 1.0f);
+    return {static_cast<int>(layout.view_x_px() * sx),
+            static_cast<int>(layout.status_height_px * sy),
+            std::max(1, static_cast<int>(layout.view_width_px() * sx)),
+            std::max(1, static_cast<int>(layout.view_height_px() * sy))};
+}
 
 AppState::AppState() = default;
 AppState::~AppState() = default;

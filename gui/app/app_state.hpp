@@ -12,6 +12,7 @@
 #include "anascan/gui/field_view_state.hpp"
 #include "anascan/gui/mesh_renderer.hpp"
 #include "anascan/gui/orbit_camera.hpp"
+#include "anascan/gui/panels.hpp"
 #include "anascan/gui/point_renderer.hpp"
 #include "anascan/gui/progressive_view.hpp"
 #include "anascan/gui/theme.hpp"
@@ -23,6 +24,9 @@ namespace anascan::field {
 struct CloudInputs;
 class FieldWindow;
 class SessionLink;
+
+/// The view's background (linear RGB, 0..1): dark blue-grey, the points stand out.
+inline const Eigen::Vector3f kViewBackground(0.16f, 0.18f, 0.22f);
 
 struct AppState {
     gui::FieldViewState view;
@@ -59,6 +63,13 @@ struct FrameDraw {
 /// the 3D view and ImGui's draw data; returns the view's draw stats.
 gui::DrawStats build_and_draw(const FrameDraw& frame, FieldWindow& window, AppState& app,
                               gui::UiActions& actions);
+
+/// The panels' places for the window's current size.
+gui::PanelLayout current_layout(float font_scale);
+/// Mouse over the 3D view: left drag orbits, right or middle drag pans, the wheel zooms.
+void handle_camera_input(gui::OrbitCamera& camera, float view_height_px);
+/// The 3D view's rectangle in frame-buffer pixels (bottom left origin), HiDPI-safe.
+std::array<int, 4> view_rect(const gui::PanelLayout& layout, int fb_w, int fb_h);
 
 /// The camera preview's child window in the last frame (for the state dump).
 std::optional<std::array<float, 4>> camera_preview_rect();

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "anascan/gui/field_view_state.hpp"
+#include "assembly_app.hpp"
 #include "headless_driver.hpp"
 
 namespace anascan::field {
@@ -54,7 +55,8 @@ struct FieldAppConfig {
     ViewOptions view;
     CloudInputs inputs;
     SessionOptions session;
-    HeadlessConfig headless;  ///< Frames to draw, screenshot, the simulated operator.
+    HeadlessConfig headless;   ///< Frames to draw, screenshot, the simulated operator.
+    AssemblyOptions assembly;  ///< With a folder: the assembly view instead of the session.
     std::optional<std::filesystem::path> dump_state_json;  ///< The view state at the end.
 };
 

@@ -68,6 +68,27 @@ void add_mesh_options(CLI::App& app, anascan::field::FieldAppConfig& config) {
                  "--session and --frames)");
 }
 
+/// The assembly view: a folder of block features, its proposals, the headless operator.
+void add_assembly_options(CLI::App& app, anascan::field::AssemblyOptions& o) {
+    app.add_option("--assembly", o.dir,
+                   "Folder of anascan blocks features: the assembly view (blocks in 3D, "
+                   "proposals, alignment) instead of the capture session")
+        ->check(CLI::ExistingDirectory);
+    app.add_option("--proposals", o.proposals,
+                   "proposals.json of anascan blocks match (default: DIR/proposals.json)")
+        ->check(CLI::ExistingFile);
+    app.add_option("--assembly-out", o.out,
+                   "Folder \"Accept and save\" writes (default: DIR/assembly)");
+    app.add_option("--fixed", o.fixed, "Blocks that stay in place (default: the first)");
+    app.add_option("--choose-pair", o.choose_pairs,
+                   "Headless: tick this face pair A:F=B:G once the blocks are loaded");
+    app.add_flag("--choose-accepted", o.choose_accepted,
+                 "Headless: tick the pairs accepted in the proposals (anascan blocks accept)");
+    app.add_flag("--align", o.align, "Headless: then press Align and wait for it");
+    app.add_flag("--accept-assembly", o.accept,
+                 "Headless: then press \"Accept and save\" (only an ok alignment is saved)");
+}
+
 void add_options(CLI::App& app, anascan::field::FieldAppConfig& config) {
     app.add_option("--cloud", config.inputs.clouds, "PLY file(s) to show, one scan each")
         ->check(CLI::ExistingFile);
@@ -120,6 +141,7 @@ int main(int argc, char** argv) {
     add_options(app, config);
     add_session_options(app, config);
     add_mesh_options(app, config);
+    add_assembly_options(app, config.assembly);
     CLI11_PARSE(app, argc, argv);
     anascan::field::HeadlessConfig& headless = config.headless;
     if (headless.screenshot_png && headless.frames == 0) headless.frames = 5;
@@ -128,6 +150,14 @@ int main(int argc, char** argv) {
                      "anascan-field: error: --capture-views needs --session and --frames "
                      "(or --screenshot)\n");
         return 2;
+    }
+    if (config.assembly.dir) {
+        if (config.session.dir) {
+            std::fprintf(stderr,
+                         "anascan-field: error: --assembly and --session exclude each other\n");
+            return 2;
+        }
+        return anascan::field::run_assembly_app(config);
     }
     return anascan::field::run_field_app(config);
 }

@@ -4,6 +4,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 
 #include "anascan/processing/spatial/kdtree.hpp"
@@ -26,9 +27,11 @@ double quantile(std::vector<double> v, double q) {
     return v[k];
 }
 
-// Signed distances of the points of face `from` to block `to` in front of it.
+// Signed distances of the points of face `from` to block `to` in front of it, also kept
+// per point in `point_gap`.
 void face_gaps(const AssemblyProblem& p, const FaceRef& from, int to, const KdTree& tree,
-               const std::vector<Pose>& T, const CheckConfig& c, std::vector<double>& out) {
+               const std::vector<Pose>& T, const CheckConfig& c, std::vector<double>& out,
+               std::vector<float>& point_gap) {
     const AssemblyBlock& a = p.blocks[std::size_t(from.block)];
     const AssemblyBlock& b = p.blocks[std::size_t(to)];
     const Pose T_b_a = T[std::size_t(to)].inverse() * T[std::size_t(from.block)];
@@ -39,7 +42,9 @@ void face_gaps(const AssemblyProblem& p, const FaceRef& from, int to, const KdTr
         if (!tree.nearest(x.cast<float>(), nb)) continue;
         const Eigen::Vector3d d = x - b.points.positions[nb.index].cast<double>();
         const Eigen::Vector3d n = b.points.normals[nb.index].cast<double>().normalized();
-        if ((d - d.dot(n) * n).norm() <= c.gate_m) out.push_back(d.dot(n));
+        if ((d - d.dot(n) * n).norm() > c.gate_m) continue;
+        out.push_back(d.dot(n));
+        point_gap[i] = float(d.dot(n));
     }
 }
 
@@ -169,7 +174,10 @@ AssemblyCheck check_assembly(const AssemblyProblem& p, const std::vector<Pose>& 
         t.longest_edge_m = longest_edge(block);
     }
     double depth_sum = 0.0;
-    for (const AssemblyBlock& b : p.blocks) out.depth_m.emplace_back(b.points.size(), 0.0f);
+    for (const AssemblyBlock& b : p.blocks) {
+        out.depth_m.emplace_back(b.points.size(), 0.0f);
+        out.gap_m.emplace_back(b.points.size(), std::numeric_limits<float>::quiet_NaN());
+    }
     for (std::size_t a = 0; a < p.blocks.size(); ++a)
         for (std::size_t b = 0; b < p.blocks.size(); ++b)
             if (a != b) penetration(p, int(a), int(b), targets[b], T, c, out, depth_sum);
@@ -177,8 +185,10 @@ AssemblyCheck check_assembly(const AssemblyProblem& p, const std::vector<Pose>& 
         out.penetrating_points ? depth_sum / double(out.penetrating_points) : 0.0;
     for (const FaceLink& l : p.contacts) {
         std::vector<double> gaps;
-        face_gaps(p, l.a, l.b.block, targets[std::size_t(l.b.block)].tree, T, c, gaps);
-        face_gaps(p, l.b, l.a.block, targets[std::size_t(l.a.block)].tree, T, c, gaps);
+        face_gaps(p, l.a, l.b.block, targets[std::size_t(l.b.block)].tree, T, c, gaps,
+                  out.gap_m[std::size_t(l.a.block)]);
+        face_gaps(p, l.b, l.a.block, targets[std::size_t(l.a.block)].tree, T, c, gaps,
+                  out.gap_m[std::size_t(l.b.block)]);
         ContactCheck cc{.pair = link_name(p, l), .points = gaps.size()};
         if (!gaps.empty()) {
             cc.gap_median_m = quantile(gaps, 0.5), cc.gap_p95_m = quantile(gaps, 0.95);

@@ -1,10 +1,12 @@
 // The dense penetration check on two boxes in contact along x: a scan hole in the second
 // box's joint face by its top edge (an open mesh) reads no penetration at the true contact,
 // and a real 1 mm penetration reads 1 mm without the hole and is not hidden by it (over the
-// hole the mesh has no joint face: the depth read there is the distance to the top face).
+// hole the mesh has no joint face: the depth read there is the distance to the top face);
+// the gap of every joint-face point is kept per point (the assembly's gap colours).
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <cmath>
 
 #include "anascan/processing/reassembly/assembly_check.hpp"
 #include "anascan/processing/reassembly/block_assembly.hpp"
@@ -83,6 +85,47 @@ TEST(AssemblyCheck, ARealPenetrationIsReadAtItsDepth) {
         check_assembly(two_boxes(true, 0.0).problem, two_boxes(true, 0.001).T);
     EXPECT_GE(holed.penetration_max_m, 0.001 - 1e-5);
     EXPECT_GT(holed.penetrating_points, 1000u);
+}
+
+// The face of `b` whose normal is `n` (its features found from the mesh).
+int face_along(const AssemblyBlock& b, const Eigen::Vector3d& n) {
+    for (const PlanarFace& f : b.features.faces)
+        if (f.normal.dot(n) > 0.99) return f.id;
+    ADD_FAILURE() << b.id << ": no face along " << n.transpose();
+    return -1;
+}
+
+TEST(AssemblyCheck, EveryJointFacePointCarriesItsGapAndNoOtherPointDoes) {
+    const Mesh box = testing::box_mesh(kSize, 0.01);
+    AssemblyProblem p;
+    p.blocks = {assembly_block("b0", box), assembly_block("b1", box)};
+    ASSERT_TRUE(p.blocks[0].features.matchable());
+    const FaceRef a{0, face_along(p.blocks[0], Eigen::Vector3d::UnitX())};
+    const FaceRef b{1, face_along(p.blocks[1], -Eigen::Vector3d::UnitX())};
+    p.contacts = {{a, b}};
+    const std::vector<Pose> T{Pose::Identity(),
+                              Pose(Eigen::Translation3d(kSize.x() + 0.002, 0.0, 0.0))};
+    const AssemblyCheck c = check_assembly(p, T);
+    ASSERT_EQ(c.gap_m.size(), 2u);
+    ASSERT_EQ(c.contacts.size(), 1u);
+    EXPECT_NEAR(c.contacts[0].gap_median_m, 0.002, 1e-5);
+    std::size_t with_gap = 0;
+    for (std::size_t k = 0; k < 2; ++k) {
+        const AssemblyBlock& blk = p.blocks[k];
+        const int face = k == 0 ? a.face : b.face;
+        for (std::size_t i = 0; i < blk.points.size(); ++i) {
+            const float g = c.gap_m[k][i];
+            if (blk.features.point_face[i] != face) {
+                EXPECT_TRUE(std::isnan(g)) << blk.id << " point " << i;
+                continue;
+            }
+            if (std::isnan(g)) continue;  // at the rim: nearest partner point past its edge
+            ++with_gap;
+            EXPECT_NEAR(g, 0.002, 1e-4) << blk.id << " point " << i;
+        }
+    }
+    EXPECT_EQ(with_gap, c.contacts[0].points);
+    EXPECT_GT(with_gap, 1000u);
 }
 
 }  // namespace

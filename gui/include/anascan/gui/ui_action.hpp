@@ -4,6 +4,7 @@
 /// view-only ones itself (apply_view_action) and forwards the others to the session.
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "anascan/gui/field_view_state.hpp"
@@ -27,6 +28,9 @@ enum class UiActionKind {
     kRevertSettings,  ///< Forget the edits: back to the settings in effect (view only).
     kMakeMesh,        ///< Make the fragment model of the view's group (in the background).
     kSetViewMode,     ///< view_mode: points or mesh (view only; mesh once one is ready).
+    kTogglePair,      ///< text: choose or drop the face pair "A:F=B:G" (assembly view).
+    kAlignBlocks,     ///< Align the blocks by the chosen pairs (in the background).
+    kAcceptAssembly,  ///< Keep the alignment: write the assembly folder.
 };
 
 /// One operator request.
@@ -38,6 +42,7 @@ struct UiAction {
     ViewMode view_mode = ViewMode::kPoints;     ///< For kSetViewMode.
     int setting_index = -1;                     ///< For kEditSetting: into the form.
     double value = 0.0;                         ///< For kEditSetting: number, or choice index.
+    std::string text;                           ///< For kTogglePair.
     friend bool operator==(const UiAction&, const UiAction&) = default;
 };
 

@@ -5,11 +5,11 @@
 /// distribution on every matching face pair, the angle and offset of each co-planar face
 /// pair and the angle and distance of each co-linear line pair.
 ///
-/// Signed distance of a point x of one block to another block from n_yᵀ(x - y), y the
-/// other block's model points nearest x and n_y their outward normals (negative inside):
-/// x is inside when both the nearest y and the median over the 9 nearest say so (a vertex
-/// in a hole, or the neighbouring faces' vertices at an edge, do not decide alone), and its
-/// depth is the smallest of the two and of the distance to the nearest y.
+/// Signed distance of a point x of one block to another block's triangle mesh, signed by
+/// the angle-weighted pseudo-normal of the closest feature (negative inside; a closest
+/// feature on an open mesh's rim counts as outside). A block without triangles is signed
+/// by its vertex normals: inside when both the nearest vertex and the median over the 9
+/// nearest say so, at most as deep as the nearest vertex is far.
 /// Only points within `near_m` of the other block's surface are measured: a point deeper
 /// inside than that is not counted (penetrations beyond a few centimetres are gross
 /// misplacements that the pose errors show).
@@ -50,6 +50,9 @@ struct AssemblyCheck {
     std::vector<ContactCheck> contacts;
     /// Per block and model point: its deepest penetration into another block (0 outside).
     std::vector<std::vector<float>> depth_m;
+    /// Per block and model point of a matching face: its gap to the partner block (signed,
+    /// negative inside), NaN for the other points.
+    std::vector<std::vector<float>> gap_m;
     std::vector<CoplanarCheck> coplanar;
     std::vector<ColinearCheck> colinear;
 };

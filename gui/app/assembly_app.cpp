@@ -1,0 +1,232 @@
+#include "assembly_app.hpp"
+
+#include <GL/gl.h>
+#include <imgui.h>
+
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "anascan/gui/assembly_view.hpp"
+#include "anascan/gui/progressive_view.hpp"
+#include "anascan/gui/theme.hpp"
+#include "anascan/processing/core/stopwatch.hpp"
+#include "app_state.hpp"
+#include "assembly_link.hpp"
+#include "field_app.hpp"
+#include "field_window.hpp"
+#include "screenshot.hpp"
+
+namespace anascan::field {
+namespace {
+
+struct AssemblyApp {
+    gui::AssemblyViewState view;
+    gui::OrbitCamera camera;
+    std::unique_ptr<gui::PointRenderer> renderer;
+    std::unique_ptr<gui::ProgressiveView> view_image;
+    std::unique_ptr<AssemblyLink> link;
+    bool fit_pending = true;
+};
+
+int report_error(const std::string& message) {
+    std::fprintf(stderr, "anascan-field: error: %s\n", message.c_str());
+    return 1;
+}
+
+/// The headless operator: once loaded, tick the pairs, press Align, wait, press Accept,
+/// wait; then the frames are counted.
+class AssemblyOperator {
+public:
+    AssemblyOperator(const AssemblyOptions& options, const HeadlessConfig& headless)
+        : options_(options), headless_(headless) {}
+
+    bool headless() const { return headless_.frames > 0; }
+    bool counting() const { return step_ == Step::kCounting; }
+    bool done() const { return headless() && counted_ >= headless_.frames; }
+
+    void step(AssemblyApp& app, gui::UiActions& actions) {
+        if (!headless() || !app.link->settled() || app.view.phase == gui::AssemblyPhase::kLoading)
+            return;
+        if (app.view.phase == gui::AssemblyPhase::kFailed) step_ = Step::kCounting;
+        switch (step_) {
+            case Step::kChoose:
+                for (const std::string& p : options_.choose_pairs) toggle(actions, p);
+                if (options_.choose_accepted)
+                    for (const std::string& p : app.link->accepted()) toggle(actions, p);
+                step_ = Step::kAlign;
+                return;
+            case Step::kAlign:
+                if (options_.align) actions.push_back({.kind = gui::UiActionKind::kAlignBlocks});
+                step_ = Step::kAccept;
+                return;
+            case Step::kAccept:
+                if (options_.accept && app.view.report && app.view.report->ok())
+                    actions.push_back({.kind = gui::UiActionKind::kAcceptAssembly});
+                step_ = Step::kSettle;
+                return;
+            case Step::kSettle:
+                app.fit_pending = true;
+                step_ = Step::kCounting;
+                return;
+            case Step::kCounting:
+                return;
+        }
+    }
+
+    Expected<void> after_draw(const FieldWindow& window) const {
+        if (!headless_.screenshot_png || !counting() || counted_ + 1 != headless_.frames) return {};
+        int fb_w = 0, fb_h = 0;
+        window.framebuffer_size(fb_w, fb_h);
+        return write_screenshot(*headless_.screenshot_png, fb_w, fb_h);
+    }
+
+    Expected<void> end_frame() {
+        if (counting()) {
+            ++counted_;
+            return {};
+        }
+        if (!headless() || started_.seconds() <= headless_.session_timeout_s) return {};
+        return fail(ErrorCode::kTimeout,
+                    "the assembly did not settle within the timeout "
+                    "(loading or alignment still running)");
+    }
+
+private:
+    enum class Step { kChoose, kAlign, kAccept, kSettle, kCounting };
+    static void toggle(gui::UiActions& actions, const std::string& pair) {
+        actions.push_back({.kind = gui::UiActionKind::kTogglePair, .text = pair});
+    }
+    AssemblyOptions options_;
+    HeadlessConfig headless_;
+    Step step_ = Step::kChoose;
+    int counted_ = 0;
+    Stopwatch started_;
+};
+
+void apply_actions(const gui::UiActions& actions, AssemblyApp& app) {
+    for (const gui::UiAction& action : actions) {
+        if (action.kind == gui::UiActionKind::kFitView)
+            app.fit_pending = true;
+        else if (!gui::apply_assembly_view_action(app.view, action))
+            app.link->apply(action, app.view);
+    }
+}
+
+void draw_scene(AssemblyApp& app, const gui::PanelLayout& layout, int fb_w, int fb_h,
+                const FrameDraw& frame) {
+    glViewport(0, 0, fb_w, fb_h);
+    const gui::PanelBackground bg = gui::panel_background();
+    glClearColor(bg.r, bg.g, bg.b, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    const auto [x, y, w, h] = view_rect(layout, fb_w, fb_h);
+    if (app.fit_pending && app.renderer->total_points() > 0) {
+        app.camera.fit(app.renderer->bounds(), static_cast<double>(w) / h);
+        app.fit_pending = false;
+    }
+    handle_camera_input(app.camera, static_cast<float>(h));
+    app.view_image->render(*app.renderer, app.camera, {x, y, w, h},
+                           {.color_mode = gui::ColorMode::kByCoverage,
+                            .budget_points = frame.budget_points,
+                            .base_point_size_px = frame.point_size_px});
+    glViewport(0, 0, fb_w, fb_h);
+}
+
+Expected<void> dump_state(const std::filesystem::path& file, const AssemblyApp& app) {
+    using nlohmann::json;
+    const gui::AssemblyViewState& v = app.view;
+    json report = nullptr;
+    if (v.report) {
+        json pairs = json::array();
+        for (const auto& p : v.report->pairs)
+            pairs.push_back({{"pair", p.pair},
+                             {"gap_median_mm", p.gap_median_mm},
+                             {"gap_p95_mm", p.gap_p95_mm},
+                             {"gap_min_mm", p.gap_min_mm}});
+        report = {{"status", v.report->status},
+                  {"iterations", v.report->iterations},
+                  {"penetration_max_mm", v.report->penetration_max_mm},
+                  {"pairs", pairs}};
+    }
+    json blocks = json::array();
+    for (const auto& b : v.blocks) blocks.push_back({{"id", b.id}, {"fixed", b.fixed}});
+    const json out{{"folder", v.folder},
+                   {"phase", gui::to_string(v.phase)},
+                   {"blocks", blocks},
+                   {"proposal_faces", v.proposals.size()},
+                   {"chosen_pairs", v.chosen_pairs},
+                   {"report", report},
+                   {"saved_to", v.saved_to},
+                   {"last_error", v.last_error},
+                   {"points_total", app.renderer->total_points()}};
+    std::ofstream f(file);
+    f << out.dump(1) << "\n";
+    if (!f) return fail(ErrorCode::kIo, file.string() + ": cannot write the state");
+    return {};
+}
+
+AssemblyLinkConfig link_config(const AssemblyOptions& o) {
+    return {.dir = *o.dir,
+            .proposals = o.proposals,
+            .out = o.out.value_or(*o.dir / "assembly"),
+            .fixed = o.fixed};
+}
+
+int run_loop(const FieldAppConfig& config, FieldWindow& window, AssemblyApp& app) {
+    AssemblyOperator op(config.assembly, config.headless);
+    while (!window.should_close() && !op.done()) {
+        window.wait_events(op.headless() ? 0.0 : 0.05);
+        window.begin_frame();
+        if (app.link->poll(app.view, *app.renderer)) app.fit_pending = true;
+        gui::UiActions actions;
+        op.step(app, actions);
+        const gui::PanelLayout layout = current_layout(config.view.font_scale);
+        gui::draw_assembly_panels(app.view, layout, actions);
+        apply_actions(actions, app);
+        int fb_w = 0, fb_h = 0;
+        window.framebuffer_size(fb_w, fb_h);
+        draw_scene(
+            app, layout, fb_w, fb_h,
+            {.budget_points = config.view.point_budget > 0 ? config.view.point_budget : 2'000'000,
+             .point_size_px = config.view.point_size_px});
+        window.render_ui();
+        if (auto shot = op.after_draw(window); !shot) return report_error(shot.error().message);
+        window.swap();
+        if (auto on_time = op.end_frame(); !on_time) return report_error(on_time.error().message);
+    }
+    return 0;
+}
+
+}  // namespace
+
+int run_assembly_app(const FieldAppConfig& config) {
+    auto window = FieldWindow::open({.width_px = config.view.width_px,
+                                     .height_px = config.view.height_px,
+                                     .vsync = config.headless.frames == 0,
+                                     .font_scale = config.view.font_scale});
+    if (!window) return report_error(window.error().message);
+    AssemblyApp app;
+    auto renderer = gui::PointRenderer::create();
+    if (!renderer) return report_error(renderer.error().message);
+    app.renderer = std::move(*renderer);
+    auto view_image = gui::ProgressiveView::create(kViewBackground);
+    if (!view_image) return report_error(view_image.error().message);
+    app.view_image = std::move(*view_image);
+    gui::apply_theme(
+        {.high_contrast = config.view.high_contrast, .font_scale = config.view.font_scale},
+        (*window)->font_scaled());
+    app.link = std::make_unique<AssemblyLink>(link_config(config.assembly));
+    app.link->open(app.view);
+    int code = run_loop(config, **window, app);
+    if (app.view.phase == gui::AssemblyPhase::kFailed)
+        code = report_error(app.view.last_error);
+    else if (!app.view.last_error.empty())
+        std::fprintf(stderr, "anascan-field: last message: %s\n", app.view.last_error.c_str());
+    if (config.dump_state_json)
+        if (auto ok = dump_state(*config.dump_state_json, app); !ok)
+            return report_error(ok.error().message);
+    app.link.reset();  // workers finish before the renderer and the window go
+    return code;
+}
+
+}  // namespace anascan::field
