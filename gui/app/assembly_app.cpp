@@ -3,6 +3,7 @@
 #include <GL/gl.h>
 #include <imgui.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -27,6 +28,9 @@ struct AssemblyApp {
     std::unique_ptr<gui::ProgressiveView> view_image;
     std::unique_ptr<AssemblyLink> link;
     bool fit_pending = true;
+    /// Frames drawn while a worker ran, and the longest of them (the UI never waits).
+    std::size_t busy_frames = 0;
+    double busy_frame_max_ms = 0.0;
 };
 
 int report_error(const std::string& message) {
@@ -54,6 +58,8 @@ public:
                 for (const std::string& p : options_.choose_pairs) toggle(actions, p);
                 if (options_.choose_accepted)
                     for (const std::string& p : app.link->accepted()) toggle(actions, p);
+                for (const std::string& p : options_.choose_coplanar)
+                    actions.push_back({.kind = gui::UiActionKind::kToggleCoplanar, .text = p});
                 step_ = Step::kAlign;
                 return;
             case Step::kAlign:
@@ -143,7 +149,12 @@ Expected<void> dump_state(const std::filesystem::path& file, const AssemblyApp& 
                              {"gap_median_mm", p.gap_median_mm},
                              {"gap_p95_mm", p.gap_p95_mm},
                              {"gap_min_mm", p.gap_min_mm}});
+        json coplanar = json::array();
+        for (const auto& c : v.report->coplanar)
+            coplanar.push_back(
+                {{"pair", c.pair}, {"angle_deg", c.angle_deg}, {"offset_mm", c.offset_mm}});
         report = {{"status", v.report->status},
+                  {"coplanar", coplanar},
                   {"iterations", v.report->iterations},
                   {"penetration_max_mm", v.report->penetration_max_mm},
                   {"pairs", pairs}};
@@ -155,10 +166,13 @@ Expected<void> dump_state(const std::filesystem::path& file, const AssemblyApp& 
                    {"blocks", blocks},
                    {"proposal_faces", v.proposals.size()},
                    {"chosen_pairs", v.chosen_pairs},
+                   {"chosen_coplanar", v.chosen_coplanar},
                    {"report", report},
                    {"saved_to", v.saved_to},
                    {"last_error", v.last_error},
-                   {"points_total", app.renderer->total_points()}};
+                   {"points_total", app.renderer->total_points()},
+                   {"frames_while_busy", app.busy_frames},
+                   {"longest_busy_frame_ms", app.busy_frame_max_ms}};
     std::ofstream f(file);
     f << out.dump(1) << "\n";
     if (!f) return fail(ErrorCode::kIo, file.string() + ": cannot write the state");
@@ -175,6 +189,8 @@ AssemblyLinkConfig link_config(const AssemblyOptions& o) {
 int run_loop(const FieldAppConfig& config, FieldWindow& window, AssemblyApp& app) {
     AssemblyOperator op(config.assembly, config.headless);
     while (!window.should_close() && !op.done()) {
+        const bool busy = !app.link->settled();
+        const Stopwatch frame_time;
         window.wait_events(op.headless() ? 0.0 : 0.05);
         window.begin_frame();
         if (app.link->poll(app.view, *app.renderer)) app.fit_pending = true;
@@ -192,6 +208,10 @@ int run_loop(const FieldAppConfig& config, FieldWindow& window, AssemblyApp& app
         window.render_ui();
         if (auto shot = op.after_draw(window); !shot) return report_error(shot.error().message);
         window.swap();
+        if (busy) {
+            ++app.busy_frames;
+            app.busy_frame_max_ms = std::max(app.busy_frame_max_ms, 1e3 * frame_time.seconds());
+        }
         if (auto on_time = op.end_frame(); !on_time) return report_error(on_time.error().message);
     }
     return 0;

@@ -20,10 +20,11 @@ struct AssemblyOptions {
     std::optional<std::filesystem::path> out;        ///< Default: DIR/assembly.
     std::vector<std::string> fixed;
     // The headless operator.
-    std::vector<std::string> choose_pairs;  ///< Tick these pairs once loaded.
-    bool choose_accepted = false;           ///< Tick the proposals' accepted pairs.
-    bool align = false;                     ///< Then press "Align".
-    bool accept = false;                    ///< Then "Accept and save" (an ok alignment).
+    std::vector<std::string> choose_pairs;     ///< Tick these pairs once loaded.
+    std::vector<std::string> choose_coplanar;  ///< Then these co-planar links.
+    bool choose_accepted = false;              ///< Tick the proposals' accepted pairs.
+    bool align = false;                        ///< Then press "Align".
+    bool accept = false;                       ///< Then "Accept and save" (an ok alignment).
 };
 
 /// Runs the assembly view; returns the process exit code.

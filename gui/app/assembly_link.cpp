@@ -27,7 +27,8 @@ std::vector<gui::AssemblyFaceRow> proposal_rows(const acq::BlockProposals& propo
                                       .passed = c.passed.size(),
                                       .checks = c.checks,
                                       .passed_names = names,
-                                      .accepted = c.accepted});
+                                      .accepted = c.accepted,
+                                      .neighbour_pairs = c.neighbour_pairs});
         }
     }
     return rows;
@@ -47,6 +48,9 @@ gui::AssemblyReportView report_view(const acq::BlockAlignment& a) {
                              .gap_median_mm = 1e3 * c.gap_median_m,
                              .gap_p95_mm = 1e3 * c.gap_p95_m,
                              .gap_min_mm = 1e3 * c.gap_min_m});
+    for (const ra::CoplanarCheck& c : a.check.coplanar)
+        out.coplanar.push_back(
+            {.pair = c.pair, .angle_deg = c.angle_deg, .offset_mm = 1e3 * c.offset_m});
     return out;
 }
 
@@ -181,8 +185,9 @@ bool AssemblyLink::poll(gui::AssemblyViewState& view, gui::PointRenderer& render
 }
 
 void AssemblyLink::start_alignment(gui::AssemblyViewState& view) {
-    auto links = acq::parse_assembly_links(*folder_,
-                                           {.contacts = view.chosen_pairs, .fixed = config_.fixed});
+    auto links = acq::parse_assembly_links(
+        *folder_,
+        {.contacts = view.chosen_pairs, .coplanar = view.chosen_coplanar, .fixed = config_.fixed});
     if (!links) {
         view.last_error = links.error().message;
         return;

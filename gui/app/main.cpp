@@ -82,6 +82,9 @@ void add_assembly_options(CLI::App& app, anascan::field::AssemblyOptions& o) {
     app.add_option("--fixed", o.fixed, "Blocks that stay in place (default: the first)");
     app.add_option("--choose-pair", o.choose_pairs,
                    "Headless: tick this face pair A:F=B:G once the blocks are loaded");
+    app.add_option("--choose-coplanar", o.choose_coplanar,
+                   "Headless: then tick this co-planar link A:F=B:G (a neighbour pair of a "
+                   "chosen pair)");
     app.add_flag("--choose-accepted", o.choose_accepted,
                  "Headless: tick the pairs accepted in the proposals (anascan blocks accept)");
     app.add_flag("--align", o.align, "Headless: then press Align and wait for it");

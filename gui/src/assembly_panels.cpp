@@ -67,6 +67,24 @@ void draw_blocks(const AssemblyViewState& state) {
     }
 }
 
+/// Under each chosen pair, its neighbour pairs to make co-planar.
+void draw_chosen_pairs(const AssemblyViewState& state, UiActions& actions) {
+    ImGui::Text("Chosen pairs: %zu", state.chosen_pairs.size());
+    const bool busy = state.phase == AssemblyPhase::kAligning;
+    for (const std::string& p : state.chosen_pairs) {
+        ImGui::BulletText("%s", p.c_str());
+        ImGui::Indent();
+        if (busy) ImGui::BeginDisabled();
+        for (const std::string& n : state.neighbour_pairs(p)) {
+            bool on = state.coplanar(n);
+            if (ImGui::Checkbox(fmt::format("co-planar {}##{}", n, p).c_str(), &on))
+                actions.push_back({.kind = UiActionKind::kToggleCoplanar, .text = n});
+        }
+        if (busy) ImGui::EndDisabled();
+        ImGui::Unindent();
+    }
+}
+
 void draw_report(const AssemblyReportView& r) {
     ImGui::TextColored(r.ok() ? detail::kColorGood : detail::kColorBad, "Alignment: %s",
                        r.status.c_str());
@@ -82,6 +100,9 @@ void draw_report(const AssemblyReportView& r) {
     for (const AssemblyPairFigures& p : r.pairs)
         ImGui::TextWrapped("%s: gap median %.2f mm, p95 %.2f mm, min %.2f mm", p.pair.c_str(),
                            p.gap_median_mm, p.gap_p95_mm, p.gap_min_mm);
+    for (const AssemblyCoplanarFigures& c : r.coplanar)
+        ImGui::TextWrapped("co-planar %s: %.3f deg, %.2f mm", c.pair.c_str(), c.angle_deg,
+                           c.offset_mm);
     ImGui::PushStyleColor(ImGuiCol_Text, detail::kColorMuted);
     ImGui::TextWrapped(
         "Gap colours: green within 1 mm, yellow 3 mm, blue from 5 mm; red: "
@@ -114,8 +135,7 @@ void draw_assembly_panel(const AssemblyViewState& state, const PanelLayout& layo
     ImGui::TextWrapped("%s", state.folder.c_str());
     draw_blocks(state);
     ImGui::Separator();
-    ImGui::Text("Chosen pairs: %zu", state.chosen_pairs.size());
-    for (const std::string& p : state.chosen_pairs) ImGui::BulletText("%s", p.c_str());
+    draw_chosen_pairs(state, actions);
     draw_buttons(state, actions);
     if (!state.progress.empty())
         ImGui::TextColored(detail::kColorWarn, "%s", state.progress.c_str());
@@ -167,16 +187,44 @@ void draw_assembly_panels(const AssemblyViewState& state, const PanelLayout& lay
     draw_assembly_status(state, layout);
 }
 
+bool AssemblyViewState::coplanar(const std::string& pair) const {
+    return std::find(chosen_coplanar.begin(), chosen_coplanar.end(), pair) != chosen_coplanar.end();
+}
+
+std::vector<std::string> AssemblyViewState::neighbour_pairs(const std::string& pair) const {
+    for (const AssemblyFaceRow& row : proposals)
+        for (const AssemblyCandidateRow& c : row.candidates)
+            if (acquisition::pair_name(row.face, c.face) == pair) return c.neighbour_pairs;
+    return {};
+}
+
+namespace {
+
+/// Adds `item` when absent, else removes it; true when it was added.
+bool toggle(std::vector<std::string>& list, const std::string& item) {
+    const auto it = std::find(list.begin(), list.end(), item);
+    if (it == list.end()) {
+        list.push_back(item);
+        return true;
+    }
+    list.erase(it);
+    return false;
+}
+
+}  // namespace
+
 bool apply_assembly_view_action(AssemblyViewState& state, const UiAction& action) {
-    if (action.kind != UiActionKind::kTogglePair) return false;
+    if (action.kind != UiActionKind::kTogglePair && action.kind != UiActionKind::kToggleCoplanar)
+        return false;
     if (state.phase == AssemblyPhase::kLoading || state.phase == AssemblyPhase::kAligning)
-        return true;  // the pairs of a running alignment stay as they are
-    auto& pairs = state.chosen_pairs;
-    const auto it = std::find(pairs.begin(), pairs.end(), action.text);
-    if (it != pairs.end())
-        pairs.erase(it);
-    else
-        pairs.push_back(action.text);
+        return true;  // the links of a running alignment stay as they are
+    if (action.kind == UiActionKind::kToggleCoplanar) {
+        toggle(state.chosen_coplanar, action.text);
+        return true;
+    }
+    if (!toggle(state.chosen_pairs, action.text))
+        for (const std::string& n : state.neighbour_pairs(action.text))
+            std::erase(state.chosen_coplanar, n);
     return true;
 }
 

@@ -20,7 +20,11 @@ AssemblyViewState two_blocks() {
     s.blocks = {{.id = "c0b0", .colour = {230, 159, 0}, .fixed = true},
                 {.id = "c0b1", .colour = {86, 180, 233}}};
     s.proposals = {{.face = "c0b1:4",
-                    .candidates = {{.face = "c0b0:2", .score = 0.91, .passed = 6, .checks = 6},
+                    .candidates = {{.face = "c0b0:2",
+                                    .score = 0.91,
+                                    .passed = 6,
+                                    .checks = 6,
+                                    .neighbour_pairs = {"c0b0:0=c0b1:1", "c0b0:3=c0b1:5"}},
                                    {.face = "c0b0:5", .score = 0.40, .passed = 3, .checks = 6},
                                    {.face = "c0b0:1", .score = 0.30, .passed = 2, .checks = 6},
                                    {.face = "c0b0:3", .score = 0.20, .passed = 1, .checks = 6}}}};
@@ -105,6 +109,27 @@ TEST(AssemblyPanels, AlignNeedsAChosenPairAndAcceptAnOkAlignment) {
     s.report = AssemblyReportView{.status = "ok", .iterations = 4};
     UiActions accept = sweep(ui, s, right + 5.0f, kLayout.width_px, 0.0f, 500.0f);
     EXPECT_GT(count(accept, UiActionKind::kAcceptAssembly), 0u);
+}
+
+TEST(AssemblyPanels, AChosenPairOffersItsNeighbourPairsAsCoplanarLinks) {
+    HeadlessImGui ui;
+    const float right = kLayout.width_px - kLayout.device_width_px;
+    AssemblyViewState s = two_blocks();
+    s.chosen_pairs = {"c0b0:2=c0b1:4"};
+    std::vector<std::string> offered;
+    for (const UiAction& a : sweep(ui, s, right + 5.0f, kLayout.width_px, 0.0f, 400.0f))
+        if (a.kind == UiActionKind::kToggleCoplanar &&
+            std::find(offered.begin(), offered.end(), a.text) == offered.end())
+            offered.push_back(a.text);
+    EXPECT_EQ(offered, (std::vector<std::string>{"c0b0:0=c0b1:1", "c0b0:3=c0b1:5"}));
+
+    EXPECT_TRUE(apply_assembly_view_action(
+        s, {.kind = UiActionKind::kToggleCoplanar, .text = "c0b0:0=c0b1:1"}));
+    EXPECT_TRUE(s.coplanar("c0b0:0=c0b1:1"));
+    // Dropping the pair drops its co-planar links.
+    EXPECT_TRUE(apply_assembly_view_action(
+        s, {.kind = UiActionKind::kTogglePair, .text = "c0b0:2=c0b1:4"}));
+    EXPECT_TRUE(s.chosen_coplanar.empty());
 }
 
 }  // namespace

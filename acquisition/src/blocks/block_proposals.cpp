@@ -9,13 +9,20 @@ namespace {
 
 using nlohmann::json;
 
-ProposalCandidate candidate_from(const json& c) {
+std::string block_of(const std::string& face) { return face.substr(0, face.rfind(':')); }
+
+ProposalCandidate candidate_from(const std::string& face, const json& c) {
     ProposalCandidate out{.face = c.at("face").get<std::string>(),
                           .score = c.at("score").get<double>(),
                           .checks = c.contains("checks") ? c.at("checks").size() : 0,
                           .accepted = c.contains("accepted") && c.at("accepted").get<bool>()};
     if (c.contains("passed"))
         for (const json& name : c.at("passed")) out.passed.push_back(name.get<std::string>());
+    if (c.contains("neighbour_pairs"))
+        for (const json& n : c.at("neighbour_pairs"))
+            out.neighbour_pairs.push_back(
+                pair_name(block_of(face) + ":" + std::to_string(n.at(0).get<int>()),
+                          block_of(out.face) + ":" + std::to_string(n.at(1).get<int>())));
     return out;
 }
 
@@ -29,7 +36,8 @@ Expected<BlockProposals> read_block_proposals(const std::filesystem::path& path)
         for (const json& p : j->at("proposals")) {
             FaceProposals& face = out.faces.emplace_back();
             face.face = p.at("face").get<std::string>();
-            for (const json& c : p.at("candidates")) face.candidates.push_back(candidate_from(c));
+            for (const json& c : p.at("candidates"))
+                face.candidates.push_back(candidate_from(face.face, c));
         }
         return out;
     } catch (const json::exception& e) {

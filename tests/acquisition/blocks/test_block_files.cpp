@@ -84,7 +84,8 @@ TEST_F(BlockFiles, BrokenFoldersAreNamed) {
 TEST_F(BlockFiles, AcceptedPairsOnceEachWhateverTheOrder) {
     write("p.json", R"({"features_dir": "/f", "proposals": [
       {"face": "b:1", "candidates": [{"face": "a:2", "score": 0.9, "accepted": true,
-                                      "checks": {"size": 1, "holes": 0}, "passed": ["size"]},
+                                      "checks": {"size": 1, "holes": 0}, "passed": ["size"],
+                                      "neighbour_pairs": [[0, 3], [4, 1]]},
                                      {"face": "a:3", "score": 0.2}]},
       {"face": "a:2", "candidates": [{"face": "b:1", "score": 0.9, "accepted": true}]},
       {"face": "c:0", "candidates": [{"face": "a:5", "score": 0.5, "accepted": true}]}]})");
@@ -94,6 +95,8 @@ TEST_F(BlockFiles, AcceptedPairsOnceEachWhateverTheOrder) {
     EXPECT_EQ(p->faces[0].candidates[0].passed, (std::vector<std::string>{"size"}));
     EXPECT_EQ(p->faces[0].candidates[0].checks, 2u);
     EXPECT_FALSE(p->faces[0].candidates[1].accepted);
+    EXPECT_EQ(p->faces[0].candidates[0].neighbour_pairs,
+              (std::vector<std::string>{"a:3=b:0", "a:1=b:4"}));
     EXPECT_EQ(accepted_pairs(*p), (std::vector<std::string>{"a:2=b:1", "a:5=c:0"}));
     EXPECT_EQ(pair_name("b:1", "a:2"), pair_name("a:2", "b:1"));
 

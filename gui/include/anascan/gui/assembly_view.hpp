@@ -38,6 +38,8 @@ struct AssemblyCandidateRow {
     std::size_t passed = 0, checks = 0;
     std::string passed_names;  ///< "size,roughness,..." for the tooltip.
     bool accepted = false;     ///< By the expert (blocks accept).
+    /// Neighbouring faces paired around the two ("A:F=B:G"): co-planar links to offer.
+    std::vector<std::string> neighbour_pairs;
 };
 
 struct AssemblyFaceRow {
@@ -50,6 +52,11 @@ struct AssemblyPairFigures {
     double gap_median_mm = 0.0, gap_p95_mm = 0.0, gap_min_mm = 0.0;
 };
 
+struct AssemblyCoplanarFigures {
+    std::string pair;
+    double angle_deg = 0.0, offset_mm = 0.0;
+};
+
 struct AssemblyReportView {
     std::string status;  ///< "ok", "infeasible", "contradictory", "not converged".
     std::string message;
@@ -59,6 +66,7 @@ struct AssemblyReportView {
     double penetration_max_mm = 0.0, penetration_mean_mm = 0.0;
     std::size_t penetrating_points = 0;
     std::vector<AssemblyPairFigures> pairs;
+    std::vector<AssemblyCoplanarFigures> coplanar;
     bool ok() const { return status == "ok"; }
 };
 
@@ -69,17 +77,23 @@ struct AssemblyViewState {
     std::vector<AssemblyBlockRow> blocks;
     std::vector<AssemblyFaceRow> proposals;
     std::vector<std::string> chosen_pairs;  ///< "A:F=B:G", as acquisition::pair_name writes them.
+    /// Faces made co-planar ("A:F=B:G"), among the neighbour pairs of the chosen pairs.
+    std::vector<std::string> chosen_coplanar;
     std::optional<AssemblyReportView> report;
     std::string saved_to;  ///< The assembly folder once accepted.
     std::string last_error;
     bool chosen(const std::string& pair) const;
+    bool coplanar(const std::string& pair) const;
+    /// The neighbour pairs the proposals give for a face pair (either order of its faces).
+    std::vector<std::string> neighbour_pairs(const std::string& pair) const;
 };
 
 /// The proposals (left), the assembly panel (right) and the status bar.
 void draw_assembly_panels(const AssemblyViewState& state, const PanelLayout& layout,
                           UiActions& actions);
 
-/// Applies a view-only assembly action (choosing or dropping a pair); false for the others.
+/// Applies a view-only assembly action (choosing or dropping a pair, a co-planar link; a
+/// dropped pair takes its co-planar links with it); false for the others.
 bool apply_assembly_view_action(AssemblyViewState& state, const UiAction& action);
 
 }  // namespace anascan::gui

@@ -29,6 +29,7 @@ enum class UiActionKind {
     kMakeMesh,        ///< Make the fragment model of the view's group (in the background).
     kSetViewMode,     ///< view_mode: points or mesh (view only; mesh once one is ready).
     kTogglePair,      ///< text: choose or drop the face pair "A:F=B:G" (assembly view).
+    kToggleCoplanar,  ///< text: make faces "A:F=B:G" co-planar, or no longer (assembly view).
     kAlignBlocks,     ///< Align the blocks by the chosen pairs (in the background).
     kAcceptAssembly,  ///< Keep the alignment: write the assembly folder.
 };
@@ -42,7 +43,7 @@ struct UiAction {
     ViewMode view_mode = ViewMode::kPoints;     ///< For kSetViewMode.
     int setting_index = -1;                     ///< For kEditSetting: into the form.
     double value = 0.0;                         ///< For kEditSetting: number, or choice index.
-    std::string text;                           ///< For kTogglePair.
+    std::string text;                           ///< For kTogglePair, kToggleCoplanar.
     friend bool operator==(const UiAction&, const UiAction&) = default;
 };
 

@@ -17,6 +17,9 @@ struct ProposalCandidate {
     std::vector<std::string> passed;  ///< The checks it passed, by name.
     std::size_t checks = 0;           ///< Checks in all.
     bool accepted = false;            ///< By the expert (blocks accept).
+    /// The neighbouring faces the match paired around the two faces, "A:F=B:G" each: the
+    /// faces that should be co-planar when the pair touches (façade with façade, ...).
+    std::vector<std::string> neighbour_pairs;
 };
 
 struct FaceProposals {
