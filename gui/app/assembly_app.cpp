@@ -4,13 +4,16 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <utility>
 
 #include "anascan/gui/assembly_view.hpp"
 #include "anascan/gui/progressive_view.hpp"
 #include "anascan/gui/theme.hpp"
+#include "anascan/gui/view_picking.hpp"
 #include "anascan/processing/core/stopwatch.hpp"
 #include "app_state.hpp"
 #include "assembly_link.hpp"
@@ -33,6 +36,33 @@ struct AssemblyApp {
     double busy_frame_max_ms = 0.0;
 };
 
+/// Four pixels of the view's height around the ray: a click's reach.
+constexpr double kPickRadiusPx = 4.0;
+
+/// The 3D view in window pixels (top left origin), as the layout places it.
+struct ViewArea {
+    float x = 0.0f, y = 0.0f, width = 1.0f, height = 1.0f;
+    double aspect() const { return double(width) / double(height); }
+    Eigen::Vector2d ndc(float px, float py) const {
+        return {2.0 * (px - x) / width - 1.0, 1.0 - 2.0 * (py - y) / height};
+    }
+    bool contains(float px, float py) const {
+        return px >= x && px < x + width && py >= y && py < y + height;
+    }
+};
+
+ViewArea view_area(const gui::PanelLayout& layout) {
+    return {layout.view_x_px(), 0.0f, std::max(1.0f, layout.view_width_px()),
+            std::max(1.0f, layout.view_height_px())};
+}
+
+/// The face under a point of the view (NDC), as a kPickFace action.
+gui::UiAction pick_at(const AssemblyApp& app, const ViewArea& area, const Eigen::Vector2d& ndc) {
+    const gui::ViewRay ray = gui::view_ray(app.camera, area.aspect(), ndc);
+    const double radius = kPickRadiusPx * app.camera.fov_y_rad() / area.height;
+    return {.kind = gui::UiActionKind::kPickFace, .text = app.link->pick_face(ray, radius)};
+}
+
 int report_error(const std::string& message) {
     std::fprintf(stderr, "anascan-field: error: %s\n", message.c_str());
     return 1;
@@ -49,12 +79,14 @@ public:
     bool counting() const { return step_ == Step::kCounting; }
     bool done() const { return headless() && counted_ >= headless_.frames; }
 
-    void step(AssemblyApp& app, gui::UiActions& actions) {
-        if (!headless() || !app.link->settled() || app.view.phase == gui::AssemblyPhase::kLoading)
-            return;
+    void step(AssemblyApp& app, const ViewArea& area, gui::UiActions& actions) {
         if (app.view.phase == gui::AssemblyPhase::kFailed) step_ = Step::kCounting;
+        if (!headless() || !app.link->settled() || app.view.phase == gui::AssemblyPhase::kLoading ||
+            (app.fit_pending && step_ != Step::kCounting))
+            return;
         switch (step_) {
             case Step::kChoose:
+                click_blocks(app, area, actions);
                 for (const std::string& p : options_.choose_pairs) toggle(actions, p);
                 if (options_.choose_accepted)
                     for (const std::string& p : app.link->accepted()) toggle(actions, p);
@@ -100,6 +132,15 @@ public:
 
 private:
     enum class Step { kChoose, kAlign, kAccept, kSettle, kCounting };
+    /// Clicks where each named block's centre shows (the face in front of it is hit).
+    void click_blocks(const AssemblyApp& app, const ViewArea& area, gui::UiActions& actions) {
+        for (const std::string& id : options_.click_blocks) {
+            const auto centre = app.link->shown_centre(id);
+            const auto ndc =
+                centre ? gui::project_to_view(app.camera, area.aspect(), *centre) : std::nullopt;
+            if (ndc) actions.push_back(pick_at(app, area, *ndc));
+        }
+    }
     static void toggle(gui::UiActions& actions, const std::string& pair) {
         actions.push_back({.kind = gui::UiActionKind::kTogglePair, .text = pair});
     }
@@ -167,6 +208,7 @@ Expected<void> dump_state(const std::filesystem::path& file, const AssemblyApp& 
                    {"proposal_faces", v.proposals.size()},
                    {"chosen_pairs", v.chosen_pairs},
                    {"chosen_coplanar", v.chosen_coplanar},
+                   {"picked_face", v.picked_face},
                    {"report", report},
                    {"saved_to", v.saved_to},
                    {"last_error", v.last_error},
@@ -186,8 +228,22 @@ AssemblyLinkConfig link_config(const AssemblyOptions& o) {
             .fixed = o.fixed};
 }
 
+/// A left click (pressed and released within a few pixels, not a drag) on the view, NDC.
+std::optional<Eigen::Vector2d> clicked_in_view(const ViewArea& area, std::optional<ImVec2>& press) {
+    const ImGuiIO& io = ImGui::GetIO();
+    if (io.MouseClicked[0])
+        press = !io.WantCaptureMouse && area.contains(io.MousePos.x, io.MousePos.y)
+                    ? std::optional<ImVec2>(io.MousePos)
+                    : std::nullopt;
+    if (!io.MouseReleased[0] || !press) return std::nullopt;
+    const ImVec2 at = std::exchange(press, std::nullopt).value();
+    if (std::hypot(io.MousePos.x - at.x, io.MousePos.y - at.y) > kPickRadiusPx) return std::nullopt;
+    return area.ndc(at.x, at.y);
+}
+
 int run_loop(const FieldAppConfig& config, FieldWindow& window, AssemblyApp& app) {
     AssemblyOperator op(config.assembly, config.headless);
+    std::optional<ImVec2> press;
     while (!window.should_close() && !op.done()) {
         const bool busy = !app.link->settled();
         const Stopwatch frame_time;
@@ -195,8 +251,10 @@ int run_loop(const FieldAppConfig& config, FieldWindow& window, AssemblyApp& app
         window.begin_frame();
         if (app.link->poll(app.view, *app.renderer)) app.fit_pending = true;
         gui::UiActions actions;
-        op.step(app, actions);
         const gui::PanelLayout layout = current_layout(config.view.font_scale);
+        op.step(app, view_area(layout), actions);
+        if (auto click = clicked_in_view(view_area(layout), press))
+            actions.push_back(pick_at(app, view_area(layout), *click));
         gui::draw_assembly_panels(app.view, layout, actions);
         apply_actions(actions, app);
         int fb_w = 0, fb_h = 0;

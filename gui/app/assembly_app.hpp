@@ -20,6 +20,7 @@ struct AssemblyOptions {
     std::optional<std::filesystem::path> out;        ///< Default: DIR/assembly.
     std::vector<std::string> fixed;
     // The headless operator.
+    std::vector<std::string> click_blocks;     ///< Click these blocks in the view (centres).
     std::vector<std::string> choose_pairs;     ///< Tick these pairs once loaded.
     std::vector<std::string> choose_coplanar;  ///< Then these co-planar links.
     bool choose_accepted = false;              ///< Tick the proposals' accepted pairs.

@@ -54,6 +54,25 @@ gui::AssemblyReportView report_view(const acq::BlockAlignment& a) {
     return out;
 }
 
+/// The face of point i, or where it has none (an arris, a chip, the recess of a joint face)
+/// the face of the nearest point within 20 mm that has one; -1 when none has.
+int face_near(const ra::AssemblyBlock& block, std::size_t i) {
+    const std::vector<int>& face = block.features.point_face;
+    if (face[i] >= 0) return face[i];
+    constexpr float kReach = 0.02f;
+    const Eigen::Vector3f& x = block.points.positions[i];
+    int best = -1;
+    float best_d2 = kReach * kReach;
+    for (std::size_t j = 0; j < face.size(); ++j) {
+        const float d2 = (block.points.positions[j] - x).squaredNorm();
+        if (face[j] >= 0 && d2 < best_d2) {
+            best = face[j];
+            best_d2 = d2;
+        }
+    }
+    return best;
+}
+
 bool fixed_block(const AssemblyLinkConfig& c, const std::string& id, std::size_t index) {
     if (c.fixed.empty()) return index == 0;
     return std::find(c.fixed.begin(), c.fixed.end(), id) != c.fixed.end();
@@ -157,6 +176,43 @@ void AssemblyLink::take_aligned(gui::AssemblyViewState& view, gui::PointRenderer
         view.blocks[linked_->blocks[k]].fixed =
             std::count(p.fixed.begin(), p.fixed.end(), int(k)) > 0 || (p.fixed.empty() && k == 0);
     show_blocks(renderer);
+}
+
+Pose AssemblyLink::shown_pose(std::size_t b) const {
+    if (linked_ && alignment_)
+        for (std::size_t k = 0; k < linked_->blocks.size(); ++k)
+            if (linked_->blocks[k] == b) return alignment_->result.T_world_block[k];
+    return Pose::Identity();
+}
+
+std::string AssemblyLink::pick_face(const gui::ViewRay& ray, double radius_rad) const {
+    if (!blocks_) return {};
+    std::optional<gui::PickedPoint> best;
+    std::size_t best_block = 0;
+    for (std::size_t b = 0; b < blocks_->size(); ++b) {
+        const auto hit =
+            gui::pick_point((*blocks_)[b].points.positions, shown_pose(b), ray, radius_rad);
+        if (hit && (!best || hit->depth_m < best->depth_m)) {
+            best = hit;
+            best_block = b;
+        }
+    }
+    if (!best) return {};
+    const ra::AssemblyBlock& block = (*blocks_)[best_block];
+    const int face = face_near(block, best->index);
+    return face < 0 ? std::string() : block.id + ":" + std::to_string(face);
+}
+
+std::optional<Eigen::Vector3d> AssemblyLink::shown_centre(const std::string& id) const {
+    if (!blocks_) return std::nullopt;
+    for (std::size_t b = 0; b < blocks_->size(); ++b) {
+        const PointCloud& points = (*blocks_)[b].points;
+        if ((*blocks_)[b].id != id || points.size() == 0) continue;
+        Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+        for (const Eigen::Vector3f& x : points.positions) sum += x.cast<double>();
+        return shown_pose(b) * (sum / double(points.size()));
+    }
+    return std::nullopt;
 }
 
 bool AssemblyLink::poll(gui::AssemblyViewState& view, gui::PointRenderer& renderer) {

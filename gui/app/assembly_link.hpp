@@ -19,6 +19,7 @@
 #include "anascan/acquisition/blocks/block_proposals.hpp"
 #include "anascan/gui/assembly_view.hpp"
 #include "anascan/gui/point_renderer.hpp"
+#include "anascan/gui/view_picking.hpp"
 
 namespace anascan::field {
 
@@ -48,6 +49,11 @@ public:
     bool settled() const { return !loading_ && !aligning_ && !saving_; }
     /// The accepted pairs of the proposals (the headless operator chooses them).
     const std::vector<std::string>& accepted() const { return accepted_; }
+    /// The face ("A:F") of the block point a click along `ray` lands on (within
+    /// `radius_rad` of it, nearest the eye); empty when it hits no block, or no face.
+    std::string pick_face(const gui::ViewRay& ray, double radius_rad) const;
+    /// A block's centroid where the view shows it (the headless operator clicks there).
+    std::optional<Eigen::Vector3d> shown_centre(const std::string& id) const;
 
 private:
     struct Progress {
@@ -60,6 +66,8 @@ private:
     void take_loaded(gui::AssemblyViewState& view, gui::PointRenderer& renderer);
     void take_aligned(gui::AssemblyViewState& view, gui::PointRenderer& renderer);
     void show_blocks(gui::PointRenderer& renderer) const;
+    /// Where block b is drawn: its assembled pose once aligned, else where its model lies.
+    Pose shown_pose(std::size_t b) const;
 
     AssemblyLinkConfig config_;
     std::shared_ptr<Progress> progress_ = std::make_shared<Progress>();

@@ -80,6 +80,9 @@ void add_assembly_options(CLI::App& app, anascan::field::AssemblyOptions& o) {
     app.add_option("--assembly-out", o.out,
                    "Folder \"Accept and save\" writes (default: DIR/assembly)");
     app.add_option("--fixed", o.fixed, "Blocks that stay in place (default: the first)");
+    app.add_option("--click-block", o.click_blocks,
+                   "Headless: once loaded, click where this block's centre shows in the view "
+                   "(the face in front is picked; a face of another block then pairs with it)");
     app.add_option("--choose-pair", o.choose_pairs,
                    "Headless: tick this face pair A:F=B:G once the blocks are loaded");
     app.add_option("--choose-coplanar", o.choose_coplanar,

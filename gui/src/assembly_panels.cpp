@@ -135,6 +135,11 @@ void draw_assembly_panel(const AssemblyViewState& state, const PanelLayout& layo
     ImGui::TextWrapped("%s", state.folder.c_str());
     draw_blocks(state);
     ImGui::Separator();
+    if (state.picked_face.empty())
+        ImGui::TextColored(detail::kColorMuted, "Click a face in the view to pair it");
+    else
+        ImGui::TextColored(detail::kColorWarn, "Picked %s: click a face of another block",
+                           state.picked_face.c_str());
     draw_chosen_pairs(state, actions);
     draw_buttons(state, actions);
     if (!state.progress.empty())
@@ -211,20 +216,40 @@ bool toggle(std::vector<std::string>& list, const std::string& item) {
     return false;
 }
 
+std::string block_of(const std::string& face) { return face.substr(0, face.rfind(':')); }
+
+void toggle_pair(AssemblyViewState& state, const std::string& pair) {
+    if (!toggle(state.chosen_pairs, pair))
+        for (const std::string& n : state.neighbour_pairs(pair))
+            std::erase(state.chosen_coplanar, n);
+}
+
+/// The first face clicked waits; a face of another block pairs with it.
+void pick_face(AssemblyViewState& state, const std::string& face) {
+    if (face.empty() || state.picked_face.empty() ||
+        block_of(face) == block_of(state.picked_face)) {
+        state.picked_face = face;
+        return;
+    }
+    toggle_pair(state, acquisition::pair_name(state.picked_face, face));
+    state.picked_face.clear();
+}
+
 }  // namespace
 
 bool apply_assembly_view_action(AssemblyViewState& state, const UiAction& action) {
-    if (action.kind != UiActionKind::kTogglePair && action.kind != UiActionKind::kToggleCoplanar)
+    const UiActionKind k = action.kind;
+    if (k != UiActionKind::kTogglePair && k != UiActionKind::kToggleCoplanar &&
+        k != UiActionKind::kPickFace)
         return false;
     if (state.phase == AssemblyPhase::kLoading || state.phase == AssemblyPhase::kAligning)
         return true;  // the links of a running alignment stay as they are
-    if (action.kind == UiActionKind::kToggleCoplanar) {
+    if (k == UiActionKind::kToggleCoplanar)
         toggle(state.chosen_coplanar, action.text);
-        return true;
-    }
-    if (!toggle(state.chosen_pairs, action.text))
-        for (const std::string& n : state.neighbour_pairs(action.text))
-            std::erase(state.chosen_coplanar, n);
+    else if (k == UiActionKind::kPickFace)
+        pick_face(state, action.text);
+    else
+        toggle_pair(state, action.text);
     return true;
 }
 

@@ -132,5 +132,25 @@ TEST(AssemblyPanels, AChosenPairOffersItsNeighbourPairsAsCoplanarLinks) {
     EXPECT_TRUE(s.chosen_coplanar.empty());
 }
 
+TEST(AssemblyPanels, AFaceClickedThenAFaceOfAnotherBlockChoosesTheirPair) {
+    AssemblyViewState s = two_blocks();
+    auto pick = [&](const std::string& face) {
+        EXPECT_TRUE(apply_assembly_view_action(s, {.kind = UiActionKind::kPickFace, .text = face}));
+    };
+    pick("c0b1:4");
+    EXPECT_EQ(s.picked_face, "c0b1:4");
+    pick("c0b1:2");  // the same block: the new face waits instead
+    EXPECT_EQ(s.picked_face, "c0b1:2");
+    pick("c0b0:5");
+    EXPECT_EQ(s.chosen_pairs, (std::vector<std::string>{"c0b0:5=c0b1:2"}));
+    EXPECT_TRUE(s.picked_face.empty());
+    pick("c0b0:5");
+    pick("c0b1:2");  // the same pair again: dropped
+    EXPECT_TRUE(s.chosen_pairs.empty());
+    pick("c0b0:1");
+    pick("");  // a click beside the blocks
+    EXPECT_TRUE(s.picked_face.empty());
+}
+
 }  // namespace
 }  // namespace anascan::gui

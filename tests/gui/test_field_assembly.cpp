@@ -126,6 +126,22 @@ TEST_F(FieldAssembly, WithoutAnyPairNothingIsAlignedOrSaved) {
     EXPECT_FALSE(fs::exists(dir_ / "a"));
 }
 
+TEST_F(FieldAssembly, ClickingTwoBlocksInTheViewPairsTheFacesUnderTheClicks) {
+    prepare_blocks();
+    const fs::path state_file = dir_ / "state.json";
+    const auto r = field("--assembly " + (dir_ / "f").string() +
+                         " --click-block c0b0 --click-block c0b1 --frames 2 --dump-state " +
+                         state_file.string() + " --width 1280 --height 800");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    ASSERT_TRUE(fs::exists(state_file)) << r.output;
+    const json state = anascan::read_json(state_file);
+    ASSERT_EQ(state.at("chosen_pairs").size(), 1u) << state.dump(1);
+    const std::string pair = state.at("chosen_pairs").at(0);
+    EXPECT_EQ(pair.rfind("c0b0:", 0), 0u) << pair;
+    EXPECT_NE(pair.find("=c0b1:"), std::string::npos) << pair;
+    EXPECT_EQ(state.at("picked_face"), "");
+}
+
 TEST_F(FieldAssembly, AFolderWithoutBlockFeaturesIsNamedInTheError) {
     fs::create_directories(dir_ / "empty");
     const auto r = field("--assembly " + (dir_ / "empty").string() + " --frames 2");

@@ -79,6 +79,8 @@ struct AssemblyViewState {
     std::vector<std::string> chosen_pairs;  ///< "A:F=B:G", as acquisition::pair_name writes them.
     /// Faces made co-planar ("A:F=B:G"), among the neighbour pairs of the chosen pairs.
     std::vector<std::string> chosen_coplanar;
+    /// A face clicked in the view ("A:F"), waiting for a face of another block to pair with.
+    std::string picked_face;
     std::optional<AssemblyReportView> report;
     std::string saved_to;  ///< The assembly folder once accepted.
     std::string last_error;
@@ -93,7 +95,8 @@ void draw_assembly_panels(const AssemblyViewState& state, const PanelLayout& lay
                           UiActions& actions);
 
 /// Applies a view-only assembly action (choosing or dropping a pair, a co-planar link; a
-/// dropped pair takes its co-planar links with it); false for the others.
+/// dropped pair takes its co-planar links with it; a face clicked, then a face of another
+/// block: their pair chosen or dropped); false for the others.
 bool apply_assembly_view_action(AssemblyViewState& state, const UiAction& action);
 
 }  // namespace anascan::gui

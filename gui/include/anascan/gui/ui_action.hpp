@@ -30,6 +30,7 @@ enum class UiActionKind {
     kSetViewMode,     ///< view_mode: points or mesh (view only; mesh once one is ready).
     kTogglePair,      ///< text: choose or drop the face pair "A:F=B:G" (assembly view).
     kToggleCoplanar,  ///< text: make faces "A:F=B:G" co-planar, or no longer (assembly view).
+    kPickFace,        ///< text: face "A:F" clicked in the view (assembly view; "" clears).
     kAlignBlocks,     ///< Align the blocks by the chosen pairs (in the background).
     kAcceptAssembly,  ///< Keep the alignment: write the assembly folder.
 };
@@ -43,7 +44,7 @@ struct UiAction {
     ViewMode view_mode = ViewMode::kPoints;     ///< For kSetViewMode.
     int setting_index = -1;                     ///< For kEditSetting: into the form.
     double value = 0.0;                         ///< For kEditSetting: number, or choice index.
-    std::string text;                           ///< For kTogglePair, kToggleCoplanar.
+    std::string text;                           ///< For kTogglePair, kToggleCoplanar, kPickFace.
     friend bool operator==(const UiAction&, const UiAction&) = default;
 };
 
