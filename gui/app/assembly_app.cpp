@@ -6,8 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <nlohmann/json.hpp>
 #include <utility>
 
 #include "anascan/gui/assembly_view.hpp"
@@ -20,6 +18,7 @@
 #include "field_app.hpp"
 #include "field_window.hpp"
 #include "screenshot.hpp"
+#include "state_dump.hpp"
 
 namespace anascan::field {
 namespace {
@@ -179,48 +178,6 @@ void draw_scene(AssemblyApp& app, const gui::PanelLayout& layout, int fb_w, int 
     glViewport(0, 0, fb_w, fb_h);
 }
 
-Expected<void> dump_state(const std::filesystem::path& file, const AssemblyApp& app) {
-    using nlohmann::json;
-    const gui::AssemblyViewState& v = app.view;
-    json report = nullptr;
-    if (v.report) {
-        json pairs = json::array();
-        for (const auto& p : v.report->pairs)
-            pairs.push_back({{"pair", p.pair},
-                             {"gap_median_mm", p.gap_median_mm},
-                             {"gap_p95_mm", p.gap_p95_mm},
-                             {"gap_min_mm", p.gap_min_mm}});
-        json coplanar = json::array();
-        for (const auto& c : v.report->coplanar)
-            coplanar.push_back(
-                {{"pair", c.pair}, {"angle_deg", c.angle_deg}, {"offset_mm", c.offset_mm}});
-        report = {{"status", v.report->status},
-                  {"coplanar", coplanar},
-                  {"iterations", v.report->iterations},
-                  {"penetration_max_mm", v.report->penetration_max_mm},
-                  {"pairs", pairs}};
-    }
-    json blocks = json::array();
-    for (const auto& b : v.blocks) blocks.push_back({{"id", b.id}, {"fixed", b.fixed}});
-    const json out{{"folder", v.folder},
-                   {"phase", gui::to_string(v.phase)},
-                   {"blocks", blocks},
-                   {"proposal_faces", v.proposals.size()},
-                   {"chosen_pairs", v.chosen_pairs},
-                   {"chosen_coplanar", v.chosen_coplanar},
-                   {"picked_face", v.picked_face},
-                   {"report", report},
-                   {"saved_to", v.saved_to},
-                   {"last_error", v.last_error},
-                   {"points_total", app.renderer->total_points()},
-                   {"frames_while_busy", app.busy_frames},
-                   {"longest_busy_frame_ms", app.busy_frame_max_ms}};
-    std::ofstream f(file);
-    f << out.dump(1) << "\n";
-    if (!f) return fail(ErrorCode::kIo, file.string() + ": cannot write the state");
-    return {};
-}
-
 AssemblyLinkConfig link_config(const AssemblyOptions& o) {
     return {.dir = *o.dir,
             .proposals = o.proposals,
@@ -301,7 +258,11 @@ int run_assembly_app(const FieldAppConfig& config) {
     else if (!app.view.last_error.empty())
         std::fprintf(stderr, "anascan-field: last message: %s\n", app.view.last_error.c_str());
     if (config.dump_state_json)
-        if (auto ok = dump_state(*config.dump_state_json, app); !ok)
+        if (auto ok = write_assembly_state_json(*config.dump_state_json, app.view,
+                                                {.points_total = app.renderer->total_points(),
+                                                 .busy_frames = app.busy_frames,
+                                                 .busy_frame_max_ms = app.busy_frame_max_ms});
+            !ok)
             return report_error(ok.error().message);
     app.link.reset();  // workers finish before the renderer and the window go
     return code;

@@ -128,6 +128,14 @@ nlohmann::json mesh_json(const gui::FieldViewState& view, std::size_t triangles_
             {"outdated", m.outdated}};
 }
 
+Expected<void> write_json(const std::filesystem::path& file, const nlohmann::json& doc) {
+    std::ofstream out(file);
+    out << doc.dump(2) << "\n";
+    out.close();
+    if (!out) return fail(ErrorCode::kIo, file.string() + ": cannot write the state file");
+    return {};
+}
+
 }  // namespace
 
 Expected<void> write_state_json(const std::filesystem::path& file, const gui::FieldViewState& view,
@@ -161,11 +169,47 @@ Expected<void> write_state_json(const std::filesystem::path& file, const gui::Fi
         {"mesh", mesh_json(view, figures.mesh_triangles)},
         {"points_total", figures.points_total},
         {"chunks", figures.chunks}};
-    std::ofstream out(file);
-    out << doc.dump(2) << "\n";
-    out.close();
-    if (!out) return fail(ErrorCode::kIo, file.string() + ": cannot write the state file");
-    return {};
+    return write_json(file, doc);
+}
+
+Expected<void> write_assembly_state_json(const std::filesystem::path& file,
+                                         const gui::AssemblyViewState& v,
+                                         const AssemblyFigures& figures) {
+    using nlohmann::json;
+    json report = nullptr;
+    if (v.report) {
+        json pairs = json::array();
+        for (const auto& p : v.report->pairs)
+            pairs.push_back({{"pair", p.pair},
+                             {"gap_median_mm", p.gap_median_mm},
+                             {"gap_p95_mm", p.gap_p95_mm},
+                             {"gap_min_mm", p.gap_min_mm}});
+        json coplanar = json::array();
+        for (const auto& c : v.report->coplanar)
+            coplanar.push_back(
+                {{"pair", c.pair}, {"angle_deg", c.angle_deg}, {"offset_mm", c.offset_mm}});
+        report = {{"status", v.report->status},
+                  {"coplanar", coplanar},
+                  {"iterations", v.report->iterations},
+                  {"penetration_max_mm", v.report->penetration_max_mm},
+                  {"pairs", pairs}};
+    }
+    json blocks = json::array();
+    for (const auto& b : v.blocks) blocks.push_back({{"id", b.id}, {"fixed", b.fixed}});
+    const json out{{"folder", v.folder},
+                   {"phase", gui::to_string(v.phase)},
+                   {"blocks", blocks},
+                   {"proposal_faces", v.proposals.size()},
+                   {"chosen_pairs", v.chosen_pairs},
+                   {"chosen_coplanar", v.chosen_coplanar},
+                   {"picked_face", v.picked_face},
+                   {"report", report},
+                   {"saved_to", v.saved_to},
+                   {"last_error", v.last_error},
+                   {"points_total", figures.points_total},
+                   {"frames_while_busy", figures.busy_frames},
+                   {"longest_busy_frame_ms", figures.busy_frame_max_ms}};
+    return write_json(file, out);
 }
 
 }  // namespace anascan::field

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <optional>
 
+#include "anascan/gui/assembly_view.hpp"
 #include "anascan/gui/field_view_state.hpp"
 #include "anascan/processing/core/expected.hpp"
 
@@ -30,5 +31,20 @@ struct ViewFigures {
 /// "connected", "status"}], "active_device", "points_total", "chunks"}.
 Expected<void> write_state_json(const std::filesystem::path& file, const gui::FieldViewState& view,
                                 const ViewFigures& figures);
+
+/// What the assembly view holds besides its state.
+struct AssemblyFigures {
+    std::size_t points_total = 0;  ///< Points of the blocks in the renderer.
+    std::size_t busy_frames = 0;   ///< Frames drawn while a worker ran.
+    double busy_frame_max_ms = 0.0;
+};
+
+/// The assembly view's `--dump-state`: {"folder", "phase", "blocks": [{"id", "fixed"}],
+/// "proposal_faces", "chosen_pairs", "chosen_coplanar", "picked_face", "report": null |
+/// {"status", "coplanar", "iterations", "penetration_max_mm", "pairs"}, "saved_to",
+/// "last_error", "points_total", "frames_while_busy", "longest_busy_frame_ms"}.
+Expected<void> write_assembly_state_json(const std::filesystem::path& file,
+                                         const gui::AssemblyViewState& view,
+                                         const AssemblyFigures& figures);
 
 }  // namespace anascan::field

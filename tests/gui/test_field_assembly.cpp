@@ -142,6 +142,23 @@ TEST_F(FieldAssembly, ClickingTwoBlocksInTheViewPairsTheFacesUnderTheClicks) {
     EXPECT_EQ(state.at("picked_face"), "");
 }
 
+TEST_F(FieldAssembly, AnUnwritableAssemblyFolderIsNamedAndTheAlignmentKept) {
+    prepare_blocks();
+    const fs::path state_file = dir_ / "state.json";
+    const std::string out = "/proc/anascan-no-such-folder";
+    const auto r = field("--assembly " + (dir_ / "f").string() + " --assembly-out " + out +
+                         " --choose-accepted --align --accept-assembly --frames 2 --dump-state " +
+                         state_file.string() + " --width 1280 --height 800");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    ASSERT_TRUE(fs::exists(state_file)) << r.output;
+    const json state = anascan::read_json(state_file);
+    EXPECT_EQ(state.at("phase"), "aligned") << state.dump(1);
+    EXPECT_EQ(state.at("report").at("status"), "ok");
+    EXPECT_EQ(state.at("saved_to"), "");
+    EXPECT_NE(state.at("last_error").get<std::string>().find(out), std::string::npos)
+        << state.dump(1);
+}
+
 TEST_F(FieldAssembly, AFolderWithoutBlockFeaturesIsNamedInTheError) {
     fs::create_directories(dir_ / "empty");
     const auto r = field("--assembly " + (dir_ / "empty").string() + " --frames 2");
