@@ -191,6 +191,7 @@ Expected<void> write_assembly_state_json(const std::filesystem::path& file,
         report = {{"status", v.report->status},
                   {"coplanar", coplanar},
                   {"iterations", v.report->iterations},
+                  {"offending", v.report->offending},
                   {"penetration_max_mm", v.report->penetration_max_mm},
                   {"pairs", pairs}};
     }

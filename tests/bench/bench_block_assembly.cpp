@@ -10,6 +10,7 @@
 #include <random>
 
 #include "../processing/reassembly/box_mesh.hpp"
+#include "anascan/processing/reassembly/assembly_probe.hpp"
 #include "anascan/processing/reassembly/block_assembly.hpp"
 #include "anascan/processing/reassembly/constrained_lsq.hpp"
 #include "reassembly/assembly_steps.hpp"
@@ -132,6 +133,23 @@ void BM_Assembly_12Blocks_WholeProcess(benchmark::State& state) {
     }
 }
 BENCHMARK(BM_Assembly_12Blocks_WholeProcess)->Unit(benchmark::kSecond)->Iterations(1);
+
+// What `blocks assemble` adds after an ok assembly of the 12 blocks: whether the pairs fix
+// every block (a restart of each free block both ways along its weakest translation).
+void BM_AssemblyProbe_12Blocks(benchmark::State& state) {
+    const Wall w = row_wall(12, 0.005, true);
+    auto r = ra::assemble_blocks(w.problem, w.start, {});
+    if (!r || r->status != ra::AssemblyStatus::kOk) {
+        state.SkipWithError("the 12-block assembly did not end ok");
+        return;
+    }
+    for (auto _ : state) {
+        auto d = ra::probe_determinacy(w.problem, *r, {});
+        state.counters["restarts"] = d ? d->restarts : -1;
+        state.counters["loose"] = d ? double(d->loose.size() + d->untouched_pairs.size()) : -1;
+    }
+}
+BENCHMARK(BM_AssemblyProbe_12Blocks)->Unit(benchmark::kSecond)->Iterations(1);
 
 }  // namespace
 

@@ -56,19 +56,26 @@ protected:
         ASSERT_EQ(again.exit_code, 0) << again.output;
     }
 
+    // The faces of both blocks along +axis, as a co-planar link.
+    std::string coplanar(int axis) {
+        return "c0b0:" + std::to_string(face_along("c0b0", axis, 1)) +
+               "=c0b1:" + std::to_string(face_along("c0b1", axis, 1));
+    }
+
     std::string joint_a_, joint_b_;
 };
 
 TEST_F(FieldAssembly, AcceptedPairAlignedInTheBackgroundSavedAndScoredAgainstTheTruth) {
     prepare_blocks();
     const fs::path png = dir_ / "assembly.png", state_file = dir_ / "state.json";
-    // The façades (the blocks' +y faces) co-planar, as the expert ticks them.
-    const std::string facade = "c0b0:" + std::to_string(face_along("c0b0", 1, 1)) +
-                               "=c0b1:" + std::to_string(face_along("c0b1", 1, 1));
-    const auto r = field("--assembly " + (dir_ / "f").string() + " --assembly-out " +
-                         (dir_ / "a").string() + " --choose-accepted --choose-coplanar " + facade +
-                         " --align --accept-assembly --frames 3 --screenshot " + png.string() +
-                         " --dump-state " + state_file.string() + " --width 1280 --height 800");
+    // The façades (the blocks' +y faces) and the tops co-planar, as the expert ticks them
+    // (the joint and the façades alone leave the block free up and down the joint).
+    const std::string facade = coplanar(1), top = coplanar(2);
+    const auto r =
+        field("--assembly " + (dir_ / "f").string() + " --assembly-out " + (dir_ / "a").string() +
+              " --choose-accepted --choose-coplanar " + facade + " --choose-coplanar " + top +
+              " --align --accept-assembly --frames 3 --screenshot " + png.string() +
+              " --dump-state " + state_file.string() + " --width 1280 --height 800");
     ASSERT_EQ(r.exit_code, 0) << r.output;
     ASSERT_TRUE(fs::exists(state_file)) << r.output;
     const json state = anascan::read_json(state_file);
@@ -81,7 +88,7 @@ TEST_F(FieldAssembly, AcceptedPairAlignedInTheBackgroundSavedAndScoredAgainstThe
     // The façade link was used: its fitted planes end within the co-planarity limits of an
     // ok status (0.5°, 2 mm; the fitted planes of different finishes differ by about 0.1°
     // at the truth, docs/reassembly.md), the poses are scored against the truth below.
-    ASSERT_EQ(state.at("report").at("coplanar").size(), 1u) << state.dump(1);
+    ASSERT_EQ(state.at("report").at("coplanar").size(), 2u) << state.dump(1);
     EXPECT_EQ(state.at("report").at("coplanar").at(0).at("pair"), facade);
     EXPECT_LT(state.at("report").at("coplanar").at(0).at("angle_deg").get<double>(), 0.5);
     EXPECT_LT(state.at("report").at("coplanar").at(0).at("offset_mm").get<double>(), 2.0);
@@ -107,6 +114,27 @@ TEST_F(FieldAssembly, AcceptedPairAlignedInTheBackgroundSavedAndScoredAgainstThe
     ASSERT_EQ(image.cols, 1280);
     const cv::Rect view(470, 100, 420, 550);
     EXPECT_GT(fraction_not(image, view, kClearRgb), 0.05);
+}
+
+// The joint alone leaves the block free along it: the report says so and names the block,
+// and nothing is saved (only an ok alignment is).
+TEST_F(FieldAssembly, AnUnderdeterminedAlignmentNamesTheLooseBlockAndIsNotSaved) {
+    prepare_blocks();
+    const fs::path state_file = dir_ / "state.json";
+    const auto r =
+        field("--assembly " + (dir_ / "f").string() + " --assembly-out " + (dir_ / "a").string() +
+              " --choose-accepted --align --accept-assembly" + " --frames 2 --dump-state " +
+              state_file.string() + " --width 1024 --height 700");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    ASSERT_TRUE(fs::exists(state_file)) << r.output;
+    const json state = anascan::read_json(state_file);
+    EXPECT_EQ(state.at("report").at("status"), "underdetermined") << state.dump(1);
+    bool named = false;
+    for (const auto& why : state.at("report").at("offending"))
+        named |= why.get<std::string>().rfind("c0b1 slides along", 0) == 0;
+    EXPECT_TRUE(named) << state.dump(1);
+    EXPECT_EQ(state.at("saved_to"), "");
+    EXPECT_FALSE(fs::exists(dir_ / "a"));
 }
 
 TEST_F(FieldAssembly, WithoutAnyPairNothingIsAlignedOrSaved) {
@@ -146,9 +174,11 @@ TEST_F(FieldAssembly, AnUnwritableAssemblyFolderIsNamedAndTheAlignmentKept) {
     prepare_blocks();
     const fs::path state_file = dir_ / "state.json";
     const std::string out = "/proc/anascan-no-such-folder";
-    const auto r = field("--assembly " + (dir_ / "f").string() + " --assembly-out " + out +
-                         " --choose-accepted --align --accept-assembly --frames 2 --dump-state " +
-                         state_file.string() + " --width 1280 --height 800");
+    const auto r =
+        field("--assembly " + (dir_ / "f").string() + " --assembly-out " + out +
+              " --choose-accepted --choose-coplanar " + coplanar(1) + " --choose-coplanar " +
+              coplanar(2) + " --align --accept-assembly --frames 2 --dump-state " +
+              state_file.string() + " --width 1280 --height 800");
     ASSERT_EQ(r.exit_code, 0) << r.output;
     ASSERT_TRUE(fs::exists(state_file)) << r.output;
     const json state = anascan::read_json(state_file);

@@ -15,6 +15,7 @@
 #include <string>
 
 #include "anascan/processing/core/stopwatch.hpp"
+#include "anascan/processing/reassembly/assembly_probe.hpp"
 #include "anascan/processing/reassembly/constrained_lsq.hpp"
 #include "monument_assembly.hpp"
 #include "reassembly/assembly_steps.hpp"
@@ -48,6 +49,11 @@ Outcome run(const MonumentAssembly& m, const std::vector<Pose>& start,
     if (!r) {
         o.status = r.error().message;
         return o;
+    }
+    if (r->status == ra::AssemblyStatus::kOk && !std::getenv("NO_PROBE")) {
+        auto d = ra::probe_determinacy(m.problem, *r, c);
+        if (d) ra::mark_underdetermined(m.problem, *d, *r);
+        for (const std::string& why : r->offending) std::printf("    %s\n", why.c_str());
     }
     o.status = ra::to_string(r->status);
     o.iterations = r->iterations;

@@ -6,6 +6,7 @@
 #include "anascan/processing/core/stopwatch.hpp"
 #include "anascan/processing/io/ply.hpp"
 #include "anascan/processing/io/stanford_conf.hpp"
+#include "anascan/processing/reassembly/assembly_probe.hpp"
 #include "json_file.hpp"
 
 namespace anascan::acquisition {
@@ -117,6 +118,11 @@ Expected<BlockAlignment> align_blocks(const ra::AssemblyProblem& problem,
     if (!start) return Unexpected(start.error());
     auto r = ra::assemble_blocks(problem, *start, config);
     if (!r) return Unexpected(r.error());
+    if (r->status == ra::AssemblyStatus::kOk) {
+        auto fixed = ra::probe_determinacy(problem, *r, config);
+        if (!fixed) return Unexpected(fixed.error());
+        ra::mark_underdetermined(problem, *fixed, *r);
+    }
     BlockAlignment out{.result = std::move(*r)};
     out.check = ra::check_assembly(problem, out.result.T_world_block);
     out.seconds = watch.seconds();

@@ -164,6 +164,8 @@ const char* to_string(AssemblyStatus s) {
             return "contradictory";
         case AssemblyStatus::kNotConverged:
             return "not converged";
+        case AssemblyStatus::kUnderdetermined:
+            return "underdetermined";
     }
     return "?";
 }

@@ -14,6 +14,7 @@ list(APPEND ANASCAN_PROCESSING_SOURCES
 # Penetration-free alignment of neighbouring blocks (paper §5.3).
 list(APPEND ANASCAN_PROCESSING_SOURCES
     src/reassembly/assembly_check.cpp
+    src/reassembly/assembly_probe.cpp
     src/reassembly/assembly_qp.cpp
     src/reassembly/assembly_terms.cpp
     src/reassembly/block_assembly.cpp

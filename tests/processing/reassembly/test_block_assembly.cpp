@@ -9,6 +9,7 @@
 #include <random>
 
 #include "anascan/processing/reassembly/assembly_check.hpp"
+#include "anascan/processing/reassembly/assembly_probe.hpp"
 #include "anascan/processing/reassembly/block_assembly.hpp"
 #include "box_mesh.hpp"
 
@@ -219,6 +220,66 @@ TEST(BlockAssembly, CapsEndTheIterationWithAClearStatus) {
     EXPECT_EQ(qp->status, AssemblyStatus::kNotConverged);
     EXPECT_NE(qp->message.find("reached its cap of 1 NNLS iterations"), std::string::npos)
         << qp->message;
+}
+
+}  // namespace
+}  // namespace anascan::reassembly
+
+namespace anascan::reassembly {
+namespace {
+
+// Three boxes of one cross-section, each joint with its façade and top co-planar: every
+// block is fixed, and restarting one along its weakest translation brings it back.
+TEST(AssemblyDeterminacy, PairsWithFacadeAndTopFixEveryBlock) {
+    const Row& r = three_blocks();
+    auto result = assemble_blocks(r.problem, r.truth, {});
+    ASSERT_TRUE(result) << result.error().message;
+    ASSERT_EQ(result->status, AssemblyStatus::kOk) << result->message;
+    auto d = probe_determinacy(r.problem, *result, {});
+    ASSERT_TRUE(d) << d.error().message;
+    EXPECT_TRUE(d->untouched_pairs.empty());
+    EXPECT_TRUE(d->loose.empty()) << d->loose.front().moved_m;
+    EXPECT_EQ(d->restarts, 4);  // Two free blocks, both ways.
+}
+
+// Without the façade, nothing holds the second box across the wall (y): the flat joint fits
+// anywhere along itself. The assembly alone says ok; the probe finds the slide.
+TEST(AssemblyDeterminacy, AJointWithoutItsFacadeSlidesAcrossTheWall) {
+    Row r = two_blocks();
+    r.problem.coplanar.erase(r.problem.coplanar.begin());  // The +y façades.
+    auto result = assemble_blocks(r.problem, r.truth, {});
+    ASSERT_TRUE(result) << result.error().message;
+    ASSERT_EQ(result->status, AssemblyStatus::kOk) << result->message;
+    auto d = probe_determinacy(r.problem, *result, {});
+    ASSERT_TRUE(d) << d.error().message;
+    ASSERT_EQ(d->loose.size(), 1u);
+    EXPECT_EQ(d->loose[0].block, 1);
+    EXPECT_GT(std::abs(d->loose[0].direction.y()), 0.99) << d->loose[0].direction.transpose();
+    EXPECT_GT(d->loose[0].moved_m, 0.015);
+    mark_underdetermined(r.problem, *d, *result);
+    EXPECT_EQ(result->status, AssemblyStatus::kUnderdetermined);
+    ASSERT_EQ(result->offending.size(), 1u);
+    EXPECT_EQ(result->offending[0].rfind("b1 slides along", 0), 0u) << result->offending[0];
+}
+
+// A block started beside its partner face (no sample of the joint meets the other face)
+// feels no pull from the pair: the assembly converges where it started, and the probe
+// names the pair that does not touch.
+TEST(AssemblyDeterminacy, APairWhoseFacesDoNotMeetIsNamed) {
+    Row r = two_blocks();
+    r.problem.coplanar.erase(r.problem.coplanar.begin());  // The façades would pull it back.
+    std::vector<Pose> start = r.truth;
+    start[1] = Eigen::Translation3d(0.0, 0.8, 0.0) * start[1];  // Beyond the 0.6 m joint.
+    auto result = assemble_blocks(r.problem, start, {});
+    ASSERT_TRUE(result) << result.error().message;
+    ASSERT_EQ(result->status, AssemblyStatus::kOk) << result->message;
+    auto d = probe_determinacy(r.problem, *result, {});
+    ASSERT_TRUE(d) << d.error().message;
+    ASSERT_EQ(d->untouched_pairs.size(), 1u);
+    EXPECT_EQ(d->untouched_pairs[0], link_name(r.problem, r.problem.contacts[0]));
+    mark_underdetermined(r.problem, *d, *result);
+    EXPECT_EQ(result->status, AssemblyStatus::kUnderdetermined);
+    EXPECT_STREQ(to_string(result->status), "underdetermined");
 }
 
 }  // namespace

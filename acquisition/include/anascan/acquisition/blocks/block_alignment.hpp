@@ -30,9 +30,10 @@ struct LinkedBlocks {
 };
 LinkedBlocks linked_blocks(const reassembly::AssemblyProblem& whole);
 
-/// Places, registers and checks; an error when the problem is refused (unknown face, a
-/// sliver, a block no pair links to a fixed one). A status other than kOk (infeasible,
-/// contradictory, not converged) is a result, with its offending pairs.
+/// Places, registers, probes whether the pairs fix every block (assembly_probe.hpp) and
+/// checks; an error when the problem is refused (unknown face, a sliver, a block no pair
+/// links to a fixed one). A status other than kOk (infeasible, contradictory, not
+/// converged, underdetermined) is a result, with its offending pairs.
 Expected<BlockAlignment> align_blocks(const reassembly::AssemblyProblem& problem,
                                       const reassembly::AssemblyConfig& config);
 

@@ -106,6 +106,9 @@ enum class AssemblyStatus {
     kInfeasible,     ///< No motion keeps the matching faces penetration-free.
     kContradictory,  ///< Co-planar or co-linear pairs that cannot all hold.
     kNotConverged,
+    /// The pairs leave a block free (assembly_probe.hpp): a pair whose faces do not touch,
+    /// or a block that ends elsewhere, fitting as well, when restarted along its joint.
+    kUnderdetermined,
 };
 const char* to_string(AssemblyStatus status);
 
