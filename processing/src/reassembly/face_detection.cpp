@@ -1,5 +1,6 @@
 // Planar faces: CGAL Efficient RANSAC on a subsample, every input point assigned to the
-// best plane, planes refitted by least squares, parallel close planes merged.
+// best plane, planes refitted by least squares, parallel close planes merged, curved strips
+// dropped, and each face's normal taken from its best-fitting half.
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
@@ -21,6 +22,76 @@ std::vector<std::size_t> stride_sample(std::size_t n, std::size_t max_count) {
     return out;
 }
 
+// The normal of the face's best-fitting half (least median of squares: of planes through
+// three inliers drawn evenly, the one whose median squared distance over a sample is
+// least), refitted by least squares on the points within 2.5 robust deviations of it. The
+// dressed surface is the face's largest flat part: erosion, a chipped or recessed panel on
+// one side tilt a fit through every inlier (docs/reassembly.md, "Face planes").
+Eigen::Vector3d least_median_normal(const FeatureInput& in, const std::vector<std::size_t>& inliers,
+                                    const Eigen::Vector3d& n) {
+    constexpr std::size_t kSample = 2000, kDraws = 300;
+    if (inliers.size() < 20) return n;
+    const std::vector<std::size_t> sample = stride_sample(inliers.size(), kSample);
+    std::vector<Eigen::Vector3d> pts;
+    for (std::size_t j : sample) pts.push_back(in.points[inliers[j]].cast<double>());
+    std::vector<double> sq(pts.size());
+    auto median_sq = [&](const Eigen::Vector3d& normal, const Eigen::Vector3d& on) {
+        for (std::size_t k = 0; k < pts.size(); ++k) {
+            const double d = normal.dot(pts[k] - on);
+            sq[k] = d * d;
+        }
+        const auto mid = sq.begin() + std::ptrdiff_t(sq.size() / 2);
+        std::nth_element(sq.begin(), mid, sq.end());
+        return *mid;
+    };
+    Eigen::Vector3d best_n = n, best_on = pts[0];
+    double best = median_sq(n, pts[pts.size() / 2]);
+    // Deterministic draws: a multiplicative hash of the draw index picks the three points.
+    for (std::size_t t = 0; t < kDraws; ++t) {
+        const std::size_t m = pts.size();
+        const std::size_t a = (t * 2654435761u) % m, b = (t * 40503u + m / 3) % m,
+                          c = (t * 9973u + 2 * m / 3) % m;
+        Eigen::Vector3d normal = (pts[b] - pts[a]).cross(pts[c] - pts[a]);
+        if (normal.norm() < 1e-12) continue;
+        normal.normalize();
+        if (normal.dot(n) < std::cos(10.0 * kDegToRad) &&
+            -normal.dot(n) < std::cos(10.0 * kDegToRad))
+            continue;
+        if (normal.dot(n) < 0.0) normal = -normal;
+        const double value = median_sq(normal, pts[a]);
+        if (value < best) best = value, best_n = normal, best_on = pts[a];
+    }
+    // Least squares on the points near the best half (robust scale 1.4826 · median).
+    const double band = 2.5 * 1.4826 * std::sqrt(best) + 1e-9;
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    std::vector<Eigen::Vector3d> near;
+    for (std::size_t i : inliers) {
+        const Eigen::Vector3d p = in.points[i].cast<double>();
+        if (std::abs(best_n.dot(p - best_on)) <= band) near.push_back(p);
+    }
+    if (near.size() < 3) return best_n;
+    for (const Eigen::Vector3d& p : near) mean += p;
+    mean /= double(near.size());
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    for (const Eigen::Vector3d& p : near) cov += (p - mean) * (p - mean).transpose();
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+    const Eigen::Vector3d refit = eig.eigenvectors().col(0);
+    return refit.dot(n) < 0.0 ? Eigen::Vector3d(-refit) : refit;
+}
+
+// The face's plane along normal n: the dressed surface is the outer envelope (tool marks,
+// a recessed centre and carving lie below it), so the offset is the 95th percentile of the
+// inliers' heights.
+void set_plane(const FeatureInput& in, FaceBuild& f, const Eigen::Vector3d& n) {
+    f.face.normal = n;
+    std::vector<double> heights;
+    heights.reserve(f.inliers.size());
+    for (std::size_t i : f.inliers) heights.push_back(n.dot(in.points[i].cast<double>()));
+    const auto k = heights.begin() + std::ptrdiff_t(0.95 * double(heights.size() - 1));
+    std::nth_element(heights.begin(), k, heights.end());
+    f.face.offset_m = *k;
+}
+
 // Least-squares plane of the inliers (double, relative to their centroid); the normal
 // keeps the side of `like`.
 void refit_plane(const FeatureInput& in, FaceBuild& f, const Eigen::Vector3d& like) {
@@ -35,15 +106,7 @@ void refit_plane(const FeatureInput& in, FaceBuild& f, const Eigen::Vector3d& li
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
     Eigen::Vector3d n = eig.eigenvectors().col(0);
     if (n.dot(like) < 0.0) n = -n;
-    f.face.normal = n;
-    // The dressed surface is the outer envelope: tool marks, a recessed centre and carving
-    // lie below it. The offset is the 95th percentile of the inliers' heights.
-    std::vector<double> heights;
-    heights.reserve(f.inliers.size());
-    for (std::size_t i : f.inliers) heights.push_back(n.dot(in.points[i].cast<double>()));
-    const auto k = heights.begin() + std::ptrdiff_t(0.95 * double(heights.size() - 1));
-    std::nth_element(heights.begin(), k, heights.end());
-    f.face.offset_m = *k;
+    set_plane(in, f, n);
     f.face.num_points = f.inliers.size();
     f.face.rms_m = std::sqrt(std::max(0.0, eig.eigenvalues()(0)) / double(f.inliers.size()));
 }
@@ -189,8 +252,12 @@ std::vector<FaceBuild> find_faces(const FeatureInput& in, const FaceDetectionCon
         if (f.inliers.size() < 3) continue;
         refit_plane(in, f, f.face.normal);
         fit_rectangle(in, f);
-        if (f.face.area_m2 >= c.min_face_area_m2 && !is_curved_strip(in, f, c))
-            out.push_back(std::move(f));
+        if (f.face.area_m2 < c.min_face_area_m2 || is_curved_strip(in, f, c)) continue;
+        // A face (not a strip of a curved surface, which the least-squares plane tells):
+        // its plane is its dressed part's.
+        set_plane(in, f, least_median_normal(in, f.inliers, f.face.normal));
+        fit_rectangle(in, f);
+        out.push_back(std::move(f));
     }
     for (std::size_t i = 0; i < out.size(); ++i) out[i].face.id = static_cast<int>(i);
     return out;

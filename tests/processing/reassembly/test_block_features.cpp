@@ -46,6 +46,23 @@ TEST(BlockFeatures, BoxFacesSizesAndAdjacency) {
     }
 }
 
+// A façade eroded on 40 % of its area (up to 6 mm deep toward its +y end): the fitted plane
+// is the dressed part's, not tilted toward the erosion (a fit through every inlier: 0.57°).
+TEST(BlockFeatures, AFaceErodedOnOneSideKeepsItsDressedPlane) {
+    const Relief erosion = [](int face, double u, double) {
+        return face == 0 && u > 0.05 ? 0.006 * (u - 0.05) / 0.25 : 0.0;
+    };
+    const BlockFeatures f = extract_block_features(box_mesh({1.0, 0.6, 0.5}, 0.005, erosion), {});
+    ASSERT_EQ(f.status, BlockStatus::kOk) << f.message;
+    const PlanarFace* facade = face_along(f, Eigen::Vector3d::UnitX());
+    ASSERT_NE(facade, nullptr);
+    const double angle_deg =
+        std::acos(std::min(1.0, facade->normal.dot(Eigen::Vector3d::UnitX()))) * 180 /
+        std::numbers::pi;
+    EXPECT_LT(angle_deg, 0.02);
+    EXPECT_NEAR(facade->offset_m, 0.5, 2e-4);
+}
+
 TEST(BlockFeatures, RoughnessOrdersFinishes) {
     // +x rough (3 mm pits), -x medium (1 mm), the rest smooth.
     const Relief relief = [](int face, double u, double v) {
