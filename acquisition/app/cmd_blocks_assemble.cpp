@@ -20,7 +20,7 @@ struct AssembleBlocksOptions {
     std::vector<std::string> pairs, coplanar, colinear, fixed;
     bool accepted = false;
     int max_iterations = 60;
-    std::string joint_normal = "vertex";
+    std::string joint_normal = "plane";
 };
 
 template <typename T>
@@ -85,8 +85,8 @@ void add_blocks_assemble_command(CLI::App& blocks) {
     cmd->add_option("--max-iterations", o->max_iterations, "Iterations at most")
         ->check(CLI::PositiveNumber);
     cmd->add_option("--joint-normal", o->joint_normal,
-                    "Contact rows along the partner's vertex normals (vertex, default) or its "
-                    "face plane (plane)")
+                    "Contact rows along the partner's face plane (plane, default) or its vertex "
+                    "normals (vertex, the paper's)")
         ->check(CLI::IsMember({"vertex", "plane"}));
     cmd->add_option("--out", o->out, "Output folder (assembly.conf, assembly.json, assembly.ply)")
         ->required();

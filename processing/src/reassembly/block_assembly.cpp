@@ -3,6 +3,7 @@
 // motion of every free block, until no sample moves.
 #include "anascan/processing/reassembly/block_assembly.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -92,6 +93,21 @@ double apply_step(const Eigen::VectorXd& u, const Prepared& p, const Frames& f,
     return largest;
 }
 
+// The largest motion of a block point between poses A and B (rotation at the block's RMS
+// radius plus translation of its centroid).
+double largest_motion(const AssemblyProblem& p, const std::vector<Pose>& A,
+                      const std::vector<Pose>& B) {
+    const Frames f = frames_of(p, A);
+    double largest = 0.0;
+    for (std::size_t b = 0; b < A.size(); ++b) {
+        const Pose D = B[b] * A[b].inverse();
+        const double angle = Eigen::AngleAxisd(D.linear()).angle();
+        largest = std::max(
+            largest, angle * f.length_m[b] + (D * f.reference_m[b] - f.reference_m[b]).norm());
+    }
+    return largest;
+}
+
 // The contact pairs whose constraints form the infeasibility certificate.
 std::vector<std::string> offending_contacts(const AssemblyProblem& p, const std::vector<Row>& rows,
                                             const std::vector<int>& active) {
@@ -125,8 +141,9 @@ double iterate(const AssemblyProblem& p, const Prepared& prep, const AssemblyCon
     const Frames frames = frames_of(p, out.T_world_block);
     const IterationQp q = iteration_qp(rows, prep, frames, constrained);
     const Eigen::MatrixXd& C = q.C;
-    const QpResult qp = solve_constrained_normal(q.H(), q.g(), q.C, q.d,
-                                                 QpConfig{.max_iterations = c.qp_max_iterations});
+    const QpResult qp = solve_constrained_normal(
+        q.H(), q.g(), q.C, q.d,
+        QpConfig{.damping = c.qp_damping, .max_iterations = c.qp_max_iterations});
     out.history.push_back({rms(rows.contact), rms(rows.coplanar), rms(rows.colinear),
                            std::size_t(C.rows()), qp.active.size(), qp.iterations});
     if (qp.status == QpStatus::kInfeasible) {
@@ -194,13 +211,21 @@ Expected<AssemblyResult> assemble_blocks(const AssemblyProblem& p, const std::ve
     const Prepared prep = prepare(p, c);
     AssemblyResult out{.T_world_block = initial};
     out.status = AssemblyStatus::kNotConverged;
+    std::vector<Pose> before_last = out.T_world_block;  // Two steps back.
+    std::vector<Pose> last = out.T_world_block;
     for (; out.iterations < c.max_iterations; ++out.iterations) {
         const bool constrained = c.non_penetration && out.iterations >= c.free_iterations;
         const double step = iterate(p, prep, c, constrained, out);
         if (out.status == AssemblyStatus::kInfeasible) return out;
         if (step < 0.0) return out;  // The QP's cap: kNotConverged with its message.
         out.last_step_m = step;
-        if (step < c.converged_step_m && (constrained || !c.non_penetration)) {
+        // Settled also when two steps bring every block back where it was: the active set
+        // alternating between two neighbouring poses (a 4 µm two-step cycle on the 3-block
+        // wall with face planes, docs/reassembly.md).
+        const bool cycling = largest_motion(p, before_last, out.T_world_block) < c.converged_step_m;
+        before_last = std::move(last);
+        last = out.T_world_block;
+        if ((step < c.converged_step_m || cycling) && (constrained || !c.non_penetration)) {
             out.status = AssemblyStatus::kOk;
             ++out.iterations;
             break;

@@ -110,7 +110,11 @@ QpResult solve_constrained_normal(const Eigen::MatrixXd& H, const Eigen::VectorX
     for (Eigen::Index i = 0; i < lambda.size(); ++i)
         if (lambda[i] > 0.0) out.active.push_back(int(i));
     const Eigen::VectorXd r = E * lambda - f;
-    if (r.norm() < 1e-9) {
+    // Infeasible: the residual vanishes. Its last entry is what divides the solution below;
+    // exactly opposed constraints (a block too wide for its gap, along one face plane each
+    // side) leave the head at rounding level and the last entry near zero, which would
+    // read as a step of norm 1e7 (-r[n] is 1 - h·λ, between 0 and 1).
+    if (r.norm() < 1e-9 || -r[n] < 1e-9) {
         out.status = QpStatus::kInfeasible;
         return out;
     }

@@ -73,8 +73,8 @@ struct AssemblyProblem {
 
 /// The normal of a contact row (registration and non-penetration constraint) at the
 /// closest point y of the partner face: y's outward vertex normal (the paper's), or the
-/// partner face's fitted-plane normal (no slide from normals leaning at edges and margins;
-/// see docs/reassembly.md for what each meets).
+/// partner face's fitted-plane normal (the default: no pull from normals leaning at edges
+/// and margins; see docs/reassembly.md for what each meets).
 enum class JointNormal { kVertex, kFacePlane };
 
 struct AssemblyConfig {
@@ -85,11 +85,16 @@ struct AssemblyConfig {
     /// NNLS iterations per QP at most; 0: nnls_iteration_cap (3 × (constraints + 1)).
     /// A QP that reaches it ends the assembly as kNotConverged, naming the iteration.
     int qp_max_iterations = 0;
+    /// Added to each QP's normal matrix, relative to its largest entry: along a direction
+    /// no term fixes (a joint without its façade, with face-plane rows) a step of the
+    /// undamped matrix amplifies rounding into a steady drift (1.2 mm per iteration, never
+    /// converging); 1e-9 stops it without changing the walls' poses (docs/reassembly.md).
+    double qp_damping = 1e-9;
     int contact_samples_per_face = 400;
     int plane_samples_per_side = 5;  ///< Grid on a face's rectangle for co-planarity.
     int line_samples = 5;            ///< Points along a line for co-linearity (>= 2).
     double contact_gate_m = 0.01;    ///< Closest points further along the face are dropped.
-    JointNormal joint_normal = JointNormal::kVertex;
+    JointNormal joint_normal = JointNormal::kFacePlane;
     double min_face_side_m = 0.05;  ///< A face narrower than this is a sliver.
     bool non_penetration = true;
     /// Iterations without the non-penetration constraints first (from a start far off,
