@@ -10,6 +10,8 @@
 //   anascan_assembly_figures terms N [SECTION] [MONUMENT_SEED] [STEP_MM]
 //     the same wall at the truth: each term's residual per link and the first step with
 //     all terms, and with each term left out (what pulls the minimum off the truth).
+// After an ok end each run also probes whether the pairs fix every block
+// (assembly_probe.hpp) and prints what it names; NO_PROBE=1 skips it.
 #include <cstdio>
 #include <cstdlib>
 #include <string>

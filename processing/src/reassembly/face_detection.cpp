@@ -22,6 +22,26 @@ std::vector<std::size_t> stride_sample(std::size_t n, std::size_t max_count) {
     return out;
 }
 
+// The least-squares plane normal of `pts` (unit, sign arbitrary).
+Eigen::Vector3d least_squares_normal(const std::vector<Eigen::Vector3d>& pts) {
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (const Eigen::Vector3d& p : pts) mean += p;
+    mean /= double(pts.size());
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    for (const Eigen::Vector3d& p : pts) cov += (p - mean) * (p - mean).transpose();
+    return Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov).eigenvectors().col(0);
+}
+
+// The median squared distance of `pts` to the plane through `on` with `normal`.
+double median_squared_distance(const std::vector<Eigen::Vector3d>& pts,
+                               const Eigen::Vector3d& normal, const Eigen::Vector3d& on) {
+    std::vector<double> sq(pts.size());
+    for (std::size_t k = 0; k < pts.size(); ++k) sq[k] = std::pow(normal.dot(pts[k] - on), 2);
+    const auto mid = sq.begin() + std::ptrdiff_t(sq.size() / 2);
+    std::nth_element(sq.begin(), mid, sq.end());
+    return *mid;
+}
+
 // The normal of the face's best-fitting half (least median of squares: of planes through
 // three inliers drawn evenly, the one whose median squared distance over a sample is
 // least), refitted by least squares on the points within 2.5 robust deviations of it. The
@@ -34,18 +54,8 @@ Eigen::Vector3d least_median_normal(const FeatureInput& in, const std::vector<st
     const std::vector<std::size_t> sample = stride_sample(inliers.size(), kSample);
     std::vector<Eigen::Vector3d> pts;
     for (std::size_t j : sample) pts.push_back(in.points[inliers[j]].cast<double>());
-    std::vector<double> sq(pts.size());
-    auto median_sq = [&](const Eigen::Vector3d& normal, const Eigen::Vector3d& on) {
-        for (std::size_t k = 0; k < pts.size(); ++k) {
-            const double d = normal.dot(pts[k] - on);
-            sq[k] = d * d;
-        }
-        const auto mid = sq.begin() + std::ptrdiff_t(sq.size() / 2);
-        std::nth_element(sq.begin(), mid, sq.end());
-        return *mid;
-    };
     Eigen::Vector3d best_n = n, best_on = pts[0];
-    double best = median_sq(n, pts[pts.size() / 2]);
+    double best = median_squared_distance(pts, n, pts[pts.size() / 2]);
     // Deterministic draws: a multiplicative hash of the draw index picks the three points.
     for (std::size_t t = 0; t < kDraws; ++t) {
         const std::size_t m = pts.size();
@@ -58,24 +68,18 @@ Eigen::Vector3d least_median_normal(const FeatureInput& in, const std::vector<st
             -normal.dot(n) < std::cos(10.0 * kDegToRad))
             continue;
         if (normal.dot(n) < 0.0) normal = -normal;
-        const double value = median_sq(normal, pts[a]);
+        const double value = median_squared_distance(pts, normal, pts[a]);
         if (value < best) best = value, best_n = normal, best_on = pts[a];
     }
     // Least squares on the points near the best half (robust scale 1.4826 · median).
     const double band = 2.5 * 1.4826 * std::sqrt(best) + 1e-9;
-    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
     std::vector<Eigen::Vector3d> near;
     for (std::size_t i : inliers) {
         const Eigen::Vector3d p = in.points[i].cast<double>();
         if (std::abs(best_n.dot(p - best_on)) <= band) near.push_back(p);
     }
     if (near.size() < 3) return best_n;
-    for (const Eigen::Vector3d& p : near) mean += p;
-    mean /= double(near.size());
-    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-    for (const Eigen::Vector3d& p : near) cov += (p - mean) * (p - mean).transpose();
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
-    const Eigen::Vector3d refit = eig.eigenvectors().col(0);
+    const Eigen::Vector3d refit = least_squares_normal(near);
     return refit.dot(n) < 0.0 ? Eigen::Vector3d(-refit) : refit;
 }
 

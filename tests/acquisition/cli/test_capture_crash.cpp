@@ -38,14 +38,19 @@ void expect_capture_resumes(const std::string& session,
 
 class CaptureCrash : public testing_util::Cli {};
 
+// A ToF capture that would not end on its own. --mix-stones: a resumed capture does not
+// wait for its first scan's stone check (the re-registration of every scan before it), so
+// kills land among acknowledged scans.
+std::vector<std::string> endless_tof_capture(const std::string& session) {
+    return {"capture",     "--device",      "sim:tof",     "--scene",
+            "small-block", "--session",     session,       "--angular-step-deg",
+            "2",           "--views",       "5000",        "--flip-after",
+            "0",           "--no-coverage", "--mix-stones"};
+}
+
 TEST_F(CaptureCrash, EveryAcknowledgedScanSurvivesSigkillAndCaptureResumes) {
     const std::string session = (dir_ / "session").string();
-    const std::vector<std::string> capture{
-        "capture", "--device",           "sim:tof",     "--scene", "small-block", "--session",
-        session,   "--angular-step-deg", "2",           "--views", "5000",        "--flip-after",
-        "0",       "--no-coverage",      "--mix-stones"};
-    // --mix-stones: a resumed capture does not wait for its first scan's stone check (the
-    // re-registration of every scan before it), so kills land among acknowledged scans.
+    const std::vector<std::string> capture = endless_tof_capture(session);
     std::mt19937_64 rng(20261122);
     std::uniform_int_distribution<int> kill_ms(0, 1200);
     std::set<std::int64_t> acknowledged;
