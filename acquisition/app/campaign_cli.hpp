@@ -13,7 +13,7 @@ CampaignConfig stored_config(const acquisition::CampaignStore& store);
 /// Prints the stages' counts, the stones and the scans not used (stdout).
 void print_status(const acquisition::CampaignStore& store);
 
-/// `campaign status`, `campaign export` and the hidden `campaign eval`.
+/// `campaign status`, `campaign export` and `campaign check`.
 void add_campaign_status_commands(CLI::App& campaign);
 
 /// Hidden `campaign eval DIR --truth TRUTH.json`.

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "anascan/acquisition/campaign/campaign_check.hpp"
 #include "anascan/processing/io/file_bytes.hpp"
 #include "anascan/processing/io/ply.hpp"
 #include "anascan/processing/io/stanford_conf.hpp"
@@ -132,6 +133,59 @@ void run_export(const ExportOptions& o) {
                            o.dir + "`");
 }
 
+struct CheckOptions {
+    std::string dir;
+    bool repair = false, json = false;
+};
+
+std::string check_json(const acquisition::CampaignCheckReport& report) {
+    json issues = json::array();
+    for (const auto& i : report.issues) {
+        issues.push_back({{"kind", i.kind},
+                          {"id", i.id ? json(*i.id) : json(nullptr)},
+                          {"file", i.file.string()},
+                          {"problem", i.problem},
+                          {"repaired", i.repaired},
+                          {"action", i.action}});
+    }
+    return json{{"campaign", report.dir.string()},
+                {"prepared_checked", report.prepared_checked},
+                {"prepared_ok", report.prepared_ok},
+                {"results_checked", report.results_checked},
+                {"integrity", report.integrity},
+                {"clean", report.clean()},
+                {"issues", issues}}
+        .dump(2, ' ', false, json::error_handler_t::replace);
+}
+
+void run_check(const CheckOptions& o) {
+    auto report = acquisition::check_campaign(o.dir, o.repair);
+    if (!report) fail_command(report.error());
+    if (o.json) {
+        std::printf("%s\n", check_json(*report).c_str());
+    } else {
+        for (const std::string& line : report->lines()) std::printf("%s\n", line.c_str());
+    }
+    if (!report->clean()) {
+        throw CommandFailed(o.dir + ": " + std::to_string(report->unresolved()) +
+                            " problem(s) found" +
+                            (o.repair ? " that could not be repaired" : ", not repaired"));
+    }
+}
+
+void add_check_command(CLI::App& campaign) {
+    auto o = std::make_shared<CheckOptions>();
+    auto* chk = campaign.add_subcommand(
+        "check",
+        "Verify the campaign's database, prepared clouds and stored results after a kill or a "
+        "disk problem; exit 1 when damage remains. --repair sets damaged work back so that "
+        "`campaign register` redoes it, and removes temporary files");
+    chk->add_option("dir", o->dir, "Campaign folder")->required();
+    chk->add_flag("--repair", o->repair, "Repair what can be repaired (takes the campaign's lock)");
+    chk->add_flag("--json", o->json, "Print the report as JSON");
+    chk->callback([o] { run_check(*o); });
+}
+
 }  // namespace
 
 CampaignConfig stored_config(const CampaignStore& store) {
@@ -170,6 +224,7 @@ void add_campaign_status_commands(CLI::App& campaign) {
     exp->add_option("dir", opts->dir, "Campaign folder")->required();
     exp->add_option("--out", opts->out, "Output folder")->required();
     exp->callback([opts] { run_export(*opts); });
+    add_check_command(campaign);
 }
 
 }  // namespace anascan::cli

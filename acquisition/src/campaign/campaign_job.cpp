@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <limits>
 #include <map>
+#include <optional>
 
 #include "anascan/processing/core/stopwatch.hpp"
 #include "campaign/campaign_json.hpp"
@@ -16,6 +17,15 @@ namespace anascan::acquisition {
 using nlohmann::json;
 
 namespace campaign_steps {
+
+/// A task that failed on the campaign's own files (disk full, a damaged prepared cloud)
+/// stops the job and records nothing: the scan or pair is not at fault, and a rerun redoes
+/// it once the cause is fixed. Failures of a user's scan file are results, recorded.
+std::optional<std::string> store_problem(const CampaignTaskResult& result) {
+    const json out = json::parse(result.output_json, nullptr, false);
+    if (!out.is_object() || !out.contains("store_error")) return std::nullopt;
+    return out["store_error"].get<std::string>();
+}
 
 Expected<void> run_stage(StageRun& run, const std::string& name, std::vector<CampaignTask> tasks,
                          std::size_t done_before, const CampaignExecutor::Sink& sink) {
@@ -28,6 +38,7 @@ Expected<void> run_stage(StageRun& run, const std::string& name, std::vector<Cam
     if (tasks.empty()) return {};
     const Stopwatch watch;
     return run.executor.run(std::move(tasks), [&](CampaignTaskResult result) -> Expected<void> {
+        if (auto problem = store_problem(result)) return fail(ErrorCode::kIo, *problem);
         if (auto ok = sink(std::move(result)); !ok) return ok;
         ++p.done;
         const double seconds = std::max(watch.seconds(), 1e-9);

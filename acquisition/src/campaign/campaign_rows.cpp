@@ -145,6 +145,10 @@ Expected<void> CampaignStore::save_stone_result(std::int64_t id, const std::stri
     return stmt->run("cannot record stone " + std::to_string(id));
 }
 
+Expected<std::string> CampaignStore::integrity_check() const {
+    return db::integrity_check(impl_->db);
+}
+
 Expected<std::optional<std::string>> CampaignStore::value(const std::string& key) const {
     auto stmt = db::Statement::prepare(impl_->db, "SELECT json FROM campaign_values WHERE key = ?");
     if (!stmt) return fail(stmt.error());

@@ -17,13 +17,20 @@ Expected<PointCloud> read_cloud(const std::string& path) {
     return std::move(ply->cloud);
 }
 
+/// The campaign's own prepared cloud cannot be read: the job stops (the row is not marked),
+/// `campaign check --repair` sets the scan back so that it is prepared again.
+json store_error(const Error& e) {
+    return {{"store_error", "cannot read the prepared scan: " + e.message +
+                                " (run `anascan campaign check --repair`, then register again)"}};
+}
+
 json prepare(const json& in, const CampaignConfig& config) {
     auto cloud = read_cloud(in.at("file").get<std::string>());
     if (!cloud) return {{"error", "unreadable scan: " + cloud.error().message}};
     const PreparedSummary summary = prepare_campaign_scan(*cloud, config);
     if (summary.problem.empty()) {
         if (auto ok = io::write_ply(in.at("prepared").get<std::string>(), *cloud); !ok) {
-            return {{"error", "cannot write the prepared scan: " + ok.error().message}};
+            return {{"store_error", "cannot write the prepared scan: " + ok.error().message}};
         }
     }
     return {{"summary", campaign_json::summary(summary)}};
@@ -31,7 +38,7 @@ json prepare(const json& in, const CampaignConfig& config) {
 
 json describe(const json& in, const CampaignConfig& config, std::vector<unsigned char>& blob) {
     auto cloud = read_cloud(in.at("prepared").get<std::string>());
-    if (!cloud) return {{"error", "cannot read the prepared scan: " + cloud.error().message}};
+    if (!cloud) return store_error(cloud.error());
     const ScanDescriptor d =
         describe_campaign_scan(*cloud, in.at("spacing_m").get<double>(), config);
     blob.resize(d.keys.size() * sizeof(std::uint64_t));
@@ -41,9 +48,9 @@ json describe(const json& in, const CampaignConfig& config, std::vector<unsigned
 
 json pair(const json& in, const CampaignConfig& config) {
     auto source = read_cloud(in.at("source").get<std::string>());
-    if (!source) return {{"error", source.error().message}};
+    if (!source) return store_error(source.error());
     auto target = read_cloud(in.at("target").get<std::string>());
-    if (!target) return {{"error", target.error().message}};
+    if (!target) return store_error(target.error());
     return campaign_json::pair(register_campaign_pair(*source, *target, config));
 }
 

@@ -145,4 +145,13 @@ Expected<void> Transaction::commit() {
     return ok;
 }
 
+Expected<std::string> integrity_check(const Connection& db) {
+    auto lines = collect(db, "PRAGMA integrity_check", "cannot check the database",
+                         [](const Statement& row) { return row.text(0); });
+    if (!lines) return fail(lines.error());
+    std::string result;
+    for (const std::string& line : *lines) result += (result.empty() ? "" : "; ") + line;
+    return result;
+}
+
 }  // namespace anascan::acquisition::db

@@ -95,6 +95,9 @@ auto collect(const Connection& db, std::string_view sql, std::string_view what, 
     }
 }
 
+/// `PRAGMA integrity_check`'s answer, its lines joined by "; " ("ok" when intact).
+Expected<std::string> integrity_check(const Connection& db);
+
 /// BEGIN IMMEDIATE ... COMMIT, rolled back when not committed.
 class Transaction {
 public:

@@ -203,12 +203,7 @@ Expected<std::vector<DeviceRecord>> SessionStore::devices() const {
 
 Expected<std::string> SessionStore::integrity_check() const {
     std::lock_guard lock(impl_->mutex);
-    auto lines = db::collect(impl_->db, "PRAGMA integrity_check", "cannot check the database",
-                             [](const db::Statement& row) { return row.text(0); });
-    if (!lines) return fail(lines.error());
-    std::string result;
-    for (const std::string& line : *lines) result += (result.empty() ? "" : "; ") + line;
-    return result;
+    return db::integrity_check(impl_->db);
 }
 
 Expected<void> SessionStore::set_value(std::string_view key, std::string_view json) {

@@ -1,6 +1,6 @@
 #pragma once
 // Runs `anascan ARGS` (ANASCAN_CLI) and SIGKILLs it at a chosen moment: the kill tests of the
-// commands that write (capture, session register, session export).
+// commands that write (capture, session register, session export, campaign register).
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <poll.h>
@@ -8,12 +8,18 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
+#include <cstdlib>
+#include <filesystem>
+#include <random>
 #include <regex>
 #include <set>
 #include <string>
 #include <vector>
+
+#include "cli_runner.hpp"
 
 namespace anascan::testing_util {
 
@@ -71,6 +77,40 @@ inline KilledRun run_and_kill(const std::vector<std::string>& args, std::chrono:
     for (std::sregex_iterator it(complete.begin(), complete.end(), saved), end; it != end; ++it)
         run.acknowledged.insert(std::stoll((*it)[1]));
     return run;
+}
+
+/// Kills per command: ANASCAN_WRITE_KILLS (5 by default; the soak scripts ask for more).
+inline int kills_per_command() {
+    const char* env = std::getenv("ANASCAN_WRITE_KILLS");
+    return env != nullptr ? std::max(1, std::atoi(env)) : 5;
+}
+
+/// Kill moments spread over the whole unkilled run (and a little past its end).
+inline std::vector<std::chrono::milliseconds> kill_moments(std::chrono::milliseconds run_time) {
+    std::mt19937_64 rng(20261201);
+    std::uniform_int_distribution<std::int64_t> ms(0, run_time.count() * 11 / 10);
+    std::vector<std::chrono::milliseconds> moments;
+    for (int k = 0; k < kills_per_command(); ++k) moments.emplace_back(ms(rng));
+    return moments;
+}
+
+/// Temporary siblings (".NAME.tmpNNN") left in a folder by killed writers.
+inline int temporaries_in(const std::filesystem::path& dir) {
+    int n = 0;
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(dir)) {
+        const std::string name = entry.path().filename().string();
+        if (name.starts_with('.') && name.find(".tmp") != std::string::npos) ++n;
+    }
+    return n;
+}
+
+/// Runs `anascan ARGS` to its end; returns its wall time.
+inline std::chrono::milliseconds run_to_end(const std::string& args) {
+    const auto start = std::chrono::steady_clock::now();
+    const auto run = run_cli(args);
+    EXPECT_EQ(run.exit_code, 0) << args << ":\n" << run.output;
+    return std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() -
+                                                                 start);
 }
 
 }  // namespace anascan::testing_util

@@ -18,12 +18,10 @@ namespace anascan {
 namespace {
 
 namespace fs = std::filesystem;
+using testing_util::kill_moments;
 using testing_util::run_cli;
-
-int kills_per_command() {
-    const char* env = std::getenv("ANASCAN_WRITE_KILLS");
-    return env != nullptr ? std::max(1, std::atoi(env)) : 5;
-}
+using testing_util::run_to_end;
+using testing_util::temporaries_in;
 
 /// seq -> "file state" of every scan of a session (`session info --json`).
 std::map<std::int64_t, std::string> scan_table(const fs::path& session) {
@@ -44,25 +42,6 @@ std::map<std::int64_t, std::string> files_of(const std::map<std::int64_t, std::s
     std::map<std::int64_t, std::string> files;
     for (const auto& [seq, row] : table) files[seq] = row.substr(0, row.find(' '));
     return files;
-}
-
-/// Temporary siblings (".NAME.tmpNNN") left in a folder by killed writers.
-int temporaries_in(const fs::path& dir) {
-    int n = 0;
-    for (const auto& entry : fs::recursive_directory_iterator(dir)) {
-        const std::string name = entry.path().filename().string();
-        if (name.starts_with('.') && name.find(".tmp") != std::string::npos) ++n;
-    }
-    return n;
-}
-
-/// Runs `anascan ARGS` to its end; returns its wall time.
-std::chrono::milliseconds run_to_end(const std::string& args) {
-    const auto start = std::chrono::steady_clock::now();
-    const auto run = run_cli(args);
-    EXPECT_EQ(run.exit_code, 0) << args << ":\n" << run.output;
-    return std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() -
-                                                                 start);
 }
 
 class WriteKills : public testing_util::Cli {
@@ -92,15 +71,6 @@ protected:
         const auto check = run_cli("session check " + session_.string());
         ASSERT_EQ(check.exit_code, 0) << "kill " << kill << ":\n" << check.output;
         ASSERT_EQ(files_of(scan_table(session_)), acknowledged_) << "kill " << kill;
-    }
-
-    /// Kill moments spread over the whole unkilled run (and a little past its end).
-    std::vector<std::chrono::milliseconds> kill_moments(std::chrono::milliseconds run_time) {
-        std::mt19937_64 rng(20261201);
-        std::uniform_int_distribution<std::int64_t> ms(0, run_time.count() * 11 / 10);
-        std::vector<std::chrono::milliseconds> moments;
-        for (int k = 0; k < kills_per_command(); ++k) moments.emplace_back(ms(rng));
-        return moments;
     }
 
     static inline fs::path source_;

@@ -40,7 +40,9 @@ struct CampaignTaskResult {
 };
 
 /// Runs one task on any rank: reads the files its input names (and, for prepare, writes
-/// the prepared cloud where the input says). Never throws; a failure is in the output.
+/// the prepared cloud where the input says). Never throws; a failure is in the output:
+/// `error` for the user's scan (recorded), `store_error` for the campaign's own files
+/// (writing or reading a prepared cloud: the job stops and records nothing).
 CampaignTaskResult run_campaign_task(const CampaignTask& task, const CampaignConfig& config);
 
 /// Runs tasks somewhere and hands each result to `sink` on the calling thread, in any

@@ -82,6 +82,9 @@ public:
                               const std::string& graph_json);
     Expected<void> save_stone_result(std::int64_t id, const std::string& result_json);
 
+    /// `PRAGMA integrity_check`'s answer ("ok" when intact).
+    Expected<std::string> integrity_check() const;
+
     /// A named JSON value of the campaign (stage marks, figures); nullopt when not set.
     Expected<std::optional<std::string>> value(const std::string& key) const;
     Expected<void> set_value(const std::string& key, const std::string& json);
