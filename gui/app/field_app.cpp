@@ -26,7 +26,8 @@ SessionLinkConfig session_link_config(const SessionOptions& options) {
                            .sim_unplug_after = options.sim_unplug_after,
                            .worker_nice = options.worker_nice,
                            .upload_points_per_frame = options.upload_points_per_frame,
-                           .mesh_resolution_mm = options.mesh_resolution_mm};
+                           .mesh_resolution_mm = options.mesh_resolution_mm,
+                           .log_events = options.log_events};
     link.settings.angular_step_deg = options.angular_step_deg;
     return link;
 }

@@ -49,6 +49,7 @@ struct SessionOptions {
     /// frame, shuffled on the UI thread (as before the staged upload; for measuring).
     std::size_t upload_points_per_frame = 20'000;
     double mesh_resolution_mm = 1.0;  ///< Of the mesh the operator asks for (M).
+    bool log_events = false;          ///< Session events on stdout, one line each.
 };
 
 struct FieldAppConfig {

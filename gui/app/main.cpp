@@ -52,6 +52,9 @@ void add_session_options(CLI::App& app, anascan::field::FieldAppConfig& config) 
                    "A loaded scan goes to the GPU in steps of this many points a frame "
                    "(default 20000); 0: all in one frame, shuffled on the drawing thread")
         ->group("");  // hidden: for the before/after measurement
+    app.add_flag("--log-events", config.session.log_events,
+                 "Print the session's events on stdout as they come, one line each (saved, "
+                 "registered, flagged, device errors): a terminal log beside the window");
     // Fault injection for the tests: hidden (empty group).
     app.add_option("--sim-unplug-after", config.session.sim_unplug_after,
                    "Simulated device unplugged during the capture after this many")

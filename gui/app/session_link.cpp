@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cstdio>
 
 #include "anascan/gui/session_view.hpp"
 #include "future_ready.hpp"
@@ -123,6 +124,10 @@ void SessionLink::timed_refresh(gui::FieldViewState& view) {
 
 void SessionLink::drain_events(gui::FieldViewState& view) {
     for (const acquisition::SessionEvent& event : events_->take()) {
+        if (config_.log_events && !event.message.empty()) {
+            std::printf("%s\n", event.message.c_str());
+            std::fflush(stdout);
+        }
         switch (event.kind) {
             case SessionEventKind::kRegistered:
             case SessionEventKind::kRegistrationFailed:

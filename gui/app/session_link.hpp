@@ -54,6 +54,9 @@ struct SessionLinkConfig {
     /// shuffled on the load thread; 0: shuffled and uploaded in one frame.
     std::size_t upload_points_per_frame = 20'000;
     double mesh_resolution_mm = 1.0;  ///< The mesh view's resolution.
+    /// Each session event's message on stdout as it is drained (a terminal log beside the
+    /// window; "saved scan N" is printed once the scan is acknowledged).
+    bool log_events = false;
 };
 
 /// Session events, pushed by acquisition's threads, drained by the UI thread.

@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "cli_runner.hpp"
+#include "../cli_runner.hpp"
 
 namespace anascan::testing_util {
 
@@ -28,11 +28,11 @@ struct KilledRun {
     bool exited_before_kill = false;
 };
 
-/// Starts `anascan ARGS`, reads its stdout until `after` (counted from the start, or with
+/// Starts `PROGRAM ARGS`, reads its stdout until `after` (counted from the start, or with
 /// `after_first_output` from its first output: a loaded machine may take longer than the
-/// longest `after` to start), then SIGKILLs it.
-inline KilledRun run_and_kill(const std::vector<std::string>& args, std::chrono::milliseconds after,
-                              bool after_first_output) {
+/// longest `after` to start), then SIGKILLs it. "saved scan N" lines are acknowledgements.
+inline KilledRun run_program_and_kill(const char* program, const std::vector<std::string>& args,
+                                      std::chrono::milliseconds after, bool after_first_output) {
     int out[2];
     EXPECT_EQ(::pipe(out), 0);
     const pid_t pid = ::fork();
@@ -41,10 +41,10 @@ inline KilledRun run_and_kill(const std::vector<std::string>& args, std::chrono:
         const int null = ::open("/dev/null", O_WRONLY);
         ::dup2(null, STDERR_FILENO);
         ::close(out[0]);
-        std::vector<char*> argv{const_cast<char*>(ANASCAN_CLI)};
+        std::vector<char*> argv{const_cast<char*>(program)};
         for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
         argv.push_back(nullptr);
-        ::execv(ANASCAN_CLI, argv.data());
+        ::execv(program, argv.data());
         ::_exit(127);
     }
     ::close(out[1]);
@@ -77,6 +77,12 @@ inline KilledRun run_and_kill(const std::vector<std::string>& args, std::chrono:
     for (std::sregex_iterator it(complete.begin(), complete.end(), saved), end; it != end; ++it)
         run.acknowledged.insert(std::stoll((*it)[1]));
     return run;
+}
+
+/// `anascan ARGS`, killed as `run_program_and_kill` does.
+inline KilledRun run_and_kill(const std::vector<std::string>& args, std::chrono::milliseconds after,
+                              bool after_first_output) {
+    return run_program_and_kill(ANASCAN_CLI, args, after, after_first_output);
 }
 
 /// Kills per command: ANASCAN_WRITE_KILLS (5 by default; the soak scripts ask for more).
