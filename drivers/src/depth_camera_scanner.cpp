@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <optional>
+#include <string>
 
 #include "uri_query.hpp"
 
@@ -47,10 +49,13 @@ private:
     std::int64_t sequence_ = 0;
 };
 
-// Waits in slices so that a stop request ends the wait within one slice.
+// Waits in slices so that a stop request ends the wait within one slice. An unreadable
+// frame (kFormat: short, bad header) is dropped and the next one awaited.
 Expected<Frame> DepthCameraScanner::wait_for_frame(const CaptureControl& control) {
     using std::chrono::milliseconds;
     const auto deadline = std::chrono::steady_clock::now() + control.timeout;
+    std::optional<Error> unreadable;
+    int dropped = 0;
     for (;;) {
         if (control.stop.stop_requested())
             return fail(ErrorCode::kCancelled, info_.uri + ": cancelled");
@@ -58,11 +63,19 @@ Expected<Frame> DepthCameraScanner::wait_for_frame(const CaptureControl& control
             std::chrono::duration_cast<milliseconds>(deadline - std::chrono::steady_clock::now());
         Expected<Frame> frame =
             camera_->next_frame(std::clamp(left, milliseconds(1), milliseconds(100)));
-        if (frame || frame.error().code != ErrorCode::kTimeout) return frame;
-        if (std::chrono::steady_clock::now() >= deadline) {
-            return fail(ErrorCode::kTimeout, info_.uri + ": no depth frame within " +
-                                                 std::to_string(control.timeout.count()) + " ms");
+        if (!frame && frame.error().code == ErrorCode::kFormat) {
+            unreadable = frame.error();
+            ++dropped;
+        } else if (frame || frame.error().code != ErrorCode::kTimeout) {
+            return frame;
         }
+        if (std::chrono::steady_clock::now() < deadline) continue;
+        const std::string within = std::to_string(control.timeout.count()) + " ms";
+        if (!unreadable)
+            return fail(ErrorCode::kTimeout, info_.uri + ": no depth frame within " + within);
+        return fail(ErrorCode::kFormat, info_.uri + ": no readable depth frame within " + within +
+                                            " (" + std::to_string(dropped) +
+                                            " unreadable; the last: " + unreadable->message + ")");
     }
 }
 

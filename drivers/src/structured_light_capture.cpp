@@ -62,10 +62,11 @@ std::string ms_text(std::chrono::nanoseconds t) {
 }
 
 /// The first frame of `camera` exposed after the pattern was shown; older frames are
-/// counted in `stale` and dropped.
+/// counted in `stale` and dropped, unreadable ones (kFormat) dropped and named on a timeout.
 Expected<cv::Mat> fresh_frame(Camera& camera, const char* label, const FrameWait& w,
                               std::size_t& stale) {
     const auto frame_deadline = std::min(w.deadline, steady_clock::now() + w.frame_timeout);
+    std::string unreadable;
     for (;;) {
         if (w.control.stop.stop_requested())
             return fail(ErrorCode::kCancelled, "capture cancelled at " + w.what);
@@ -75,12 +76,17 @@ Expected<cv::Mat> fresh_frame(Camera& camera, const char* label, const FrameWait
             return fail(ErrorCode::kTimeout,
                         part_name(label, camera) + " delivered no frame of " + w.what + " within " +
                             ms_text(whole ? w.control.timeout : w.frame_timeout) +
-                            (whole ? " (the capture's timeout)" : ""));
+                            (whole ? " (the capture's timeout)" : "") +
+                            (unreadable.empty() ? "" : "; the last was unreadable: " + unreadable));
         }
         const auto left = std::chrono::duration_cast<milliseconds>(frame_deadline - now);
         Expected<Frame> frame = camera.next_frame(std::clamp(left, milliseconds(1), kWaitSlice));
         if (!frame) {
             if (frame.error().code == ErrorCode::kTimeout) continue;
+            if (frame.error().code == ErrorCode::kFormat) {
+                unreadable = frame.error().message;
+                continue;
+            }
             return fail(frame.error().code,
                         part_name(label, camera) + " at " + w.what + ": " + frame.error().message);
         }

@@ -77,8 +77,8 @@ Expected<Frame> UsbBulkCamera::next_frame(std::chrono::milliseconds timeout) {
     auto got = transport_->bulk_transfer(usb_bulk::kFrameEndpoint, buffer, timeout);
     if (!got) return fail(got.error());
     if (*got < usb_bulk::kHeaderBytes || std::memcmp(buffer.data(), "AFRM", 4) != 0) {
-        return fail(ErrorCode::kIo, info_.uri + ": a bulk transfer of " + std::to_string(*got) +
-                                        " bytes is not a frame (no AFRM header)");
+        return fail(ErrorCode::kFormat, info_.uri + ": a bulk transfer of " + std::to_string(*got) +
+                                            " bytes is not a frame (no AFRM header)");
     }
     Frame f;
     std::uint16_t w = 0, h = 0;
@@ -95,7 +95,7 @@ Expected<Frame> UsbBulkCamera::next_frame(std::chrono::milliseconds timeout) {
     f.data.assign(buffer.begin() + usb_bulk::kHeaderBytes,
                   buffer.begin() + static_cast<std::ptrdiff_t>(*got));
     if (w != p.width || h != p.height || f.format != p.format)
-        return fail(ErrorCode::kIo,
+        return fail(ErrorCode::kFormat,
                     info_.uri + ": frame " + std::to_string(seq) + " has the wrong geometry");
     if (auto ok = check_frame(f, info_.uri); !ok) return fail(ok.error());
     return f;

@@ -28,6 +28,15 @@ public:
     /// Makes the device stop delivering (frames or scans time out); false when the backend
     /// cannot (a file never stalls), and the timeout test is skipped.
     virtual bool stall() = 0;
+    /// Call before open(): every `every`-th frame (1: all) is garbage, as a bad cable or a
+    /// confused firmware delivers it; false when the backend cannot (a file is what it is).
+    virtual bool garble(int every) {
+        (void)every;
+        return false;
+    }
+    /// From now on every frame repeats the last one bit for bit (a frozen camera); false
+    /// when the backend cannot.
+    virtual bool freeze() { return false; }
     /// What "the device went away" is for this backend: kDisconnected for hardware, kEmpty
     /// for the end of a recording or of a folder of exports.
     virtual ErrorCode gone_code() const { return ErrorCode::kDisconnected; }

@@ -19,9 +19,33 @@ Expected<std::unique_ptr<Device>> as_device(Expected<std::unique_ptr<Camera>> c)
     return std::unique_ptr<Device>(std::move(*c));
 }
 
-class V4l2Harness : public ConformanceHarness {
+/// A umockdev-mocked device: its faults are the mock's (unplug, stall, garbage, frozen).
+template <class Mock, class MockConfig>
+class MockedHarness : public ConformanceHarness {
 public:
-    explicit V4l2Harness(V4l2IoMethod io) : io_(io), mock_(testbed_, MockV4l2Config{}) {}
+    MockedHarness() : mock_(testbed_, MockConfig{}) {}
+    void unplug_after(int n) override { mock_.unplug_after(n); }
+    bool stall() override {
+        mock_.set_stalled(true);
+        return true;
+    }
+    bool garble(int every) override {
+        mock_.set_garbled(every);
+        return true;
+    }
+    bool freeze() override {
+        mock_.set_frozen(true);
+        return true;
+    }
+
+protected:
+    Testbed testbed_;
+    Mock mock_;
+};
+
+class V4l2Harness : public MockedHarness<MockV4l2Camera, MockV4l2Config> {
+public:
+    explicit V4l2Harness(V4l2IoMethod io) : io_(io) {}
     Expected<std::unique_ptr<Device>> open() override {
         return as_device(open_v4l2_camera({.device_path = mock_.dev_path(), .io = io_}));
     }
@@ -29,16 +53,9 @@ public:
         return {.profile = StreamProfile{16, 12, PixelFormat::kZ16, 30.0}, .exposure_us = 2500.0};
     }
     DeviceSettings invalid_settings() const override { return {.exposure_us = 5e6}; }
-    void unplug_after(int n) override { mock_.unplug_after(n); }
-    bool stall() override {
-        mock_.set_stalled(true);
-        return true;
-    }
 
 protected:
     V4l2IoMethod io_;
-    Testbed testbed_;
-    MockV4l2Camera mock_;
 };
 
 /// Time-of-flight: the mocked V4L2 Z16 camera with intrinsics, as a scanner.
@@ -53,9 +70,8 @@ public:
     }
 };
 
-class UsbHarness : public ConformanceHarness {
+class UsbHarness : public MockedHarness<MockUsbCamera, MockUsbConfig> {
 public:
-    UsbHarness() : mock_(testbed_, MockUsbConfig{}) {}
     Expected<std::unique_ptr<Device>> open() override {
         auto uri = parse_device_uri(mock_.uri());
         return make_usb_backend().open(*uri);
@@ -64,15 +80,6 @@ public:
     DeviceSettings invalid_settings() const override {
         return {.profile = StreamProfile{640, 480, PixelFormat::kZ16}};
     }
-    void unplug_after(int n) override { mock_.unplug_after(n); }
-    bool stall() override {
-        mock_.set_stalled(true);
-        return true;
-    }
-
-private:
-    Testbed testbed_;
-    MockUsbCamera mock_;
 };
 
 /// A recording of 10 frames; "unplugged" = a recording that ends, cut, after n frames.

@@ -122,7 +122,10 @@ bool MockUsbCamera::complete_urb(Urb& urb) {
 
 void MockUsbCamera::fill_frame(Urb& urb) {
     auto* u = reinterpret_cast<usbdevfs_urb*>(urb.urb->data);
-    const std::uint64_t seq = frames_sent_++;
+    const std::uint64_t sent = frames_sent_++;
+    if (!frozen_) frozen_seq_.reset();
+    if (frozen_ && !frozen_seq_) frozen_seq_ = sent;
+    const std::uint64_t seq = frozen_seq_.value_or(sent);
     std::uint8_t* out = urb.buffer->data;
     const std::size_t need = usb_bulk::kHeaderBytes + 2u * config_.width * config_.height;
     std::memset(out, 0, static_cast<std::size_t>(u->buffer_length));
@@ -140,6 +143,9 @@ void MockUsbCamera::fill_frame(Urb& urb) {
             std::memcpy(out + usb_bulk::kHeaderBytes + 2 * (r * config_.width + c), &v, 2);
         }
     }
+    const int every = garbled_every_.load();
+    if (every > 0 && (sent + 1) % static_cast<std::uint64_t>(every) == 0)
+        std::memcpy(out, "XXXX", 4);
     u->status = 0;
     u->actual_length =
         static_cast<int>(std::min<std::size_t>(need, static_cast<std::size_t>(u->buffer_length)));

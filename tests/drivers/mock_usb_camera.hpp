@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <deque>
 #include <mutex>
+#include <optional>
 #include <string>
 
 #include "umockdev_testbed.hpp"
@@ -38,6 +39,10 @@ public:
     /// Removes the device from sysfs (and fails every call), as an unplug does.
     void unplug_now();
     void set_stalled(bool stalled) { stalled_ = stalled; }
+    /// Every `every`-th frame (1: all) is garbage: its header's magic is wrong (0: none).
+    void set_garbled(int every) { garbled_every_ = every; }
+    /// While frozen, every frame repeats the pixels of the frame sent when it froze.
+    void set_frozen(bool frozen) { frozen_ = frozen; }
     bool streaming() const { return streaming_.load(); }
     int exposure_units() const { return exposure_.load(); }
     std::uint64_t frames_sent() const { return frames_sent_.load(); }
@@ -65,6 +70,9 @@ private:
     std::atomic<int> unplug_after_{-1};
     std::atomic<bool> unplugged_{false};
     std::atomic<bool> stalled_{false};
+    std::atomic<int> garbled_every_{0};
+    std::atomic<bool> frozen_{false};
+    std::optional<std::uint64_t> frozen_seq_;  // guarded by mutex_
     std::atomic<bool> streaming_{false};
     std::atomic<int> exposure_{100};
     std::atomic<std::uint64_t> frames_sent_{0};

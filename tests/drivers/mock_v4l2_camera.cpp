@@ -90,8 +90,19 @@ std::vector<std::uint8_t> MockV4l2Camera::render_frame(std::uint64_t seq) const 
     return out;
 }
 
+std::vector<std::uint8_t> MockV4l2Camera::next_bytes() {
+    const std::uint64_t seq = frames_sent_++;
+    if (!frozen_) frozen_seq_.reset();
+    if (frozen_ && !frozen_seq_) frozen_seq_ = seq;
+    std::vector<std::uint8_t> bytes = render_frame(frozen_seq_.value_or(seq));
+    const int every = garbled_every_.load();
+    if (every > 0 && (seq + 1) % static_cast<std::uint64_t>(every) == 0)
+        bytes.resize(bytes.size() / 2);
+    return bytes;
+}
+
 MockV4l2Camera::Taken MockV4l2Camera::take_frame() {
-    Taken now{render_frame(frames_sent_++), std::chrono::steady_clock::now().time_since_epoch()};
+    Taken now{next_bytes(), std::chrono::steady_clock::now().time_since_epoch()};
     if (!config_.one_frame_late) return now;
     if (!pending_) pending_ = Taken{render_frame(frames_sent_), now.at};
     Taken out = std::move(*pending_);
@@ -114,7 +125,7 @@ bool MockV4l2Camera::handle_read(void* c) {
         umockdev_ioctl_client_complete(client, -1, unplugged_ ? ENODEV : EAGAIN);
         return true;
     }
-    const std::vector<std::uint8_t> frame = render_frame(frames_sent_++);
+    const std::vector<std::uint8_t> frame = next_bytes();
     const std::size_t n =
         std::min<std::size_t>(frame.size(), static_cast<std::size_t>(arg->data_len));
     std::memcpy(arg->data, frame.data(), n);

@@ -56,6 +56,10 @@ public:
     void unplug_now();
     /// While stalled, no frame is ready (read/DQBUF: EAGAIN).
     void set_stalled(bool stalled) { stalled_ = stalled; }
+    /// Every `every`-th frame (1: all) is garbage: half its bytes (0: none).
+    void set_garbled(int every) { garbled_every_ = every; }
+    /// While frozen, every frame repeats the bytes of the frame taken when it froze.
+    void set_frozen(bool frozen) { frozen_ = frozen; }
     /// While busy (another program streams), S_FMT and REQBUFS fail with EBUSY.
     void set_busy(bool busy) { busy_ = busy; }
     std::uint64_t frames_sent() const { return frames_sent_.load(); }
@@ -72,6 +76,8 @@ public:
 
 private:
     std::vector<std::uint8_t> render_frame(std::uint64_t sequence) const;
+    /// The next frame's bytes (frozen or garbled as set); counts it sent.
+    std::vector<std::uint8_t> next_bytes();
     /// A frame and the CLOCK_MONOTONIC time it was taken (streaming).
     struct Taken {
         std::vector<std::uint8_t> bytes;
@@ -103,6 +109,9 @@ private:
     std::atomic<bool> unplugged_{false};
     std::atomic<bool> stalled_{false};
     std::atomic<bool> busy_{false};
+    std::atomic<int> garbled_every_{0};
+    std::atomic<bool> frozen_{false};
+    std::optional<std::uint64_t> frozen_seq_;  // guarded by mutex_
     std::atomic<std::uint64_t> frames_sent_{0};
     std::atomic<int> streamon_count_{0};
 };

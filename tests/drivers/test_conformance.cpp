@@ -2,7 +2,7 @@
 // V4L2 and USB under umockdev, the ToF depth scanner, playback, PTX stations; sim/'s
 // devices in anascan_sim_device_tests, see tests/sim/sim_conformance_harnesses.cpp):
 // open → configure → capture → close, unplug in the middle of a capture, timeouts, invalid
-// settings, no leaked descriptors.
+// settings, unreadable and frozen frames, no leaked descriptors.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -166,6 +166,70 @@ TEST_P(Conformance, DestroyingAStreamingDeviceReleasesEverything) {
     }  // no stop, no close
     EXPECT_TRUE(descriptors_back_to(baseline))
         << open_descriptors() << " descriptors, " << baseline << " before";
+}
+
+bool names(const Error& e, const Device& d) {
+    return e.message.find(d.info().uri) != std::string::npos;
+}
+
+TEST_P(Conformance, AnUnreadableFrameIsDroppedAndTheDeviceGoesOn) {
+    if (!harness_->garble(3)) GTEST_SKIP() << GetParam().name << " cannot deliver garbage";
+    auto device = open();
+    ASSERT_TRUE(device);
+    if (device->as_scanner()) {
+        for (int i = 0; i < 3; ++i) {  // each scan waits past the garbled frames
+            auto got = capture_once(*device, milliseconds(2000));
+            ASSERT_TRUE(got) << "scan " << i << ": " << got.error().message;
+        }
+        return;
+    }
+    const StreamEnd end = stream_until_error(*device->as_camera(), std::chrono::seconds(20),
+                                             {.frame_timeout = milliseconds(2000)}, {}, 6);
+    ASSERT_TRUE(end.started);
+    EXPECT_FALSE(end.error) << end.error->message;
+    EXPECT_GE(end.frames, 6u);
+    EXPECT_GE(end.dropped, 2u);
+    ASSERT_FALSE(end.warnings.empty());
+    EXPECT_EQ(end.warnings[0].code, ErrorCode::kFormat);
+    EXPECT_TRUE(names(end.warnings[0], *device)) << end.warnings[0].message;
+}
+
+TEST_P(Conformance, OnlyGarbageEndsWithTheDeviceNamed) {
+    if (!harness_->garble(1)) GTEST_SKIP() << GetParam().name << " cannot deliver garbage";
+    auto device = open();
+    ASSERT_TRUE(device);
+    if (Scanner* s = device->as_scanner()) {
+        auto scan = s->capture_scan({.timeout = milliseconds(300)});
+        ASSERT_FALSE(scan);
+        EXPECT_EQ(scan.error().code, ErrorCode::kFormat) << scan.error().message;
+        EXPECT_TRUE(names(scan.error(), *device)) << scan.error().message;
+        return;
+    }
+    const StreamEnd end =
+        stream_until_error(*device->as_camera(), std::chrono::seconds(20),
+                           {.frame_timeout = milliseconds(2000), .max_consecutive_bad_frames = 5});
+    ASSERT_TRUE(end.error) << "the stream of garbage did not end";
+    EXPECT_EQ(end.error->code, ErrorCode::kFormat) << end.error->message;
+    EXPECT_TRUE(names(*end.error, *device)) << end.error->message;
+    EXPECT_NE(end.error->message.find("5 unreadable frames in a row"), std::string::npos)
+        << end.error->message;
+    EXPECT_EQ(end.frames, 0u);
+}
+
+TEST_P(Conformance, AFrozenCameraIsReportedAndKeepsStreaming) {
+    auto device = open();
+    ASSERT_TRUE(device);
+    Camera* camera = device->as_camera();
+    if (!camera) GTEST_SKIP() << "a scanner's repeated scans are the capture session's check";
+    if (!harness_->freeze()) GTEST_SKIP() << GetParam().name << " cannot freeze";
+    const StreamEnd end = stream_until_error(
+        *camera, std::chrono::seconds(20),
+        {.frame_timeout = milliseconds(2000), .identical_frames_warning = 5}, {}, 8);
+    EXPECT_FALSE(end.error) << end.error->message;
+    EXPECT_GE(end.frames, 8u);
+    ASSERT_EQ(end.warnings.size(), 1u) << "one warning per run of identical frames";
+    EXPECT_TRUE(names(end.warnings[0], *device)) << end.warnings[0].message;
+    EXPECT_NE(end.warnings[0].message.find("identical"), std::string::npos);
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, Conformance, ::testing::ValuesIn(conformance_harnesses()),

@@ -81,6 +81,31 @@ TEST_F(Projector, StoppingOrAWrongSizeEndsTheSequence) {
     EXPECT_EQ(wrong.error().code, ErrorCode::kInvalidArgument);
 }
 
+TEST_F(Projector, ClosingTheWindowEndsTheSequenceClearlyAndAReopenWorks) {
+    const int w = projector_->width_px(), h = projector_->height_px();
+    std::vector<Pattern> patterns;
+    for (int bit = 7; bit >= 0; --bit) patterns.push_back(stripes(w, h, bit));
+    std::size_t shown = 0;
+    auto closed = projector_->show_sequence(patterns, [&](std::size_t i) {
+        ++shown;
+        if (i == 0) {
+            EXPECT_EQ(test::close_windows_titled("anascan projector"), 1);
+        }
+        return true;
+    });
+    ASSERT_FALSE(closed) << "the closed window showed every pattern";
+    EXPECT_EQ(closed.error().code, ErrorCode::kDisconnected);
+    EXPECT_NE(closed.error().message.find("the window was closed"), std::string::npos)
+        << closed.error().message;
+    EXPECT_LT(shown, patterns.size());
+    // The operator opens the projector again: it shows a whole sequence.
+    projector_.reset();
+    auto again = ProjectorOutput::open({.monitor_index = 0});
+    ASSERT_TRUE(again) << again.error().message;
+    auto ok = (*again)->show_sequence(patterns, [](std::size_t) { return true; });
+    EXPECT_TRUE(ok) << ok.error().message;
+}
+
 TEST(ProjectorMonitors, AMissingMonitorIsNamed) {
     if (std::getenv("DISPLAY") == nullptr) GTEST_SKIP() << "no DISPLAY: run under xvfb-run";
     auto projector = ProjectorOutput::open({.monitor_index = 7});
