@@ -122,6 +122,10 @@ Expected<BlockAlignment> align_blocks(const ra::AssemblyProblem& problem,
         auto fixed = ra::probe_determinacy(problem, *r, config);
         if (!fixed) return Unexpected(fixed.error());
         ra::mark_underdetermined(problem, *fixed, *r);
+    } else if (r->status == ra::AssemblyStatus::kNotConverged) {
+        auto why = ra::diagnose_not_converged(problem, *r, config);
+        if (!why) return Unexpected(why.error());
+        ra::name_non_convergence(problem, *why, *r);
     }
     BlockAlignment out{.result = std::move(*r)};
     out.check = ra::check_assembly(problem, out.result.T_world_block);

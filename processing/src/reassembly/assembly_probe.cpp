@@ -3,6 +3,7 @@
 #include <Eigen/Eigenvalues>
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 #include <set>
 
 #include "assembly_steps.hpp"
@@ -81,6 +82,59 @@ Expected<Determinacy> probe_determinacy(const AssemblyProblem& p, const Assembly
         }
     }
     return out;
+}
+
+Expected<NonConvergence> diagnose_not_converged(const AssemblyProblem& p,
+                                                const AssemblyResult& assembled,
+                                                const AssemblyConfig& config,
+                                                double max_angle_deg) {
+    if (auto ok = validate_problem(p, config); !ok) return Unexpected(ok.error());
+    const std::vector<Pose>& T = assembled.T_world_block;
+    const Prepared prep = prepare(p, config);
+    const Rows rows = build_rows(p, prep, T, config);
+    NonConvergence out{.untouched_pairs = untouched(p, rows.contact)};
+    AssemblyConfig one = config;
+    one.max_iterations = 1;
+    one.free_iterations = 0;
+    auto next = assemble_blocks(p, T, one);
+    if (!next) return Unexpected(next.error());
+    const Frames frames = frames_of(p, T);
+    const std::vector<Eigen::Vector3d> weak = weakest_translations(p, prep, rows, T);
+    int most = -1;
+    Eigen::Vector3d motion = Eigen::Vector3d::Zero();
+    for (std::size_t b = 0; b < p.blocks.size(); ++b) {
+        if (prep.slot[b] < 0) continue;
+        const Pose D = next->T_world_block[b] * T[b].inverse();
+        const Eigen::Vector3d m = D * frames.reference_m[b] - frames.reference_m[b];
+        if (most < 0 || m.norm() > motion.norm()) most = int(b), motion = m;
+    }
+    const double cos_max = std::cos(max_angle_deg * std::numbers::pi / 180.0);
+    if (most >= 0 && motion.norm() > 0.0 &&
+        std::abs(motion.normalized().dot(weak[std::size_t(most)])) >= cos_max) {
+        out.drifting.push_back({.block = most,
+                                .direction = motion.normalized(),
+                                .start_m = 0.0,
+                                .moved_m = motion.norm()});
+    }
+    return out;
+}
+
+void name_non_convergence(const AssemblyProblem& p, const NonConvergence& d, AssemblyResult& r) {
+    if (!d.explained()) return;
+    for (const std::string& pair : d.untouched_pairs)
+        r.offending.push_back("pair " + pair + " does not touch");
+    for (const LooseBlock& l : d.drifting) {
+        char text[200];
+        std::snprintf(text, sizeof text,
+                      "%s still moves %.3f mm per iteration along (%.2f %.2f %.2f), the "
+                      "direction its pairs hold least",
+                      p.blocks[std::size_t(l.block)].id.c_str(), 1e3 * l.moved_m, l.direction.x(),
+                      l.direction.y(), l.direction.z());
+        r.offending.push_back(text);
+    }
+    r.message +=
+        "; the pairs may not fix every block: add a pair or a co-planar face that "
+        "holds it";
 }
 
 void mark_underdetermined(const AssemblyProblem& p, const Determinacy& d, AssemblyResult& r) {

@@ -226,6 +226,29 @@ TEST(BlockAssembly, CapsEndTheIterationWithAClearStatus) {
         << qp->message;
 }
 
+// An assembly cut short (not converged) with a block started beyond its joint: the
+// diagnosis names the pair that never touched, and the status stays "not converged".
+TEST(AssemblyDeterminacy, ANotConvergedEndNamesThePairThatDoesNotTouch) {
+    Row r = three_blocks();
+    r.problem.coplanar.erase(r.problem.coplanar.begin());  // The first façades.
+    std::vector<Pose> start = r.truth;
+    start[1] = Eigen::Translation3d(0.0, 0.8, 0.0) * start[1];  // Beyond the 0.6 m joint.
+    start[2] = Eigen::Translation3d(0.02, 0.0, 0.0) * start[2];
+    const AssemblyConfig config{.max_iterations = 1};
+    auto result = assemble_blocks(r.problem, start, config);
+    ASSERT_TRUE(result) << result.error().message;
+    ASSERT_EQ(result->status, AssemblyStatus::kNotConverged) << result->message;
+    auto why = diagnose_not_converged(r.problem, *result, config);
+    ASSERT_TRUE(why) << why.error().message;
+    ASSERT_FALSE(why->untouched_pairs.empty());
+    EXPECT_EQ(why->untouched_pairs[0], link_name(r.problem, r.problem.contacts[0]));
+    name_non_convergence(r.problem, *why, *result);
+    EXPECT_EQ(result->status, AssemblyStatus::kNotConverged);
+    ASSERT_FALSE(result->offending.empty());
+    EXPECT_NE(result->offending[0].find("does not touch"), std::string::npos);
+    EXPECT_NE(result->message.find("may not fix every block"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace anascan::reassembly
 

@@ -56,4 +56,23 @@ Expected<Determinacy> probe_determinacy(const AssemblyProblem& problem,
 void mark_underdetermined(const AssemblyProblem& problem, const Determinacy& d,
                           AssemblyResult& result);
 
+/// What the pairs say about an assembly that did not converge: the pairs that do not touch
+/// at its end, and the block that one more step moves most when it moves along its least
+/// fixed translation (within `max_angle_deg`; `moved_m` is that step's length, `start_m`
+/// 0). No restarts: the end is not a minimum to restart from.
+struct NonConvergence {
+    std::vector<std::string> untouched_pairs;
+    std::vector<LooseBlock> drifting;  ///< At most one block.
+    bool explained() const { return !untouched_pairs.empty() || !drifting.empty(); }
+};
+Expected<NonConvergence> diagnose_not_converged(const AssemblyProblem& problem,
+                                                const AssemblyResult& assembled,
+                                                const AssemblyConfig& config,
+                                                double max_angle_deg = 30.0);
+
+/// Adds what `d` found to a kNotConverged `result`'s offending list and message (the status
+/// stays: the probe cannot tell a slow convergence from a free block).
+void name_non_convergence(const AssemblyProblem& problem, const NonConvergence& d,
+                          AssemblyResult& result);
+
 }  // namespace anascan::reassembly
