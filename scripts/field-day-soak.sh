@@ -9,6 +9,10 @@
 # to registered, and between two registrations) over the first 10 scans against the last 10;
 # the database size. Usage: scripts/field-day-soak.sh [SCANS] [STONES] [BUILD_DIR] [OUT_DIR]
 # (defaults 300, 3, build, a new temporary folder). Kept there: capture logs and samples.
+# FIELD_DAY_GUI=1: each stone is captured by the field app (`anascan-field --capture-views
+# --log-events`) drawing on a virtual X server (Xvfb :97), the GUI attached; the samples are
+# then the app's. FIELD_DAY_SCENES: the scenes taken in turn (default "small-block
+# octagon-block large-block"; one scene makes the stones comparable across the day).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scans="${1:-300}"
@@ -16,7 +20,8 @@ stones="${2:-3}"
 build="${3:-build}"
 out="${4:-$(mktemp -d /tmp/field-day.XXXXXX)}"
 cli="$PWD/$build/acquisition/anascan"
-scenes=(small-block octagon-block large-block)
+field="$PWD/$build/gui/anascan-field"
+read -r -a scenes <<<"${FIELD_DAY_SCENES:-small-block octagon-block large-block}"
 per_stone=$((scans / stones))
 mkdir -p "$out"
 : >"$out/peaks"
@@ -80,6 +85,30 @@ report() {
                 k, a, k, b, 100 * (b - a) / a }'
 }
 
+# One stone's capture, in the foreground of its (background) caller: `anascan capture`, or
+# with FIELD_DAY_GUI=1 the field app capturing through its capture action on the day's
+# virtual X server (rendering every frame: the GUI attached).
+capture_stone() {
+    local scene="$1" session="$2" i="$3"
+    if [ -n "${FIELD_DAY_GUI:-}" ]; then
+        exec "$field" --session "$session" --device "sim:structured-light/$scene" \
+            --capture-views "$per_stone" --tour-views "$per_stone" \
+            --flip-after $((per_stone / 2)) --frames 3 --log-events \
+            --session-timeout-s 7200 --width 1280 --height 800
+    fi
+    exec "$cli" ${FIELD_DAY_VERBOSE:+-v} --accept-poor capture --device sim:structured-light \
+        --scene "$scene" --session "$session" --views "$per_stone" \
+        --flip-after $((per_stone / 2)) --tour-seed $((i + 1)) --no-coverage
+}
+
+if [ -n "${FIELD_DAY_GUI:-}" ]; then
+    Xvfb :97 -screen 0 1280x800x24 -nolisten tcp >/dev/null 2>&1 &
+    xvfb=$!
+    trap 'kill "$xvfb" 2>/dev/null || true' EXIT
+    export DISPLAY=:97 LP_NUM_THREADS=2
+    sleep 2
+fi
+
 for ((i = 0; i < stones; i++)); do
     scene="${scenes[i % ${#scenes[@]}]}"
     session="$out/stone-$((i + 1))"
@@ -88,9 +117,7 @@ for ((i = 0; i < stones; i++)); do
     : >"$samples"
     start=$SECONDS
     # Each line stamped with the time it arrived (registration times per scan).
-    "$cli" ${FIELD_DAY_VERBOSE:+-v} --accept-poor capture --device sim:structured-light --scene "$scene" \
-        --session "$session" --views "$per_stone" --flip-after $((per_stone / 2)) \
-        --tour-seed $((i + 1)) --no-coverage > >(tee "$log" |
+    capture_stone "$scene" "$session" "$i" > >(tee "$log" |
         while IFS= read -r line; do echo "$(date +%s.%N) $line"; done >"$log.timed") 2>&1 &
     pid=$!
     sample "$pid" "$samples" "$log"
