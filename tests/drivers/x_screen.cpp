@@ -61,7 +61,7 @@ int close_windows_titled(const std::string& title) {
         e.xclient.data.l[1] = CurrentTime;
         XSendEvent(display, w, False, NoEventMask, &e);
     }
-    XFlush(display);
+    XSync(display, False);  // the server has queued the messages to the window's owner
     XCloseDisplay(display);
     return static_cast<int>(windows.size());
 }
