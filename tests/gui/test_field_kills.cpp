@@ -85,10 +85,20 @@ TEST_F(FieldKills, TheAppKilledWhileCapturingLosesNoSavedScanAndCapturesOn) {
         auto ply = io::read_ply(session / files.at(seq));
         EXPECT_TRUE(ply) << "scan " << seq << ": " << ply.error().message;
     }
-    // Started again, the app captures on after the scans it had (their numbers go on).
-    const auto again = testing_util::run_program_and_kill(ANASCAN_FIELD, capturing(session, 2),
-                                                          std::chrono::minutes(10), false);
-    ASSERT_TRUE(again.exited_before_kill);
+    std::printf(
+        "anascan-field: %zu kills (%d while running, run %lld ms), %zu scans reported "
+        "saved, 0 lost\n",
+        moments.size(), while_running, static_cast<long long>(run_time.count()),
+        acknowledged.size());
+    // Started again, the app captures on after the scans it had (their numbers go on). It
+    // first registers the session's scans again (the live state is not kept on disk): seconds
+    // per scan on a loaded machine, so the limit grows with the session (the long soak's
+    // 50 kills leave about 150 scans).
+    const std::chrono::seconds limit =
+        std::chrono::minutes(10) + std::chrono::seconds(10) * static_cast<int>(files.size());
+    const auto again =
+        testing_util::run_program_and_kill(ANASCAN_FIELD, capturing(session, 2), limit, false);
+    ASSERT_TRUE(again.exited_before_kill) << "not done within " << limit.count() << " s";
     ASSERT_EQ(again.acknowledged.size(), 2u);
     if (!files.empty()) {
         EXPECT_GT(*again.acknowledged.begin(), files.rbegin()->first);
@@ -96,11 +106,6 @@ TEST_F(FieldKills, TheAppKilledWhileCapturingLosesNoSavedScanAndCapturesOn) {
     EXPECT_EQ(test::run_command(std::string(ANASCAN_CLI) + " session check " + session.string())
                   .exit_code,
               0);
-    std::printf(
-        "anascan-field: %zu kills (%d while running, run %lld ms), %zu scans reported "
-        "saved, 0 lost\n",
-        moments.size(), while_running, static_cast<long long>(run_time.count()),
-        acknowledged.size());
 }
 
 }  // namespace
