@@ -29,8 +29,6 @@ void add_session_options(CLI::App& app, anascan::field::FieldAppConfig& config) 
     app.add_option("--angular-step-deg", config.session.angular_step_deg,
                    "Terrestrial scanner angular step, degrees")
         ->check(CLI::PositiveNumber);
-    app.add_option("--dump-state", config.dump_state_json,
-                   "Write the view state (scan rows, coverage, status) as JSON at the end");
     app.add_option("--session-timeout-s", config.headless.session_timeout_s,
                    "Headless: give up when the session has not settled after this long, s")
         ->check(CLI::PositiveNumber);
@@ -52,13 +50,19 @@ void add_session_options(CLI::App& app, anascan::field::FieldAppConfig& config) 
                    "A loaded scan goes to the GPU in steps of this many points a frame "
                    "(default 20000); 0: all in one frame, shuffled on the drawing thread")
         ->group("");  // hidden: for the before/after measurement
-    app.add_flag("--log-events", config.session.log_events,
-                 "Print the session's events on stdout as they come, one line each (saved, "
-                 "registered, flagged, device errors): a terminal log beside the window");
     // Fault injection for the tests: hidden (empty group).
     app.add_option("--sim-unplug-after", config.session.sim_unplug_after,
                    "Simulated device unplugged during the capture after this many")
         ->group("");
+}
+
+/// What the app reports besides the window: its state at the end, the session's events.
+void add_report_options(CLI::App& app, anascan::field::FieldAppConfig& config) {
+    app.add_option("--dump-state", config.dump_state_json,
+                   "Write the view state (scan rows, coverage, status) as JSON at the end");
+    app.add_flag("--log-events", config.session.log_events,
+                 "Print the session's events on stdout as they come, one line each (saved, "
+                 "registered, flagged, device errors): a terminal log beside the window");
 }
 
 /// The mesh view: its resolution, and the headless run's "Make the mesh".
@@ -149,6 +153,7 @@ int main(int argc, char** argv) {
     anascan::field::FieldAppConfig config;
     add_options(app, config);
     add_session_options(app, config);
+    add_report_options(app, config);
     add_mesh_options(app, config);
     add_assembly_options(app, config.assembly);
     CLI11_PARSE(app, argc, argv);

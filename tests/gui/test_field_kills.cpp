@@ -32,6 +32,16 @@ std::map<std::int64_t, std::string> scan_files(const fs::path& session) {
     return files;
 }
 
+/// Every scan reported saved has a row in the session, and its file reads.
+void expect_kept(const fs::path& session, const std::map<std::int64_t, std::string>& files,
+                 const std::set<std::int64_t>& acknowledged) {
+    for (std::int64_t seq : acknowledged) {
+        ASSERT_TRUE(files.contains(seq)) << "scan " << seq << " was reported saved, then lost";
+        auto ply = io::read_ply(session / files.at(seq));
+        EXPECT_TRUE(ply) << "scan " << seq << ": " << ply.error().message;
+    }
+}
+
 class FieldKills : public ::testing::Test {
 protected:
     void SetUp() override {
@@ -80,11 +90,8 @@ TEST_F(FieldKills, TheAppKilledWhileCapturingLosesNoSavedScanAndCapturesOn) {
     }
     EXPECT_GT(while_running, 0);
     const auto files = scan_files(session);
-    for (std::int64_t seq : acknowledged) {
-        ASSERT_TRUE(files.contains(seq)) << "scan " << seq << " was reported saved, then lost";
-        auto ply = io::read_ply(session / files.at(seq));
-        EXPECT_TRUE(ply) << "scan " << seq << ": " << ply.error().message;
-    }
+    expect_kept(session, files, acknowledged);
+    if (HasFatalFailure()) return;
     std::printf(
         "anascan-field: %zu kills (%d while running, run %lld ms), %zu scans reported "
         "saved, 0 lost\n",

@@ -48,6 +48,10 @@ bool fits_as_well(const TermResiduals& probe, const TermResiduals& base,
            within(probe.colinear_rms_m, base.colinear_rms_m);
 }
 
+void name_untouched(const std::vector<std::string>& pairs, AssemblyResult& r) {
+    for (const std::string& pair : pairs) r.offending.push_back("pair " + pair + " does not touch");
+}
+
 }  // namespace
 
 Expected<Determinacy> probe_determinacy(const AssemblyProblem& p, const AssemblyResult& assembled,
@@ -121,8 +125,7 @@ Expected<NonConvergence> diagnose_not_converged(const AssemblyProblem& p,
 
 void name_non_convergence(const AssemblyProblem& p, const NonConvergence& d, AssemblyResult& r) {
     if (!d.explained()) return;
-    for (const std::string& pair : d.untouched_pairs)
-        r.offending.push_back("pair " + pair + " does not touch");
+    name_untouched(d.untouched_pairs, r);
     for (const LooseBlock& l : d.drifting) {
         char text[200];
         std::snprintf(text, sizeof text,
@@ -140,8 +143,7 @@ void name_non_convergence(const AssemblyProblem& p, const NonConvergence& d, Ass
 void mark_underdetermined(const AssemblyProblem& p, const Determinacy& d, AssemblyResult& r) {
     if (d.fixed()) return;
     r.status = AssemblyStatus::kUnderdetermined;
-    for (const std::string& pair : d.untouched_pairs)
-        r.offending.push_back("pair " + pair + " does not touch");
+    name_untouched(d.untouched_pairs, r);
     for (const LooseBlock& l : d.loose) {
         char text[160];
         std::snprintf(text, sizeof text,
