@@ -8,12 +8,14 @@
 #include <filesystem>
 #include <map>
 
+#include "anascan/acquisition/blocks/block_features_file.hpp"
 #include "anascan/processing/core/pose.hpp"
-#include "block_features_json.hpp"
 #include "commands.hpp"
 
 namespace anascan::cli {
 namespace {
+
+using namespace anascan::acquisition;  // The blocks folder's files.
 
 using nlohmann::json;
 

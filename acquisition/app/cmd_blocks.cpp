@@ -8,13 +8,15 @@
 #include <filesystem>
 #include <random>
 
+#include "anascan/acquisition/blocks/block_features_file.hpp"
 #include "anascan/processing/core/stopwatch.hpp"
 #include "anascan/processing/io/ply.hpp"
-#include "block_features_json.hpp"
 #include "commands.hpp"
 
 namespace anascan::cli {
 namespace {
+
+using namespace anascan::acquisition;  // The blocks folder's files.
 
 namespace ra = anascan::reassembly;
 

@@ -10,11 +10,13 @@
 #include <map>
 #include <set>
 
-#include "block_features_json.hpp"
+#include "anascan/acquisition/blocks/block_features_file.hpp"
 #include "commands.hpp"
 
 namespace anascan::cli {
 namespace {
+
+using namespace anascan::acquisition;  // The blocks folder's files.
 
 using nlohmann::json;
 using FaceKey = std::pair<std::string, std::string>;  // Block id, true face name ("+x").

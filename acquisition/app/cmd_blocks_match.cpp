@@ -9,11 +9,13 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "block_features_json.hpp"
+#include "anascan/acquisition/blocks/block_features_file.hpp"
 #include "commands.hpp"
 
 namespace anascan::cli {
 namespace {
+
+using namespace anascan::acquisition;  // The blocks folder's files.
 
 namespace ra = anascan::reassembly;
 namespace fs = std::filesystem;
@@ -60,7 +62,18 @@ std::vector<ra::ExpertDecision> read_decisions(const std::string& dir,
     if (!fs::exists(decisions_path(dir))) return out;
     auto j = read_json_file(decisions_path(dir));
     if (!j) fail_command(j.error());
+    if (!j->is_object() || !j->value("decisions", json::array()).is_array()) {
+        fail_command({ErrorCode::kFormat, decisions_path(dir).string() +
+                                              ": not a decisions file (an object whose "
+                                              "\"decisions\" is a list)"});
+    }
     for (const json& d : j->value("decisions", json::array())) {
+        if (!d.is_object() || !d.value("a", json()).is_string() ||
+            !d.value("b", json()).is_string() || !d.value("decision", json("")).is_string()) {
+            spdlog::warn("{}: ignoring a decision that is not {{a, b, decision}} strings",
+                         decisions_path(dir).string());
+            continue;
+        }
         auto a = parse_face_ref(ids, d.value("a", std::string()));
         auto b = parse_face_ref(ids, d.value("b", std::string()));
         if (!a || !b) {
@@ -170,8 +183,7 @@ bool block_has_face(const json& block, int face) {
     return false;
 }
 
-void run_decide(const std::string& proposals, const std::string& a, const std::string& b,
-                bool accept) {
+void decide(const std::string& proposals, const std::string& a, const std::string& b, bool accept) {
     auto p = read_json_file(proposals);
     if (!p) fail_command(p.error());
     const std::string dir = p->value("features_dir", std::string());
@@ -207,6 +219,19 @@ void run_decide(const std::string& proposals, const std::string& a, const std::s
     std::printf("%s %s = %s in %s (used by the next blocks match)\n",
                 accept ? "accepted" : "rejected", a.c_str(), b.c_str(),
                 decisions_path(dir).c_str());
+}
+
+/// A proposals or decisions file with values of the wrong type is named, not a crash.
+void run_decide(const std::string& proposals, const std::string& a, const std::string& b,
+                bool accept) {
+    try {
+        decide(proposals, a, b, accept);
+    } catch (const json::exception& e) {
+        fail_command({ErrorCode::kFormat, proposals +
+                                              " (or its decisions.json): not a file of "
+                                              "blocks match: " +
+                                              e.what()});
+    }
 }
 
 }  // namespace

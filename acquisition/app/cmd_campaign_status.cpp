@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "anascan/acquisition/campaign/campaign_check.hpp"
+#include "anascan/acquisition/campaign/campaign_results.hpp"
 #include "anascan/processing/io/file_bytes.hpp"
 #include "anascan/processing/io/ply.hpp"
 #include "anascan/processing/io/stanford_conf.hpp"
@@ -19,61 +20,10 @@ namespace fs = std::filesystem;
 using acquisition::CampaignStore;
 using nlohmann::json;
 
-struct Counts {
-    std::size_t scans = 0, prepared = 0, described = 0, unusable = 0;
-    std::size_t pairs = 0, registered = 0, verified = 0;
-    std::size_t stones = 0, stones_done = 0, placed = 0;
-};
-
 template <class T>
 T must(Expected<T> v) {
     if (!v) fail_command(v.error());
     return std::move(*v);
-}
-
-Counts count(const CampaignStore& store) {
-    Counts c;
-    for (const auto& s : must(store.scans())) {
-        ++c.scans;
-        c.prepared += s.state == "prepared" || s.state == "described";
-        c.described += s.state == "described";
-        c.unusable += s.state == "unusable";
-    }
-    for (const auto& p : must(store.pairs())) {
-        ++c.pairs;
-        if (p.result_json.empty()) continue;
-        ++c.registered;
-        c.verified += json::parse(p.result_json).value("verified", false);
-    }
-    for (const auto& stone : must(store.stones())) {
-        ++c.stones;
-        if (stone.result_json.empty()) continue;
-        ++c.stones_done;
-        c.placed += json::parse(stone.result_json).value("placed", std::size_t{0});
-    }
-    return c;
-}
-
-void print_problems(const CampaignStore& store) {
-    const auto scans = must(store.scans());
-    for (const auto& s : scans) {
-        if (s.state == "unusable")
-            std::printf("not used: %s: %s\n", s.file.c_str(), s.problem.c_str());
-    }
-    for (const auto& stone : must(store.stones())) {
-        if (stone.result_json.empty()) continue;
-        for (const json& scan : json::parse(stone.result_json)["scans"]) {
-            const std::string& file = scans[scan["id"].get<std::size_t>()].file;
-            if (!scan["placed"].get<bool>()) {
-                std::printf("not placed (stone %lld): %s: %s\n", static_cast<long long>(stone.id),
-                            file.c_str(), scan["reason"].get<std::string>().c_str());
-            }
-            if (!scan["warning"].get<std::string>().empty()) {
-                std::printf("warning (stone %lld): %s: %s\n", static_cast<long long>(stone.id),
-                            file.c_str(), scan["warning"].get<std::string>().c_str());
-            }
-        }
-    }
 }
 
 void run_status(const std::string& dir) {
@@ -90,27 +40,23 @@ struct ExportOptions {
 void export_stone(const CampaignStore& store,
                   const std::vector<acquisition::CampaignScanRow>& scans,
                   const acquisition::CampaignStoneRow& stone, const fs::path& folder) {
-    const json result = json::parse(stone.result_json);
+    const auto result = must(acquisition::read_stone_result(stone.result_json, scans.size()));
     io::StanfordConf conf;
     PointCloud merged;
-    for (const json& scan : result["scans"]) {
-        if (!scan["placed"].get<bool>()) continue;
-        const auto id = scan["id"].get<std::int64_t>();
-        Pose T = Pose::Identity();
-        for (int i = 0; i < 3; ++i)
-            for (int j = 0; j < 4; ++j)
-                T.matrix()(i, j) = scan["pose"][static_cast<std::size_t>(4 * i + j)];
-        conf.entries.push_back({scans[static_cast<std::size_t>(id)].file, T});
-        auto cloud = io::read_ply(store.prepared_file(id));
+    for (const acquisition::CampaignStoneScan& scan : result.scans) {
+        if (!scan.placed) continue;
+        conf.entries.push_back({scans[static_cast<std::size_t>(scan.id)].file, scan.T_stone_scan});
+        auto cloud = io::read_ply(store.prepared_file(scan.id));
         if (!cloud) fail_command(cloud.error());
-        append(merged, transformed(cloud->cloud, T));
+        append(merged, transformed(cloud->cloud, scan.T_stone_scan));
     }
     std::error_code ec;
     fs::create_directories(folder, ec);
     if (ec) throw CommandFailed(folder.string() + ": cannot create: " + ec.message());
     if (auto ok = io::write_conf(folder / "poses.conf", conf); !ok) fail_command(ok.error());
     if (auto ok = io::write_ply(folder / "merged.ply", merged); !ok) fail_command(ok.error());
-    if (auto ok = io::write_file_atomically(folder / "report.json", result.dump(2) + "\n"); !ok) {
+    const std::string report = json::parse(stone.result_json).dump(2) + "\n";
+    if (auto ok = io::write_file_atomically(folder / "report.json", report); !ok) {
         fail_command(ok.error());
     }
 }
@@ -190,16 +136,22 @@ void add_check_command(CLI::App& campaign) {
 
 CampaignConfig stored_config(const CampaignStore& store) {
     CampaignConfig config;
-    auto value = store.value("config");
-    if (value && *value) {
-        config.candidates_per_scan =
-            json::parse(**value).value("candidates_per_scan", config.candidates_per_scan);
+    const auto value = must(store.value("config"));
+    if (!value) return config;
+    const json j = json::parse(*value, nullptr, false);
+    const json* count =
+        j.is_object() && j.contains("candidates_per_scan") ? &j["candidates_per_scan"] : nullptr;
+    if (count != nullptr && !count->is_number_unsigned()) {
+        throw CommandFailed((store.dir() / "campaign.sqlite").string() +
+                            ": the stored settings are damaged (candidates_per_scan is not a "
+                            "count): start the campaign again with `anascan campaign init`");
     }
+    if (count != nullptr) config.candidates_per_scan = count->get<std::size_t>();
     return config;
 }
 
 void print_status(const CampaignStore& store) {
-    const Counts c = count(store);
+    const acquisition::CampaignStatus c = must(acquisition::campaign_status(store));
     std::printf("scans: %zu (prepared %zu, described %zu, not used %zu)\n", c.scans, c.prepared,
                 c.described, c.unusable);
     const std::size_t all = c.described * (c.described > 0 ? c.described - 1 : 0) / 2;
@@ -208,7 +160,7 @@ void print_status(const CampaignStore& store) {
     std::printf("pairs registered: %zu of %zu, verified %zu\n", c.registered, c.pairs, c.verified);
     std::printf("stones: %zu (multi-view done %zu); scans placed %zu of %zu\n", c.stones,
                 c.stones_done, c.placed, c.scans);
-    print_problems(store);
+    for (const std::string& line : c.problems) std::printf("%s\n", line.c_str());
 }
 
 void add_campaign_status_commands(CLI::App& campaign) {

@@ -9,13 +9,15 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "anascan/acquisition/blocks/block_features_file.hpp"
 #include "anascan/processing/io/ply.hpp"
 #include "anascan/sim/monument.hpp"
-#include "block_features_json.hpp"
 #include "commands.hpp"
 
 namespace anascan::cli {
 namespace {
+
+using namespace anascan::acquisition;  // The blocks folder's files.
 
 struct ExportMonumentOptions {
     std::string name;

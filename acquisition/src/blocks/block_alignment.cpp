@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "anascan/acquisition/blocks/block_features_file.hpp"
 #include "anascan/processing/core/stopwatch.hpp"
 #include "anascan/processing/io/ply.hpp"
 #include "anascan/processing/io/stanford_conf.hpp"
 #include "anascan/processing/reassembly/assembly_probe.hpp"
-#include "json_file.hpp"
 
 namespace anascan::acquisition {
 namespace {
@@ -115,16 +115,16 @@ Expected<BlockAlignment> align_blocks(const ra::AssemblyProblem& problem,
                                       const ra::AssemblyConfig& config) {
     const Stopwatch watch;
     auto start = ra::initial_placement(problem, config);
-    if (!start) return Unexpected(start.error());
+    if (!start) return fail(start.error());
     auto r = ra::assemble_blocks(problem, *start, config);
-    if (!r) return Unexpected(r.error());
+    if (!r) return fail(r.error());
     if (r->status == ra::AssemblyStatus::kOk) {
         auto fixed = ra::probe_determinacy(problem, *r, config);
-        if (!fixed) return Unexpected(fixed.error());
+        if (!fixed) return fail(fixed.error());
         ra::mark_underdetermined(problem, *fixed, *r);
     } else if (r->status == ra::AssemblyStatus::kNotConverged) {
         auto why = ra::diagnose_not_converged(problem, *r, config);
-        if (!why) return Unexpected(why.error());
+        if (!why) return fail(why.error());
         ra::name_non_convergence(problem, *why, *r);
     }
     BlockAlignment out{.result = std::move(*r)};
@@ -186,8 +186,7 @@ Expected<void> write_assembly_folder(const fs::path& out, const BlockFolder& fol
         }
     }
     if (auto ok = io::write_conf(out / "assembly.conf", conf); !ok) return ok;
-    if (auto ok = blocks_detail::write_json(out / "assembly.json", report_json(p, a)); !ok)
-        return ok;
+    if (auto ok = write_json_file(out / "assembly.json", report_json(p, a)); !ok) return ok;
     return io::write_ply((out / "assembly.ply").string(), model);
 }
 

@@ -2,8 +2,7 @@
 
 #include <algorithm>
 
-#include "anascan/processing/io/ply.hpp"
-#include "json_file.hpp"
+#include "anascan/acquisition/blocks/block_features_file.hpp"
 
 namespace anascan::acquisition {
 namespace {
@@ -14,8 +13,8 @@ using nlohmann::json;
 
 // One features file: its block id, model and face count.
 Expected<void> read_features_file(const fs::path& f, BlockFolder& out) {
-    auto j = blocks_detail::read_json(f);
-    if (!j) return Unexpected(j.error());
+    auto j = read_json_file(f);
+    if (!j) return fail(j.error());
     try {
         out.ids.push_back(j->contains("id") ? j->at("id").get<std::string>()
                                             : f.stem().stem().string());
@@ -42,7 +41,7 @@ Expected<ra::LineRef> parse_line_ref(const BlockFolder& folder, const std::strin
         return fail(ErrorCode::kInvalidArgument,
                     "'" + whole + "': a line is BLOCK:F/G (the edge of faces F, G)");
     auto a = parse_face_ref(folder.ids, s.substr(0, slash));
-    if (!a) return Unexpected(a.error());
+    if (!a) return fail(a.error());
     try {
         return ra::LineRef{a->block, a->face, std::stoi(s.substr(slash + 1))};
     } catch (const std::exception&) {
@@ -72,7 +71,7 @@ Expected<BlockFolder> open_block_folder(const fs::path& dir) {
         return fail(ErrorCode::kIo,
                     dir.string() + ": no ID.features.json (run anascan blocks features)");
     for (const fs::path& f : out.feature_files)
-        if (auto ok = read_features_file(f, out); !ok) return Unexpected(ok.error());
+        if (auto ok = read_features_file(f, out); !ok) return fail(ok.error());
     return out;
 }
 
@@ -96,13 +95,13 @@ Expected<ra::FaceLink> parse_face_link(const BlockFolder& folder, const std::str
     if (eq == std::string::npos)
         return fail(ErrorCode::kInvalidArgument, "'" + text + "': expected A:F=B:G");
     auto a = parse_face_ref(folder.ids, text.substr(0, eq));
-    if (!a) return Unexpected(a.error());
+    if (!a) return fail(a.error());
     auto b = parse_face_ref(folder.ids, text.substr(eq + 1));
-    if (!b) return Unexpected(b.error());
+    if (!b) return fail(b.error());
     if (a->block == b->block)
         return fail(ErrorCode::kInvalidArgument, "'" + text + "': both faces on one block");
-    if (auto ok = check_face_listed(folder, *a); !ok) return Unexpected(ok.error());
-    if (auto ok = check_face_listed(folder, *b); !ok) return Unexpected(ok.error());
+    if (auto ok = check_face_listed(folder, *a); !ok) return fail(ok.error());
+    if (auto ok = check_face_listed(folder, *b); !ok) return fail(ok.error());
     return ra::FaceLink{*a, *b};
 }
 
@@ -111,9 +110,9 @@ Expected<ra::LineLink> parse_line_link(const BlockFolder& folder, const std::str
     if (eq == std::string::npos)
         return fail(ErrorCode::kInvalidArgument, "'" + text + "': expected A:F/G=B:H/K");
     auto a = parse_line_ref(folder, text, text.substr(0, eq));
-    if (!a) return Unexpected(a.error());
+    if (!a) return fail(a.error());
     auto b = parse_line_ref(folder, text, text.substr(eq + 1));
-    if (!b) return Unexpected(b.error());
+    if (!b) return fail(b.error());
     return ra::LineLink{*a, *b};
 }
 
@@ -122,53 +121,25 @@ Expected<ra::AssemblyProblem> parse_assembly_links(const BlockFolder& folder,
     ra::AssemblyProblem p;
     for (const std::string& t : links.contacts) {
         auto l = parse_face_link(folder, t);
-        if (!l) return Unexpected(l.error());
+        if (!l) return fail(l.error());
         p.contacts.push_back(*l);
     }
     for (const std::string& t : links.coplanar) {
         auto l = parse_face_link(folder, t);
-        if (!l) return Unexpected(l.error());
+        if (!l) return fail(l.error());
         p.coplanar.push_back(*l);
     }
     for (const std::string& t : links.colinear) {
         auto l = parse_line_link(folder, t);
-        if (!l) return Unexpected(l.error());
+        if (!l) return fail(l.error());
         p.colinear.push_back(*l);
     }
     for (const std::string& id : links.fixed) {
         auto b = block_index(folder, id);
-        if (!b) return Unexpected(b.error());
+        if (!b) return fail(b.error());
         p.fixed.push_back(*b);
     }
     return p;
-}
-
-Expected<std::vector<ra::AssemblyBlock>> load_folder_blocks(const BlockFolder& folder,
-                                                            const LoadProgress& progress) {
-    std::vector<Mesh> meshes;
-    for (std::size_t i = 0; i < folder.models.size(); ++i) {
-        auto ply = io::read_ply(folder.models[i].string());
-        if (!ply)
-            return fail(ply.error().code,
-                        folder.feature_files[i].string() + ": its model " + ply.error().message);
-        if (ply->triangles.empty())
-            return fail(ErrorCode::kFormat, folder.models[i].string() + ": a mesh is needed");
-        meshes.push_back(
-            {.vertices = std::move(ply->cloud), .triangles = std::move(ply->triangles)});
-    }
-    std::vector<ra::AssemblyBlock> blocks;
-    for (std::size_t i = 0; i < meshes.size(); ++i) {
-        if (progress) progress(i, meshes.size());
-        blocks.push_back(ra::assembly_block(folder.ids[i], meshes[i]));
-        const ra::BlockFeatures& f = blocks.back().features;
-        if (!f.matchable())
-            return fail(
-                ErrorCode::kInvalidArgument,
-                folder.models[i].string() + ": " + ra::to_string(f.status) + ": " + f.message);
-        meshes[i] = Mesh{};  // the block holds its own copy
-    }
-    if (progress) progress(meshes.size(), meshes.size());
-    return blocks;
 }
 
 }  // namespace anascan::acquisition

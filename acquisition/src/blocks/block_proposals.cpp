@@ -2,7 +2,7 @@
 
 #include <set>
 
-#include "json_file.hpp"
+#include "anascan/acquisition/blocks/block_features_file.hpp"
 
 namespace anascan::acquisition {
 namespace {
@@ -29,8 +29,8 @@ ProposalCandidate candidate_from(const std::string& face, const json& c) {
 }  // namespace
 
 Expected<BlockProposals> read_block_proposals(const std::filesystem::path& path) {
-    auto j = blocks_detail::read_json(path);
-    if (!j) return Unexpected(j.error());
+    auto j = read_json_file(path);
+    if (!j) return fail(j.error());
     try {
         BlockProposals out{.features_dir = j->at("features_dir").get<std::string>()};
         for (const json& p : j->at("proposals")) {

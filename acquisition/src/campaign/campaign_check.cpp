@@ -2,33 +2,23 @@
 #include "anascan/acquisition/campaign/campaign_check.hpp"
 
 #include <algorithm>
-#include <nlohmann/json.hpp>
+#include <optional>
 
+#include "anascan/acquisition/campaign/campaign_results.hpp"
 #include "anascan/acquisition/campaign/campaign_store.hpp"
 #include "anascan/processing/io/ply.hpp"
-#include "campaign/campaign_json.hpp"
 
 namespace anascan::acquisition {
 namespace {
 
 namespace fs = std::filesystem;
-using nlohmann::json;
-
-bool object_json(const std::string& text) {
-    const json j = json::parse(text, nullptr, false);
-    return j.is_object();
-}
 
 /// Why a prepared cloud cannot be used; empty when it reads with the summary's count.
-std::string prepared_problem(const fs::path& file, const CampaignScanRow& scan) {
+std::string prepared_problem(const fs::path& file, std::size_t expected) {
     std::error_code ec;
     if (!fs::exists(file, ec)) return "prepared cloud missing";
     auto ply = io::read_ply(file);
     if (!ply) return "prepared cloud unreadable: " + ply.error().message;
-    const std::size_t expected =
-        scan.summary_json.empty()
-            ? 0
-            : campaign_json::summary_from(json::parse(scan.summary_json, nullptr, false)).points;
     if (expected > 0 && ply->cloud.size() != expected) {
         return "prepared cloud holds " + std::to_string(ply->cloud.size()) + " points, " +
                std::to_string(expected) + " were recorded";
@@ -36,29 +26,58 @@ std::string prepared_problem(const fs::path& file, const CampaignScanRow& scan) 
     return {};
 }
 
-Expected<void> check_prepared(CampaignStore& store, bool repair, CampaignCheckReport& report) {
+bool known_state(const std::string& state) {
+    return state == "new" || state == "prepared" || state == "described" || state == "unusable";
+}
+
+/// The scan's stored state and summary; an issue of kind "scan-record" when damaged.
+std::optional<CampaignCheckIssue> record_issue(const CampaignScanRow& scan) {
+    std::string problem;
+    if (!known_state(scan.state)) problem = "unknown state '" + scan.state + "'";
+    if (auto summary = read_scan_summary(scan.summary_json); !summary)
+        problem = summary.error().message;
+    if (problem.empty()) return std::nullopt;
+    return CampaignCheckIssue{.kind = "scan-record",
+                              .id = scan.id,
+                              .problem = "scan " + std::to_string(scan.id) + ": " + problem,
+                              .action = "scan set back to new: the next run prepares it again"};
+}
+
+/// The prepared cloud of a prepared or described scan; an issue when it cannot be used.
+std::optional<CampaignCheckIssue> cloud_issue(const CampaignStore& store,
+                                              const CampaignScanRow& scan,
+                                              CampaignCheckReport& report) {
+    if (scan.state != "prepared" && scan.state != "described") return std::nullopt;
+    ++report.prepared_checked;
+    const fs::path file = store.prepared_file(scan.id);
+    const std::string problem =
+        prepared_problem(file, read_scan_summary(scan.summary_json)->points);
+    if (problem.empty()) {
+        ++report.prepared_ok;
+        return std::nullopt;
+    }
+    return CampaignCheckIssue{.kind = "prepared-cloud",
+                              .id = scan.id,
+                              .file = file,
+                              .problem = problem,
+                              .action = "scan set back to new: the next run prepares it again"};
+}
+
+Expected<void> check_scans(CampaignStore& store, bool repair, CampaignCheckReport& report) {
     auto scans = store.scans();
     if (!scans) return fail(scans.error());
     for (CampaignScanRow& scan : *scans) {
-        if (scan.state != "prepared" && scan.state != "described") continue;
-        ++report.prepared_checked;
-        const fs::path file = store.prepared_file(scan.id);
-        const std::string problem = prepared_problem(file, scan);
-        if (problem.empty()) {
-            ++report.prepared_ok;
-            continue;
-        }
-        CampaignCheckIssue issue{.kind = "prepared-cloud",
-                                 .id = scan.id,
-                                 .file = file,
-                                 .problem = problem,
-                                 .action = "scan set back to new: the next run prepares it again"};
+        auto issue = record_issue(scan);
+        if (!issue) issue = cloud_issue(store, scan, report);
+        if (!issue) continue;
         if (repair) {
             scan.state = "new";
+            scan.problem.clear();
+            scan.summary_json.clear();
             if (auto ok = store.save_scan(scan); !ok) return ok;
-            issue.repaired = true;
+            issue->repaired = true;
         }
-        report.issues.push_back(std::move(issue));
+        report.issues.push_back(std::move(*issue));
     }
     return {};
 }
@@ -69,12 +88,13 @@ Expected<void> check_pairs(CampaignStore& store, bool repair, CampaignCheckRepor
     for (const CampaignPairRow& p : *pairs) {
         if (p.result_json.empty()) continue;
         ++report.results_checked;
-        if (object_json(p.result_json)) continue;
+        const auto result = read_pair_result(p.result_json);
+        if (result) continue;
         CampaignCheckIssue issue{.kind = "pair-result",
                                  .id = p.source,
                                  .problem = "pair " + std::to_string(p.source) + "-" +
-                                            std::to_string(p.target) +
-                                            ": stored result is not valid JSON",
+                                            std::to_string(p.target) + ": " +
+                                            result.error().message,
                                  .action = "result cleared: the next run registers the pair again"};
         if (repair) {
             if (auto ok = store.save_pair_result(p.source, p.target, ""); !ok) return ok;
@@ -86,16 +106,19 @@ Expected<void> check_pairs(CampaignStore& store, bool repair, CampaignCheckRepor
 }
 
 Expected<void> check_stones(CampaignStore& store, bool repair, CampaignCheckReport& report) {
+    auto scans = store.scans();
+    if (!scans) return fail(scans.error());
     auto stones = store.stones();
     if (!stones) return fail(stones.error());
     for (const CampaignStoneRow& stone : *stones) {
         if (stone.result_json.empty()) continue;
         ++report.results_checked;
-        if (object_json(stone.result_json)) continue;
+        const auto result = read_stone_result(stone.result_json, scans->size());
+        if (result) continue;
         CampaignCheckIssue issue{
             .kind = "stone-result",
             .id = stone.id,
-            .problem = "stone " + std::to_string(stone.id) + ": stored result is not valid JSON",
+            .problem = "stone " + std::to_string(stone.id) + ": " + result.error().message,
             .action = "result cleared: the next run refines the stone again"};
         if (repair) {
             if (auto ok = store.save_stone_result(stone.id, ""); !ok) return ok;
@@ -103,6 +126,24 @@ Expected<void> check_stones(CampaignStore& store, bool repair, CampaignCheckRepo
         }
         report.issues.push_back(std::move(issue));
     }
+    return {};
+}
+
+Expected<void> check_graph(CampaignStore& store, bool repair, CampaignCheckReport& report) {
+    auto scans = store.scans();
+    if (!scans) return fail(scans.error());
+    auto graph = store.value("graph");
+    if (!graph) return fail(graph.error());
+    const auto warnings = read_graph_warnings(graph->value_or(""), scans->size());
+    if (warnings) return {};
+    CampaignCheckIssue issue{.kind = "match-graph",
+                             .problem = warnings.error().message,
+                             .action = "stones cleared: the next run finds them again"};
+    if (repair) {
+        if (auto ok = store.clear_stones(); !ok) return ok;
+        issue.repaired = true;
+    }
+    report.issues.push_back(std::move(issue));
     return {};
 }
 
@@ -157,9 +198,16 @@ Expected<CampaignCheckReport> check_campaign(const fs::path& dir, bool repair) {
                                  .problem = report.integrity,
                                  .action = "none possible: restore the folder from a copy"});
     }
-    if (auto ok = check_prepared(**store, repair, report); !ok) return fail(ok.error());
-    if (auto ok = check_pairs(**store, repair, report); !ok) return fail(ok.error());
-    if (auto ok = check_stones(**store, repair, report); !ok) return fail(ok.error());
+    for (auto check : {check_scans, check_pairs, check_stones, check_graph}) {
+        auto ok = check(**store, repair, report);
+        if (ok) continue;
+        if (ok.error().code != ErrorCode::kFormat) return fail(ok.error());
+        report.issues.push_back({.kind = "database",
+                                 .file = dir / "campaign.sqlite",
+                                 .problem = ok.error().message,
+                                 .action = "none possible: restore the folder from a copy"});
+        break;  // The tables contradict each other: the other checks would read them.
+    }
     check_temporaries(dir / "prepared", repair, report);
     return report;
 }

@@ -201,6 +201,7 @@ Expected<CampaignJobReport> run_campaign(CampaignStore& store, CampaignExecutor&
     StageRun run{executor, progress, report};
     auto scans = store.scans();
     if (!scans) return fail(scans.error());
+    if (auto ok = campaign_json::verify_stored(store, *scans); !ok) return fail(ok.error());
     if (auto ok = prepare_stage(run, store, *scans); !ok) return fail(ok.error());
     if (auto ok = mark_duplicates(store, *scans); !ok) return fail(ok.error());
     if (auto ok = describe_stage(run, store, *scans); !ok) return fail(ok.error());

@@ -1,5 +1,7 @@
 #include "campaign/campaign_json.hpp"
 
+#include "anascan/acquisition/campaign/campaign_store.hpp"
+
 namespace anascan::acquisition::campaign_json {
 
 nlohmann::json pose(const Pose& T) {
@@ -42,18 +44,6 @@ PreparedSummary summary_from(const nlohmann::json& j) {
     return s;
 }
 
-nlohmann::json pair(const CampaignPairResult& r) {
-    return {{"status", std::string(to_string(r.status))},
-            {"status_code", static_cast<int>(r.status)},
-            {"verified", r.verified},
-            {"T_target_source", pose(r.T_target_source)},
-            {"rms_m", r.rms_m},
-            {"overlap", r.overlap_fraction},
-            {"target_spacing_m", r.target_spacing_m},
-            {"slide_ambiguous", r.slide_ambiguous},
-            {"time_s", r.time_s}};
-}
-
 CampaignPairResult pair_from(const nlohmann::json& j) {
     CampaignPairResult r;
     r.status = static_cast<GlobalRegistrationStatus>(
@@ -66,6 +56,14 @@ CampaignPairResult pair_from(const nlohmann::json& j) {
     r.slide_ambiguous = j.value("slide_ambiguous", false);
     r.time_s = j.value("time_s", 0.0);
     return r;
+}
+
+Error damaged(const CampaignStore& store, const std::string& what, const Error& problem) {
+    const std::string dir = store.dir().string();
+    return Error{ErrorCode::kFormat,
+                 dir + "/campaign.sqlite: " + (what.empty() ? "" : what + ": ") + problem.message +
+                     " (run `anascan campaign check " + dir +
+                     " --repair`, then `anascan campaign register " + dir + "` redoes that work)"};
 }
 
 }  // namespace anascan::acquisition::campaign_json

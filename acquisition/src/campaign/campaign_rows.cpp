@@ -1,4 +1,5 @@
 // CampaignStore: reading and writing the scans, pairs, stones and values.
+#include <algorithm>
 #include <cstring>
 
 #include "campaign/store_impl.hpp"
@@ -48,19 +49,50 @@ Expected<void> write_scan(db::Connection& db, const CampaignScanRow& row) {
     return stmt->run("cannot record scan " + std::to_string(row.id));
 }
 
+/// A table whose rows contradict each other (a damaged database that SQLite's own checks
+/// pass): readers index scans by id, so this is found before anything uses the rows.
+Error damaged_table(const std::filesystem::path& dir, const std::string& table,
+                    const std::string& problem) {
+    return Error{ErrorCode::kFormat,
+                 (dir / "campaign.sqlite").string() + ": the " + table +
+                     " table is damaged: " + problem +
+                     " (restore the campaign folder from a copy, or start it again with "
+                     "`anascan campaign init`)"};
+}
+
+Expected<std::size_t> scan_count(const db::Connection& db) {
+    auto stmt = db::Statement::prepare(db, "SELECT COUNT(*) FROM scans");
+    if (!stmt) return fail(stmt.error());
+    auto row = stmt->step("cannot count the scans");
+    if (!row) return fail(row.error());
+    return static_cast<std::size_t>(*row ? std::max<std::int64_t>(0, stmt->int64(0)) : 0);
+}
+
+bool is_scan(std::int64_t id, std::size_t count) {
+    return id >= 0 && static_cast<std::size_t>(id) < count;
+}
+
 }  // namespace
 
 Expected<std::vector<CampaignScanRow>> CampaignStore::scans() const {
-    return db::collect(impl_->db,
-                       "SELECT id, file, state, problem, summary_json, keys FROM scans ORDER BY id",
-                       "cannot read the scans", [](const db::Statement& s) {
-                           return CampaignScanRow{.id = s.int64(0),
-                                                  .file = s.text(1),
-                                                  .state = s.text(2),
-                                                  .problem = s.text(3),
-                                                  .summary_json = s.text(4),
-                                                  .keys = keys_from(s.blob(5))};
-                       });
+    auto rows = db::collect(
+        impl_->db, "SELECT id, file, state, problem, summary_json, keys FROM scans ORDER BY id",
+        "cannot read the scans", [](const db::Statement& s) {
+            return CampaignScanRow{.id = s.int64(0),
+                                   .file = s.text(1),
+                                   .state = s.text(2),
+                                   .problem = s.text(3),
+                                   .summary_json = s.text(4),
+                                   .keys = keys_from(s.blob(5))};
+        });
+    if (!rows) return rows;
+    for (std::size_t i = 0; i < rows->size(); ++i) {
+        if ((*rows)[i].id == static_cast<std::int64_t>(i)) continue;
+        return fail(damaged_table(impl_->dir, "scans",
+                                  "row " + std::to_string(i) + " holds scan id " +
+                                      std::to_string((*rows)[i].id) + " (ids run 0..N-1)"));
+    }
+    return rows;
 }
 
 Expected<void> CampaignStore::save_scan(const CampaignScanRow& row) {
@@ -77,7 +109,9 @@ Expected<void> CampaignStore::save_scans(const std::vector<CampaignScanRow>& row
 }
 
 Expected<std::vector<CampaignPairRow>> CampaignStore::pairs() const {
-    return db::collect(
+    auto count = scan_count(impl_->db);
+    if (!count) return fail(count.error());
+    auto rows = db::collect(
         impl_->db,
         "SELECT source, target, similarity, result_json FROM pairs ORDER BY source, target",
         "cannot read the pairs", [](const db::Statement& s) {
@@ -86,6 +120,16 @@ Expected<std::vector<CampaignPairRow>> CampaignStore::pairs() const {
                                    .similarity = s.real(2),
                                    .result_json = s.text(3)};
         });
+    if (!rows) return rows;
+    for (const CampaignPairRow& p : *rows) {
+        if (is_scan(p.source, *count) && is_scan(p.target, *count) && p.source != p.target)
+            continue;
+        return fail(damaged_table(impl_->dir, "pairs",
+                                  "pair " + std::to_string(p.source) + "-" +
+                                      std::to_string(p.target) + " does not name two of the " +
+                                      std::to_string(*count) + " scans"));
+    }
+    return rows;
 }
 
 Expected<void> CampaignStore::set_candidates(const std::vector<CampaignPairRow>& pairs) {
@@ -111,12 +155,24 @@ Expected<void> CampaignStore::save_pair_result(std::int64_t source, std::int64_t
 }
 
 Expected<std::vector<CampaignStoneRow>> CampaignStore::stones() const {
-    return db::collect(impl_->db, "SELECT id, scans_json, result_json FROM stones ORDER BY id",
-                       "cannot read the stones", [](const db::Statement& s) {
-                           return CampaignStoneRow{.id = s.int64(0),
-                                                   .scans = ids_from(s.text(1)),
-                                                   .result_json = s.text(2)};
-                       });
+    auto count = scan_count(impl_->db);
+    if (!count) return fail(count.error());
+    auto rows = db::collect(impl_->db, "SELECT id, scans_json, result_json FROM stones ORDER BY id",
+                            "cannot read the stones", [](const db::Statement& s) {
+                                return CampaignStoneRow{.id = s.int64(0),
+                                                        .scans = ids_from(s.text(1)),
+                                                        .result_json = s.text(2)};
+                            });
+    if (!rows) return rows;
+    for (const CampaignStoneRow& stone : *rows) {
+        for (std::int64_t id : stone.scans) {
+            if (is_scan(id, *count)) continue;
+            return fail(damaged_table(impl_->dir, "stones",
+                                      "stone " + std::to_string(stone.id) + " names scan " +
+                                          std::to_string(id) + " of " + std::to_string(*count)));
+        }
+    }
+    return rows;
 }
 
 Expected<void> CampaignStore::set_stones(const std::vector<CampaignStoneRow>& stones,
@@ -143,6 +199,18 @@ Expected<void> CampaignStore::save_stone_result(std::int64_t id, const std::stri
     if (!stmt) return fail(stmt.error());
     stmt->bind(1, std::string_view(result_json)).bind(2, id);
     return stmt->run("cannot record stone " + std::to_string(id));
+}
+
+Expected<void> CampaignStore::clear_stones() {
+    auto tx = db::Transaction::begin(impl_->db);
+    if (!tx) return fail(tx.error());
+    for (const char* sql :
+         {"DELETE FROM stones", "DELETE FROM campaign_values WHERE key = 'graph'"}) {
+        auto stmt = db::Statement::prepare(impl_->db, sql);
+        if (!stmt) return fail(stmt.error());
+        if (auto ok = stmt->run("cannot clear the stones"); !ok) return ok;
+    }
+    return tx->commit();
 }
 
 Expected<std::string> CampaignStore::integrity_check() const {

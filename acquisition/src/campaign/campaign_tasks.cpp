@@ -17,6 +17,19 @@ Expected<PointCloud> read_cloud(const std::string& path) {
     return std::move(ply->cloud);
 }
 
+/// A pair's result as stored (campaign_json::pair_from reads it).
+json pair_json(const CampaignPairResult& r) {
+    return {{"status", std::string(to_string(r.status))},
+            {"status_code", static_cast<int>(r.status)},
+            {"verified", r.verified},
+            {"T_target_source", campaign_json::pose(r.T_target_source)},
+            {"rms_m", r.rms_m},
+            {"overlap", r.overlap_fraction},
+            {"target_spacing_m", r.target_spacing_m},
+            {"slide_ambiguous", r.slide_ambiguous},
+            {"time_s", r.time_s}};
+}
+
 /// The campaign's own prepared cloud cannot be read: the job stops (the row is not marked),
 /// `campaign check --repair` sets the scan back so that it is prepared again.
 json store_error(const Error& e) {
@@ -51,7 +64,7 @@ json pair(const json& in, const CampaignConfig& config) {
     if (!source) return store_error(source.error());
     auto target = read_cloud(in.at("target").get<std::string>());
     if (!target) return store_error(target.error());
-    return campaign_json::pair(register_campaign_pair(*source, *target, config));
+    return pair_json(register_campaign_pair(*source, *target, config));
 }
 
 /// The match graph's doubt and the multi-view stage's warning, either or both.

@@ -1,4 +1,7 @@
 // run_campaign's last stages: the match graph (stones) and the multi-view stage per stone.
+#include <map>
+
+#include "anascan/acquisition/campaign/campaign_results.hpp"
 #include "campaign/campaign_json.hpp"
 #include "campaign/job_steps.hpp"
 
@@ -30,12 +33,17 @@ json warnings_json(const StoneGraph& graph) {
     return out;
 }
 
-/// The stored graph warnings (empty before the graph stage).
-Expected<json> stored_warnings(const CampaignStore& store) {
+/// The stored graph warnings by scan (empty before the graph stage).
+Expected<std::map<std::int64_t, std::string>> stored_warnings(const CampaignStore& store,
+                                                              std::size_t scan_count) {
     auto graph = store.value("graph");
     if (!graph) return fail(graph.error());
-    if (!*graph) return json::object();
-    return json::parse(**graph).value("warnings", json::object());
+    return read_graph_warnings(graph->value_or(""), scan_count);
+}
+
+std::string warning_of(const std::map<std::int64_t, std::string>& warnings, std::int64_t id) {
+    const auto it = warnings.find(id);
+    return it == warnings.end() ? std::string() : it->second;
 }
 
 Expected<void> graph_stage(StageRun& run, CampaignStore& store,
@@ -73,8 +81,8 @@ Expected<void> multiview_stage(StageRun& run, CampaignStore& store,
                                const std::vector<CampaignScanRow>& scans) {
     auto stones = store.stones();
     if (!stones) return fail(stones.error());
-    auto warnings = stored_warnings(store);
-    if (!warnings) return fail(warnings.error());
+    auto warnings = stored_warnings(store, scans.size());
+    if (!warnings) return fail(campaign_json::damaged(store, "", warnings.error()));
     std::vector<CampaignTask> tasks;
     for (const CampaignStoneRow& stone : *stones) {
         if (!stone.result_json.empty()) continue;
@@ -83,7 +91,7 @@ Expected<void> multiview_stage(StageRun& run, CampaignStore& store,
         for (std::int64_t id : stone.scans) {
             list.push_back({{"id", id},
                             {"prepared", store.prepared_file(id).string()},
-                            {"graph_warning", warnings->value(std::to_string(id), std::string())}});
+                            {"graph_warning", warning_of(*warnings, id)}});
             points += static_cast<double>(summary_of(scans[static_cast<std::size_t>(id)]).points);
         }
         tasks.push_back({CampaignTaskKind::kStone, stone.id, json{{"scans", list}}.dump(),

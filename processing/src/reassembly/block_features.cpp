@@ -155,30 +155,4 @@ BlockFeatures extract_block_features(const Mesh& mesh, const BlockFeatureConfig&
     return out;
 }
 
-const char* to_string(BlockStatus status) {
-    switch (status) {
-        case BlockStatus::kOk:
-            return "ok";
-        case BlockStatus::kEmpty:
-            return "empty";
-        case BlockStatus::kNoNormals:
-            return "no normals";
-        case BlockStatus::kBadMesh:
-            return "bad mesh";
-        case BlockStatus::kNonManifold:
-            return "non-manifold";
-        case BlockStatus::kNoPlanarFace:
-            return "no planar face";
-        case BlockStatus::kTooFewFaces:
-            return "too few faces";
-        case BlockStatus::kTooNoisy:
-            return "too noisy";
-    }
-    return "unknown";
-}
-
-const char* to_string(HoleKind kind) {
-    return kind == HoleKind::kClampChannel ? "clamp channel" : "dowel";
-}
-
 }  // namespace anascan::reassembly

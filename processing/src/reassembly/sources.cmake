@@ -9,6 +9,7 @@ list(APPEND ANASCAN_PROCESSING_SOURCES
     src/reassembly/face_holes.cpp
     src/reassembly/face_matching.cpp
     src/reassembly/face_roughness.cpp
+    src/reassembly/feature_names.cpp
     src/reassembly/proposals.cpp
 )
 # Penetration-free alignment of neighbouring blocks (paper §5.3).

@@ -8,8 +8,13 @@
 ///   parses as PLY and holds the point count of its stored summary; repair sets the scan
 ///   back to `new`, so the next run prepares and describes it again (both are
 ///   deterministic: the candidates and pair results already made stay valid);
-/// - every stored pair and stone result parses as a JSON object; repair clears it, so the
-///   next run registers that pair (or that stone) again;
+/// - every scan's state and prepared summary, every stored pair and stone result and the
+///   match graph read with the checked readers of campaign_results.hpp (the same as the job
+///   and `status` use); repair sets a damaged scan back to `new`, clears a damaged result (the
+///   next run registers that pair, or refines that stone, again) and forgets damaged stones
+///   and graph (found again from the pairs);
+/// - tables whose rows contradict each other (a pair naming a scan that does not exist):
+///   reported, not repairable;
 /// - temporary files of interrupted writes (`prepared/.scan_N.ply.tmp*`): harmless (never
 ///   under a final name), listed and removed on repair; they do not make the check fail.
 
@@ -24,7 +29,8 @@
 namespace anascan::acquisition {
 
 struct CampaignCheckIssue {
-    /// "database", "prepared-cloud", "pair-result", "stone-result" or "temporary-file".
+    /// "database", "scan-record", "prepared-cloud", "pair-result", "stone-result",
+    /// "match-graph" or "temporary-file".
     std::string kind;
     std::optional<std::int64_t> id;  ///< The scan or stone concerned, if any.
     std::filesystem::path file;      ///< The file concerned, if any.

@@ -81,6 +81,9 @@ public:
     Expected<void> set_stones(const std::vector<CampaignStoneRow>& stones,
                               const std::string& graph_json);
     Expected<void> save_stone_result(std::int64_t id, const std::string& result_json);
+    /// Forgets the stones and the match graph (repair of a damaged graph): the next job
+    /// finds the stones again from the stored pair results.
+    Expected<void> clear_stones();
 
     /// `PRAGMA integrity_check`'s answer ("ok" when intact).
     Expected<std::string> integrity_check() const;

@@ -1,11 +1,11 @@
-#include "block_features_json.hpp"
+// Block features as JSON files (`anascan blocks features` writes them; the matcher, the
+// assembly and the field app read them back).
+#include "anascan/acquisition/blocks/block_features_file.hpp"
 
 #include <Eigen/Geometry>
 #include <algorithm>
 
-#include "anascan/processing/io/file_bytes.hpp"
-
-namespace anascan::cli {
+namespace anascan::acquisition {
 namespace {
 
 using nlohmann::json;
@@ -142,23 +142,8 @@ Expected<NamedBlockFeatures> block_features_from_json(const json& j,
     }
 }
 
-Expected<json> read_json_file(const std::filesystem::path& path) {
-    auto bytes = io::read_file_bytes(path);
-    if (!bytes) return Unexpected(bytes.error());
-    try {
-        return json::parse(bytes->begin(), bytes->end());
-    } catch (const json::exception& e) {
-        return fail(ErrorCode::kFormat, path.string() + ": not JSON: " + e.what());
-    }
-}
-
-Expected<void> write_json_file(const std::filesystem::path& path, const json& j) {
-    const std::string text = j.dump(1) + "\n";
-    return io::write_file_atomically(path, std::span<const char>(text.data(), text.size()));
-}
-
 std::string face_label(const std::vector<NamedBlockFeatures>& blocks, reassembly::FaceRef ref) {
     return blocks[ref.block].id + ":" + std::to_string(ref.face);
 }
 
-}  // namespace anascan::cli
+}  // namespace anascan::acquisition
