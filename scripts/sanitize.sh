@@ -5,8 +5,8 @@
 # fuzzers). A test fails on any finding, in the test itself or in a child it runs (the
 # `anascan` and `anascan-field` commands are instrumented too): reports go to
 # <tree>/sanitizer-reports/, and any report there fails this script, whatever the exit code
-# the test saw. Usage: scripts/sanitize.sh [ci|asan|tsan|all] (default all; `ci` is the
-# reduced ASan + UBSan set that CI runs, in ./build-asan too). The sets, why they are what they
+# the test saw. Usage: scripts/sanitize.sh [ci|asan|tsan|all] (default all; `ci` is what CI
+# runs: the reduced ASan + UBSan set, in ./build-asan too, and the whole TSan set). The sets, why they are what they
 # are, and the time each takes: docs/reliability.md.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -36,14 +36,15 @@ ci_targets=(anascan_processing_tests fuzz_ply_replay fuzz_text_points_replay fuz
 
 # TSan: everything that runs threads of its own: the capture session (scanner, persistence
 # and registration threads), the session store under concurrent writers, the device
-# layer's stream runner and watcher, and the field app's session link and workers.
+# layer's stream runner and watcher, the field app's session link and workers, and the
+# campaign job (in one process and on two MPI ranks). CI runs this whole set.
 tsan_targets=(anascan anascan-field anascan_acquisition_tests anascan_session_store_tests
     anascan_device_control_tests anascan_drivers_tests anascan_drivers_umockdev_tests
     anascan_sim_device_tests anascan_cli_capture_tests anascan_field_session_tests
-    anascan_field_device_tests)
+    anascan_field_device_tests anascan_cli_campaign_tests)
 tsan_suites='CaptureSessionTest|SessionStoreTest|SessionFaultTest|DeviceControlTest|StreamRunner'
 tsan_suites+='|Watcher|DepthCameraScanner|ScanRecording|Conformance|V4l2Test|UsbTest|SimTofDevice'
-tsan_suites+='|SimStructuredLightDevice|CliCapture|FieldSession|FieldDevice'
+tsan_suites+='|SimStructuredLightDevice|CliCapture|FieldSession|FieldDevice|CampaignCli|CampaignDamage'
 tsan_regex="(^|/)($tsan_suites)\\."
 # Not under TSan: the simulated scanner renders the connect preview in more than the app's
 # 5 s preview timeout there (ray casting instrumented, TBB serial), so the test fails on
@@ -128,7 +129,7 @@ if [ "$which" = asan ] || [ "$which" = all ]; then
     part "asan build" configure_and_build build-asan "address;undefined" "${asan_targets[@]}"
     part "asan tests" run_tests build-asan -E "$common_exclude" || status=1
 fi
-if [ "$which" = tsan ] || [ "$which" = all ]; then
+if [ "$which" = tsan ] || [ "$which" = ci ] || [ "$which" = all ]; then
     part "tsan build" configure_and_build build-tsan "thread" "${tsan_targets[@]}"
     part "tsan tests" run_tests build-tsan -E "$common_exclude|$tsan_exclude" -R "$tsan_regex" ||
         status=1

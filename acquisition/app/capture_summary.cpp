@@ -38,6 +38,10 @@ acquisition::SessionEventSink printing_sink() {
             spdlog::error("{}", event.message);
             return;
         }
+        if (event.kind == K::kDeviceWarning) {
+            spdlog::warn("{}", event.message);
+            return;
+        }
         std::printf("%s\n", event.message.c_str());
         std::fflush(stdout);
     };

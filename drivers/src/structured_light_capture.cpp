@@ -63,8 +63,14 @@ std::string ms_text(std::chrono::nanoseconds t) {
 
 /// The first frame of `camera` exposed after the pattern was shown; older frames are
 /// counted in `stale` and dropped, unreadable ones (kFormat) dropped and named on a timeout.
+/// What one camera's frames of one pattern held besides the one used.
+struct FrameTally {
+    std::size_t stale = 0, unreadable = 0;
+    std::string last_unreadable;
+};
+
 Expected<cv::Mat> fresh_frame(Camera& camera, const char* label, const FrameWait& w,
-                              std::size_t& stale) {
+                              FrameTally& tally) {
     const auto frame_deadline = std::min(w.deadline, steady_clock::now() + w.frame_timeout);
     std::string unreadable;
     for (;;) {
@@ -85,13 +91,15 @@ Expected<cv::Mat> fresh_frame(Camera& camera, const char* label, const FrameWait
             if (frame.error().code == ErrorCode::kTimeout) continue;
             if (frame.error().code == ErrorCode::kFormat) {
                 unreadable = frame.error().message;
+                ++tally.unreadable;
+                tally.last_unreadable = part_name(label, camera) + ": " + unreadable;
                 continue;
             }
             return fail(frame.error().code,
                         part_name(label, camera) + " at " + w.what + ": " + frame.error().message);
         }
         if (frame->timestamp_ns - w.latency < w.shown_at) {
-            ++stale;
+            ++tally.stale;
             continue;
         }
         return frame_to_grey(*frame, part_name(label, camera));
@@ -128,11 +136,15 @@ Expected<void> StructuredLightScanner::acquire(const CaptureControl& control,
         const FrameWait wait{control, deadline, *shown, parts_.frame_latency, parts_.frame_timeout,
                              what};
         // Both cameras at once (each on one thread, as Camera requires).
-        std::size_t stale1 = 0, stale2 = 0;
+        FrameTally tally1, tally2;
         Expected<cv::Mat> a = cv::Mat(), b = cv::Mat();
-        tbb::parallel_invoke([&] { a = fresh_frame(*parts_.cam1, "cam1", wait, stale1); },
-                             [&] { b = fresh_frame(*parts_.cam2, "cam2", wait, stale2); });
-        stats_.stale_frames += stale1 + stale2;
+        tbb::parallel_invoke([&] { a = fresh_frame(*parts_.cam1, "cam1", wait, tally1); },
+                             [&] { b = fresh_frame(*parts_.cam2, "cam2", wait, tally2); });
+        for (const FrameTally& t : {tally1, tally2}) {
+            stats_.stale_frames += t.stale;
+            stats_.unreadable_frames += t.unreadable;
+            if (!t.last_unreadable.empty()) stats_.last_unreadable = t.last_unreadable;
+        }
         if (!a) return fail(gone(a.error()));
         if (!b) return fail(gone(b.error()));
         images1.push_back(std::move(*a));
@@ -149,6 +161,12 @@ Expected<Scan> StructuredLightScanner::capture_scan(const CaptureControl& contro
     stats_ = {};
     std::vector<cv::Mat> images1, images2;
     if (auto ok = acquire(control, images1, images2); !ok) return fail(ok.error());
+    if (stats_.unreadable_frames > 0 && control.on_warning) {
+        control.on_warning(parts_.info.uri + ": " + std::to_string(stats_.unreadable_frames) +
+                           " unreadable camera frame(s) dropped; the scan is made of good ones "
+                           "(the last: " +
+                           stats_.last_unreadable + ")");
+    }
     if (control.stop.stop_requested())
         return fail(ErrorCode::kCancelled, parts_.info.uri + ": capture cancelled");
     report(control, 0.9, "decoding");
@@ -197,10 +215,10 @@ Expected<std::vector<Frame>> StructuredLightScanner::preview_frames(
     const FrameWait wait{control, steady_clock::now() + timeout,
                          *shown,  parts_.frame_latency,
                          timeout, "the preview"};
-    std::size_t stale1 = 0, stale2 = 0;
+    FrameTally tally1, tally2;  // The preview keeps no figures.
     Expected<cv::Mat> a = cv::Mat(), b = cv::Mat();
-    tbb::parallel_invoke([&] { a = fresh_frame(*parts_.cam1, "cam1", wait, stale1); },
-                         [&] { b = fresh_frame(*parts_.cam2, "cam2", wait, stale2); });
+    tbb::parallel_invoke([&] { a = fresh_frame(*parts_.cam1, "cam1", wait, tally1); },
+                         [&] { b = fresh_frame(*parts_.cam2, "cam2", wait, tally2); });
     if (!a) return fail(gone(a.error()));
     if (!b) return fail(gone(b.error()));
     std::vector<Frame> frames;

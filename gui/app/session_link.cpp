@@ -150,6 +150,9 @@ void SessionLink::drain_events(gui::FieldViewState& view) {
             case SessionEventKind::kDeviceBack:
                 set_device_status(view, true, "back: " + event.message);
                 break;
+            case SessionEventKind::kDeviceWarning:
+                set_device_status(view, true, "warning: " + event.message);
+                break;
             case SessionEventKind::kSaveFailed:
                 view.status.last_error = event.message;
                 dirty_ = true;

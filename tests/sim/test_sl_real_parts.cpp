@@ -7,11 +7,14 @@
 // it, and the cloud must be exactly the one decoded from the recording directly.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
+#include <mutex>
 #include <string>
 #include <unordered_map>
 
+#include "anascan/acquisition/capture/capture_session.hpp"
 #include "anascan/drivers/structured_light_scanner.hpp"
 #include "anascan/sim/structured_light_renderer.hpp"
 #include "mock_v4l2_camera.hpp"
@@ -77,12 +80,7 @@ protected:
         cam1_ = camera("video0", recorded_.cam1);
         cam2_ = camera("video1", recorded_.cam2);
         ASSERT_TRUE(write_stereo_calibration(calibration(), rig_));
-        const std::string uri =
-            "sl:" + calibration().string() +
-            "?cam1=v4l2:/dev/video0&cam2=v4l2:/dev/video1&projector=0" +
-            "&phase_steps=" + std::to_string(render_.patterns.phase_steps) +
-            "&phase_period_px=" + std::to_string(render_.patterns.phase_period_px);
-        auto device = drivers::make_hardware_registry().open(uri);
+        auto device = drivers::make_hardware_registry().open(uri());
         if (!device && device.error().code == ErrorCode::kUnsupported)
             GTEST_SKIP() << device.error().message;
         ASSERT_TRUE(device) << device.error().message;
@@ -105,6 +103,23 @@ protected:
                 .one_frame_late = true});
     }
     std::filesystem::path calibration() const { return folder_.path() / "calibration.yml"; }
+    std::string uri() const {
+        return "sl:" + calibration().string() +
+               "?cam1=v4l2:/dev/video0&cam2=v4l2:/dev/video1&projector=0" +
+               "&phase_steps=" + std::to_string(render_.patterns.phase_steps) +
+               "&phase_period_px=" + std::to_string(render_.patterns.phase_period_px);
+    }
+    /// Oracle: the recording decoded directly, with the same calibration file and rules.
+    PointCloud direct_decode() const {
+        auto loaded = drivers::sl::load_stereo_calibration(calibration(), {});
+        EXPECT_TRUE(loaded);
+        drivers::sl::StereoDecodeConfig config = scanner_->parts().decode;
+        config.triangulation.min_depth_m = *scanner_->settings().min_range_m;
+        config.triangulation.max_depth_m = *scanner_->settings().max_range_m;
+        auto direct = drivers::sl::decode_stereo(recorded_.cam1, recorded_.cam2, *loaded, config);
+        EXPECT_TRUE(direct) << direct.error().message;
+        return direct ? std::move(direct->cloud) : PointCloud{};
+    }
 
     StructuredLightRig rig_;
     StructuredLightRenderConfig render_;
@@ -125,22 +140,67 @@ TEST_F(StructuredLightRealParts, ProjectorWindowAndV4l2CamerasGiveTheRecordedClo
     EXPECT_EQ(stats.patterns_shown, patterns_.size());
     EXPECT_GE(stats.stale_frames, 2 * (patterns_.size() - 1));  // every switch, both cameras
 
-    // Oracle: the recording decoded directly, with the same calibration file and rules.
-    auto loaded = drivers::sl::load_stereo_calibration(calibration(), {});
-    ASSERT_TRUE(loaded);
-    drivers::sl::StereoDecodeConfig config = scanner_->parts().decode;
-    config.triangulation.min_depth_m = *scanner_->settings().min_range_m;
-    config.triangulation.max_depth_m = *scanner_->settings().max_range_m;
-    auto direct = drivers::sl::decode_stereo(recorded_.cam1, recorded_.cam2, *loaded, config);
-    ASSERT_TRUE(direct) << direct.error().message;
+    const PointCloud direct = direct_decode();
     std::printf(
         "sl: (GLFW window + 2 umockdev V4L2 cameras): %zu points, %zu stale frames "
         "dropped; direct decode %zu points\n",
-        scan->cloud.size(), stats.stale_frames, direct->cloud.size());
+        scan->cloud.size(), stats.stale_frames, direct.size());
     EXPECT_GT(scan->cloud.size(), 5000u);
-    ASSERT_EQ(scan->cloud.size(), direct->cloud.size());
-    EXPECT_EQ(scan->cloud.positions, direct->cloud.positions);
+    ASSERT_EQ(scan->cloud.size(), direct.size());
+    EXPECT_EQ(scan->cloud.positions, direct.positions);
     device_->close();
+}
+
+// A camera that sends garbage now and then (every 5th frame of cam1 cut in half): a capture
+// session drops those frames, takes the scan from good ones (exactly the recorded cloud),
+// acknowledges it, and says so once, naming the camera, in its events and its log.
+TEST_F(StructuredLightRealParts, GarbledFramesAreDroppedWithAWarningAndTheScanIsTheRecordedOne) {
+    const PointCloud direct = direct_decode();
+    device_->close();
+    device_.reset();
+    cam1_->set_garbled(5);
+    auto store = acquisition::SessionStore::open(folder_.path() / "session",
+                                                 acquisition::SessionOpenMode::kCreateOrOpen);
+    ASSERT_TRUE(store) << store.error().message;
+    std::mutex mutex;
+    std::vector<acquisition::SessionEvent> events;
+    auto session = acquisition::CaptureSession::start(
+        std::move(*store), {.register_live = false, .coverage_live = false},
+        [&](const acquisition::SessionEvent& e) {
+            std::lock_guard lock(mutex);
+            events.push_back(e);
+        });
+    ASSERT_TRUE(session) << session.error().message;
+    const std::string sl_uri = uri();
+    ASSERT_TRUE((*session)->attach_scanner(
+        sl_uri, [sl_uri]() -> Expected<std::unique_ptr<drivers::Scanner>> {
+            auto device = drivers::make_hardware_registry().open(sl_uri);
+            if (!device) return fail(device.error());
+            auto* scanner = (*device)->as_scanner();
+            if (scanner == nullptr) return fail(ErrorCode::kUnsupported, "not a scanner");
+            (void)device->release();
+            return std::unique_ptr<drivers::Scanner>(scanner);
+        }));
+    const auto acknowledged = (*session)->capture({}).get();
+    ASSERT_TRUE(acknowledged) << acknowledged.error().message;
+    (*session)->wait_until_idle();
+    auto saved = (*session)->store().load_scan(*acknowledged);
+    ASSERT_TRUE(saved) << saved.error().message;
+    EXPECT_EQ(saved->cloud.positions, direct.positions);
+    auto log = (*session)->store().events();
+    ASSERT_TRUE(log);
+    std::vector<std::string> warnings;
+    for (const auto& e : *log)
+        if (e.kind == "device-warning") warnings.push_back(e.message);
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_NE(warnings[0].find("unreadable camera frame(s) dropped"), std::string::npos);
+    EXPECT_NE(warnings[0].find("cam1 (v4l2:/dev/video0)"), std::string::npos) << warnings[0];
+    std::lock_guard lock(mutex);
+    EXPECT_EQ(std::count_if(events.begin(), events.end(),
+                            [](const auto& e) {
+                                return e.kind == acquisition::SessionEventKind::kDeviceWarning;
+                            }),
+              1);
 }
 
 // A V4L2 camera falling silent is a timeout naming it; unplugged in the middle of the

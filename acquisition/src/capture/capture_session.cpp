@@ -24,6 +24,8 @@ std::string_view to_string(SessionEventKind kind) {
             return "device-error";
         case SessionEventKind::kDeviceBack:
             return "device-back";
+        case SessionEventKind::kDeviceWarning:
+            return "device-warning";
     }
     return "unknown";
 }

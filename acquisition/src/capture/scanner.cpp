@@ -105,7 +105,13 @@ Expected<CapturedScan> CaptureSession::Impl::capture_one(PendingCapture& pending
     if (auto ok = open_if_needed(); !ok) return fail(ok.error());
     std::optional<Pose> to_truth_frame;
     if (pending.request.before) to_truth_frame = pending.request.before(*scanner);
-    const drivers::CaptureControl control{.stop = stop, .timeout = config.capture_timeout};
+    const drivers::CaptureControl control{
+        .stop = stop,
+        .timeout = config.capture_timeout,
+        .on_warning = [this](const std::string& m) {
+            record_device_event(*store, "device-warning", scanner_uri, m);
+            emit({.kind = SessionEventKind::kDeviceWarning, .device = scanner_uri, .message = m});
+        }};
     auto scan = scanner->capture_scan(control);
     if (!scan) {
         report_device_error(scan.error());

@@ -25,6 +25,9 @@ struct CaptureControl {
     std::function<void(const CaptureProgress&)> on_progress;  ///< May be empty.
     std::stop_token stop;                                     ///< Request → kCancelled.
     std::chrono::milliseconds timeout{30000};                 ///< Whole capture.
+    /// A fault the capture survived (unreadable frames dropped), one line naming the device
+    /// part, called on the capture's thread once the capture ends. May be empty.
+    std::function<void(const std::string&)> on_warning;
 };
 
 /// Not thread-safe: capture_scan runs on the caller's thread; another thread may only

@@ -41,8 +41,10 @@ struct StructuredLightParts {
 /// What the last capture saw (for tests and logs).
 struct StructuredLightCaptureStats {
     std::size_t patterns_shown = 0;
-    std::size_t frames_used = 0;   ///< Two per pattern when the capture completed.
-    std::size_t stale_frames = 0;  ///< Dropped: exposed before their pattern was shown.
+    std::size_t frames_used = 0;        ///< Two per pattern when the capture completed.
+    std::size_t stale_frames = 0;       ///< Dropped: exposed before their pattern was shown.
+    std::size_t unreadable_frames = 0;  ///< Dropped: not a readable image (camera garbage).
+    std::string last_unreadable;        ///< The last of those, naming its camera.
 };
 
 /// Not thread-safe (see Scanner). Owns its parts; close() closes both cameras.

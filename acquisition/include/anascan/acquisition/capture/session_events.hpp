@@ -20,6 +20,9 @@ enum class SessionEventKind {
     kCoverage,      ///< Coverage was recomputed.
     kDeviceError,   ///< A capture failed (unplugged, timeout, invalid setting).
     kDeviceBack,    ///< The device could be opened again after an error.
+    /// A capture survived a device fault (unreadable frames dropped): the scan is good, the
+    /// message says what the device did.
+    kDeviceWarning,
 };
 
 /// Short name ("saved", "registration-failed", ...), for logs and the events table.
