@@ -86,6 +86,22 @@ TEST_F(CampaignCli, BadScansAreReportedAndTheRestIsRegisteredOnce) {
     run = run_cli("campaign register " + campaign());
     ASSERT_EQ(run.exit_code, 0) << run.output;
     EXPECT_EQ(run_now(run.output, "pairs"), "2") << run.output;
+    // A pair's stored result damaged by another tool: named, found, repaired, redone.
+    sql(R"(UPDATE pairs SET result_json = '{"verified":"yes"}' WHERE rowid = 1)");
+    for (const std::string command : {"campaign status ", "campaign register "}) {
+        run = run_cli(command + campaign());
+        EXPECT_EQ(run.exit_code, 1) << run.output;
+        EXPECT_NE(run.output.find("the pair's result is damaged"), std::string::npos) << run.output;
+    }
+    run = run_cli("campaign check " + campaign());
+    EXPECT_EQ(run.exit_code, 1) << run.output;
+    EXPECT_NE(run.output.find("pair-result: pair"), std::string::npos) << run.output;
+    run = run_cli("campaign check --repair " + campaign());
+    EXPECT_EQ(run.exit_code, 0) << run.output;
+    run = run_cli("campaign register " + campaign());
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    EXPECT_EQ(run_now(run.output, "pairs"), "1") << run.output;
+    EXPECT_EQ(run_cli("campaign status " + campaign()).exit_code, 0);
 }
 
 TEST_F(CampaignCli, NewerSchemaAndLockedStoreAreRefusedClearly) {
