@@ -7,6 +7,7 @@
 // job's reading of the stored results must succeed.
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
 #include <filesystem>
 
 #include "anascan/acquisition/campaign/campaign_check.hpp"
@@ -32,11 +33,12 @@ void damage_prepared(const fs::path& dir, std::uint8_t byte) {
     if (!ec) fs::resize_file(file, size / 2, ec);
 }
 
-/// Reads the campaign as `campaign status` and the job do; true when all of it reads.
-bool read_everything(const fs::path& dir) {
+/// Reads the campaign as `campaign status` and the job do; what failed (empty: all of it
+/// reads).
+std::string read_everything(const fs::path& dir) {
     auto store = CampaignStore::open(dir, true);
     require_message(store);
-    if (!store) return false;
+    if (!store) return store.error().message;
     const auto scans = (*store)->scans();
     require_message(scans);
     require_message((*store)->pairs());
@@ -44,10 +46,12 @@ bool read_everything(const fs::path& dir) {
     require_message((*store)->value("graph"));
     const auto status = campaign_status(**store);
     require_message(status);
-    if (!scans) return false;
+    if (!scans) return scans.error().message;
     const auto stored = campaign_json::verify_stored(**store, *scans);
     require_message(stored);
-    return status && stored;
+    if (!status) return status.error().message;
+    if (!stored) return stored.error().message;
+    return {};
 }
 
 }  // namespace
@@ -62,7 +66,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     require_message(check_campaign(w.work, false));
     const auto repaired = check_campaign(w.work, true);
     require_message(repaired);
-    const bool reads = read_everything(w.work);
-    if (repaired && repaired->clean()) require(reads);
+    const std::string failed = read_everything(w.work);
+    if (repaired && repaired->clean() && !failed.empty()) {
+        std::fprintf(stderr, "check --repair said clean, yet: %s\n", failed.c_str());
+        require(false);
+    }
     return 0;
 }

@@ -60,12 +60,17 @@ Error damaged_table(const std::filesystem::path& dir, const std::string& table,
                      "`anascan campaign init`)"};
 }
 
-Expected<std::size_t> scan_count(const db::Connection& db) {
-    auto stmt = db::Statement::prepare(db, "SELECT COUNT(*) FROM scans");
+/// The single number a `SELECT COUNT(*) ...` gives.
+Expected<std::size_t> count_rows(const db::Connection& db, std::string_view sql) {
+    auto stmt = db::Statement::prepare(db, sql);
     if (!stmt) return fail(stmt.error());
-    auto row = stmt->step("cannot count the scans");
+    auto row = stmt->step("cannot count rows");
     if (!row) return fail(row.error());
     return static_cast<std::size_t>(*row ? std::max<std::int64_t>(0, stmt->int64(0)) : 0);
+}
+
+Expected<std::size_t> scan_count(const db::Connection& db) {
+    return count_rows(db, "SELECT COUNT(*) FROM scans");
 }
 
 bool is_scan(std::int64_t id, std::size_t count) {
@@ -121,6 +126,18 @@ Expected<std::vector<CampaignPairRow>> CampaignStore::pairs() const {
                                    .result_json = s.text(3)};
         });
     if (!rows) return rows;
+    // The key's columns take any SQLite type: 2.5 or '2' would read as scan 2 yet match no
+    // `WHERE source = 2`, so a repair could not reach the row.
+    auto odd = count_rows(impl_->db,
+                          "SELECT COUNT(*) FROM pairs WHERE typeof(source) != 'integer' OR "
+                          "typeof(target) != 'integer'");
+    if (!odd) return fail(odd.error());
+    if (*odd > 0) {
+        return fail(damaged_table(impl_->dir, "pairs",
+                                  std::to_string(*odd) +
+                                      " pair(s) name a scan by a value that is not a whole "
+                                      "number"));
+    }
     for (const CampaignPairRow& p : *rows) {
         if (is_scan(p.source, *count) && is_scan(p.target, *count) && p.source != p.target)
             continue;

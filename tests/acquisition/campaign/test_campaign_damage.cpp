@@ -162,6 +162,8 @@ TEST_F(CampaignDamage, TablesThatContradictEachOtherAreReportedAndNotRepaired) {
     const CampaignCheckReport repaired = check(true);
     EXPECT_FALSE(repaired.clean());
     EXPECT_EQ(repaired.issues.at(0).kind, "database");
+    sql("UPDATE pairs SET source = 1.5 WHERE source = 1");  // Read as 1, matched by no repair.
+    EXPECT_THAT(status().error().message, HasSubstr("name a scan by a value that is not a whole"));
     sql("DELETE FROM scans WHERE id = 1");
     EXPECT_THAT(status().error().message, HasSubstr("row 1 holds scan id 2"));
 }
