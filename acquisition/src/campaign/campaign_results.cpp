@@ -35,7 +35,15 @@ auto guarded(const std::string& text, const std::string& what, Read&& read)
     }
 }
 
+/// nlohmann converts a JSON float to an integer with a static_cast (undefined out of range):
+/// the integers are checked to be JSON integers first.
+void require_whole(const json& object, const char* key) {
+    require(!object.contains(key) || object[key].is_number_integer(),
+            std::string(key) + " is not a whole number");
+}
+
 std::int64_t scan_id(const json& j, std::size_t scan_count) {
+    require(j.is_number_integer(), "a scan id is not a whole number");
     const auto id = j.get<std::int64_t>();
     require(id >= 0 && static_cast<std::size_t>(id) < scan_count,
             "names scan " + std::to_string(id) + " of " + std::to_string(scan_count));
@@ -65,6 +73,7 @@ Expected<PreparedSummary> read_scan_summary(const std::string& text) {
     if (text.empty()) return PreparedSummary{};
     return guarded(text, "the prepared summary", [](const json& j) {
         require(j.is_object(), "not an object");
+        for (const char* key : {"points", "position_hash"}) require_whole(j, key);
         PreparedSummary s = campaign_json::summary_from(j);
         require(std::isfinite(s.spacing_m) && s.spacing_m >= 0 && std::isfinite(s.diagonal_m) &&
                     s.centre_m.allFinite(),
@@ -80,6 +89,7 @@ Expected<std::optional<CampaignPairResult>> read_pair_result(const std::string& 
             j.at("error").get<std::string>();
             return std::optional<CampaignPairResult>();
         }
+        require_whole(j, "status_code");
         if (j.contains("T_target_source")) stored_pose(j.at("T_target_source"));
         return std::optional<CampaignPairResult>(campaign_json::pair_from(j));
     });

@@ -123,6 +123,8 @@ TEST_F(CampaignDamage, AStoneResultNamingAScanThatDoesNotExistIsNamedAndCleared)
            R"("reason":"","warning":""}]})"));
     EXPECT_THAT(status().error().message, HasSubstr("stone 0: the stone's result is damaged"));
     EXPECT_THAT(status().error().message, HasSubstr("names scan 9 of 5"));
+    ASSERT_TRUE(open()->save_stone_result(0, R"({"scans":[{"id":1e300}]})"));
+    EXPECT_THAT(status().error().message, HasSubstr("a scan id is not a whole number"));
     EXPECT_EQ(check(false).issues.at(0).kind, "stone-result");
     EXPECT_TRUE(check(true).clean());
     EXPECT_EQ(status()->stones_done, 0u);
