@@ -25,7 +25,8 @@ asan_targets=(anascan_session_store_tests anascan anascan_cli_session_tests
     anascan_live_registration_quick_tests anascan_cli_tests anascan_cli_sl_tests
     fuzz_ply_replay fuzz_text_points_replay fuzz_ptx_replay fuzz_stanford_conf_replay
     fuzz_xf_replay fuzz_obj_replay fuzz_stl_replay fuzz_e57_replay fuzz_recording_replay
-    fuzz_calibration_replay fuzz_session_db_replay fuzz_grey_image_replay)
+    fuzz_calibration_replay fuzz_session_db_replay fuzz_grey_image_replay
+    fuzz_campaign_store_replay fuzz_block_files_replay)
 # The CI set, ASan + UBSan: the processing library (every parser and every algorithm) with
 # its unit tests and the corpus replays of every processing parser's fuzz harness (the
 # recording, calibration, session-database and grey-image harnesses need the driver and
@@ -127,10 +128,11 @@ status=0
 if [ "$which" = ci ]; then
     part "asan (CI set) build" configure_and_build build-asan "address;undefined" \
         "${ci_targets[@]}"
-    # The replays of the recording, calibration, session-database and grey-image harnesses
-    # need the driver and acquisition libraries, which this set does not build.
-    part "asan (CI set) tests" run_tests build-asan \
-        -E "$common_exclude|^fuzz_(recording|calibration|session_db|grey_image)_replay\$" ||
+    # The replays of the recording, calibration, session-database, grey-image, campaign-store
+    # and blocks-folder harnesses need the driver and acquisition libraries, which this set
+    # does not build.
+    part "asan (CI set) tests" run_tests build-asan -E \
+        "$common_exclude|^fuzz_(recording|calibration|session_db|grey_image|campaign_store|block_files)_replay\$" ||
         status=1
 fi
 if [ "$which" = asan ] || [ "$which" = all ]; then
