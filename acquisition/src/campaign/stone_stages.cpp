@@ -38,7 +38,9 @@ Expected<std::map<std::int64_t, std::string>> stored_warnings(const CampaignStor
                                                               std::size_t scan_count) {
     auto graph = store.value("graph");
     if (!graph) return fail(graph.error());
-    return read_graph_warnings(graph->value_or(""), scan_count);
+    auto warnings = read_graph_warnings(graph->value_or(""), scan_count);
+    if (!warnings) return fail(campaign_json::damaged(store, "", warnings.error()));
+    return warnings;
 }
 
 std::string warning_of(const std::map<std::int64_t, std::string>& warnings, std::int64_t id) {
@@ -82,7 +84,7 @@ Expected<void> multiview_stage(StageRun& run, CampaignStore& store,
     auto stones = store.stones();
     if (!stones) return fail(stones.error());
     auto warnings = stored_warnings(store, scans.size());
-    if (!warnings) return fail(campaign_json::damaged(store, "", warnings.error()));
+    if (!warnings) return fail(warnings.error());
     std::vector<CampaignTask> tasks;
     for (const CampaignStoneRow& stone : *stones) {
         if (!stone.result_json.empty()) continue;
