@@ -17,21 +17,14 @@
 #include "anascan/acquisition/blocks/block_folder.hpp"
 #include "anascan/acquisition/blocks/block_proposals.hpp"
 #include "anascan/processing/reassembly/face_matching.hpp"
+#include "fuzz_require.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 using namespace anascan;
 using namespace anascan::acquisition;
-
-void require(bool condition) {
-    if (!condition) std::abort();
-}
-
-template <typename T>
-void require_message(const Expected<T>& result) {
-    if (!result) require(!result.error().message.empty());
-}
+using namespace anascan::fuzz;
 
 const fs::path& folder() {
     static const fs::path dir = [] {

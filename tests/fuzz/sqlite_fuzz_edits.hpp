@@ -19,23 +19,13 @@
 #include <string>
 #include <vector>
 
-#include "anascan/processing/core/expected.hpp"
+#include "fuzz_require.hpp"
 
 namespace anascan::fuzz {
 
 namespace fs = std::filesystem;
 
 using FileImage = std::map<fs::path, std::string>;  // relative path -> bytes
-
-inline void require(bool condition) {
-    if (!condition) std::abort();
-}
-
-/// A failure must say what failed.
-template <typename T>
-void require_message(const Expected<T>& result) {
-    if (!result) require(!result.error().message.empty());
-}
 
 inline FileImage read_tree(const fs::path& dir) {
     FileImage image;

@@ -89,6 +89,13 @@ TEST_F(BlocksMatchCli, ProposalsDecisionsAndBadInputs) {
                "no *.features.json");
     fails_with("blocks eval " + proposals() + " --truth " + (dir_ / "none.json").string(),
                "none.json");
+    // Files of the right syntax holding values of the wrong type: named, not a crash.
+    std::ofstream(dir_ / "f/decisions.json") << R"({"decisions": 5})";
+    fails_with("blocks match " + (dir_ / "f").string() + " --out " + (dir_ / "y.json").string(),
+               "not a decisions file");
+    std::ofstream(dir_ / "typed.json") << R"({"features_dir": ".", "blocks": 5})";
+    fails_with("blocks accept " + (dir_ / "typed.json").string() + " " + facade + " " + back,
+               "not a file of blocks match");
 }
 
 }  // namespace
